@@ -1,0 +1,87 @@
+"""`tiremesh` command line, run in a subprocess as a user would."""
+
+import csv
+import json
+import subprocess
+import sys
+
+import pytest
+from numpy.testing import assert_allclose
+
+
+def run(*args, check=True):
+    proc = subprocess.run(
+        [sys.executable, "-m", "tiremesh.cli", *args], capture_output=True, text=True, timeout=120
+    )
+    if check and proc.returncode != 0:
+        raise AssertionError(proc.stderr)
+    return proc
+
+
+def test_cli_solve_catalogue_tire_human():
+    out = run("solve", "--tire", "big apple", "--pressure", "4bar", "--deflection", "5").stdout
+    assert "Schwalbe Big Apple 55-622" in out
+    assert "length 118.9" in out and "width 9.917" in out
+
+
+def test_cli_solve_json_load_search():
+    out = run(
+        "solve",
+        "--size",
+        "37",
+        "--rim-width",
+        "18.7",
+        "--pressure",
+        "58psi",
+        "--load",
+        "40.8kg",
+        "--camber",
+        "45",
+        "--surface",
+        "drum:2500",
+        "--json",
+    ).stdout
+    data = json.loads(out)
+    assert_allclose(data["vertical_force_N"], 40.8 * 9.81, rtol=1e-6)
+    assert data["surface"] == "drum 2500 mm"
+    assert data["lateral_force_N"] > 0
+
+
+def test_cli_solve_csv_and_files(tmp_path):
+    sec, outline = tmp_path / "sections.csv", tmp_path / "outline.csv"
+    out = run(
+        "solve",
+        "--tire",
+        "5",
+        "--pressure",
+        "400kPa",
+        "--load",
+        "400",
+        "--csv",
+        "--sections-csv",
+        str(sec),
+        "--outline-csv",
+        str(outline),
+        "--sections",
+        "51",
+    ).stdout
+    rows = list(csv.DictReader(out.splitlines()))
+    assert len(rows) == 1 and float(rows[0]["vertical_force_N"]) == pytest.approx(400, rel=1e-6)
+    assert len(list(csv.DictReader(sec.open()))) == 51
+    assert len(list(csv.DictReader(outline.open()))) == 103
+
+
+@pytest.mark.parametrize(
+    ("args", "match"),
+    [
+        (["--tire", "5", "--pressure=-1bar", "--load", "400"], "pressure"),
+        (["--tire", "5", "--pressure", "1bar", "--load", "900kg"], "largest load"),
+        (["--tire", "99", "--pressure", "4bar", "--load", "400"], "tire"),
+        (["--tire", "5", "--pressure", "4bar", "--load", "400", "--camber", "95"], "camber"),
+        (["--tire", "5", "--pressure", "4bar", "--load", "400", "--surface", "moon"], "surface"),
+    ],
+)
+def test_cli_solve_errors_are_clear(args, match):
+    proc = run("solve", *args, check=False)
+    assert proc.returncode == 2
+    assert match in proc.stderr and "Traceback" not in proc.stderr

@@ -1,0 +1,199 @@
+"""``tiremesh`` command line: a thin layer over the library.
+
+Units at this edge carry their names: ``--pressure 4bar`` / ``60psi`` / ``400kPa``,
+``--load 400N`` / ``40kg``, angles in degrees, lengths in mm.
+"""
+
+from __future__ import annotations
+
+import argparse
+import csv
+import io
+import json
+import math
+import sys
+from collections.abc import Sequence
+
+from .catalog import get_tire
+from .errors import TireModelError
+from .geometry import TireGeometry
+from .units import parse_force, parse_length, parse_pressure
+
+
+def add_tire_options(p: argparse.ArgumentParser) -> None:
+    """Tire and load-case options shared by every subcommand that solves the model."""
+    g = p.add_argument_group("tire")
+    g.add_argument("--tire", help="catalogue tire id or name (Table 3-2), e.g. 8 or 'big apple'")
+    g.add_argument("--size", help="nominal size = carcass diameter [mm] (Table 5-1)")
+    g.add_argument(
+        "--arc-length", help="measured carcass arc length bead to bead [mm] (Table 5-2)"
+    )
+    g.add_argument("--rim-width", help="inner rim width [mm] (overrides the catalogue rim)")
+    g.add_argument("--bead-seat", default="622", help="bead seat diameter [mm] (default 622)")
+    c = p.add_argument_group("load case")
+    c.add_argument(
+        "--pressure", required=True, help="inflation pressure, e.g. 4bar, 60psi, 400kPa"
+    )
+    m = c.add_mutually_exclusive_group(required=True)
+    m.add_argument("--load", help="vertical load, e.g. 400N or 40kg")
+    m.add_argument("--deflection", help="wheel deflection in the wheel plane [mm]")
+    c.add_argument("--camber", type=float, default=0.0, help="camber angle [deg]")
+    c.add_argument("--slip", type=float, default=0.0, help="slip angle [deg]")
+    c.add_argument("--lateral", default="0", help="lateral displacement of the patch [mm]")
+    c.add_argument(
+        "--surface",
+        default="flat",
+        help="flat | drum:DIAMETER_MM | disk:DIAMETER_MM[:toward|away] (default flat)",
+    )
+    c.add_argument(
+        "--sections", type=int, default=201, help="sections along the patch (default 201)"
+    )
+
+
+def tire_from_args(a: argparse.Namespace) -> TireGeometry:
+    rim = None if a.rim_width is None else parse_length(a.rim_width, name="--rim-width")
+    bead = parse_length(a.bead_seat, name="--bead-seat")
+    given = [x for x in (a.tire, a.size, a.arc_length) if x is not None]
+    if len(given) != 1:
+        raise SystemExit("error: give exactly one of --tire, --size, --arc-length")
+    if a.tire is not None:
+        return get_tire(a.tire, rim_width=rim)
+    if rim is None:
+        raise SystemExit("error: --rim-width is required with --size or --arc-length")
+    if a.size is not None:
+        size = parse_length(a.size, name="--size")
+        return TireGeometry.from_size(
+            size, rim, bead_seat_diameter=bead, name=f"{size:g} mm tire on {rim:g} mm rim"
+        )
+    s0 = parse_length(a.arc_length, name="--arc-length")
+    return TireGeometry.from_arc_length(
+        s0, rim, bead_seat_diameter=bead, name=f"{s0:g} mm carcass on {rim:g} mm rim"
+    )
+
+
+def solve_from_args(a: argparse.Namespace):
+    """Solve the load case the options describe; returns a ContactPatch."""
+    from .load import solve
+    from .surface import parse_surface
+
+    tire = tire_from_args(a)
+    kw = dict(
+        pressure=parse_pressure(a.pressure, name="--pressure"),
+        camber=math.radians(a.camber),
+        slip=math.radians(a.slip),
+        lateral=parse_length(a.lateral, name="--lateral"),
+        surface=parse_surface(a.surface),
+        n_sections=a.sections,
+    )
+    if a.load is not None:
+        return solve(tire, load=parse_force(a.load, name="--load"), **kw)
+    return solve(tire, deflection=parse_length(a.deflection, name="--deflection"), **kw)
+
+
+def _human(patch) -> str:
+    s = patch.summary()
+    t = patch.tire
+    return "\n".join(
+        [
+            f"{t.name or 'tire'}: r0 = {t.tire_radius:.4g} mm, arc length {t.arc_length:.4g} mm, "
+            f"rim {t.rim_width:.4g} mm, rim height {t.rim_height:.4g} mm, bead seat {t.bead_seat_diameter:g} mm",
+            f"surface {s['surface']}, pressure {s['pressure_bar']:.4g} bar, camber {s['camber_deg']:.4g} deg, "
+            f"slip {s['slip_deg']:.4g} deg, lateral {s['lateral_mm']:.4g} mm",
+            f"deflection {s['deflection_mm']:.5g} mm (sinkage {s['sinkage_pct']:.4g} % of rim height)",
+            f"contact patch: length {s['length_mm']:.5g} mm, width {s['width_mm']:.5g} mm, "
+            f"area {s['area_mm2']:.5g} mm^2",
+            f"forces: vertical {s['vertical_force_N']:.5g} N, lateral {s['lateral_force_N']:.5g} N, "
+            f"net force {s['net_force_orientation_deg']:.4g} deg from vertical",
+        ]
+    )
+
+
+def _csv(rows: list[dict]) -> str:
+    buf = io.StringIO()
+    w = csv.DictWriter(buf, fieldnames=list(rows[0]), lineterminator="\n")
+    w.writeheader()
+    w.writerows(rows)
+    return buf.getvalue()
+
+
+def _cmd_solve(a: argparse.Namespace) -> int:
+    from ._io import write_text_atomic
+
+    patch = solve_from_args(a)
+    summary = patch.summary()
+    if a.json:
+        print(json.dumps(summary, indent=2))
+    elif a.csv:
+        print(_csv([summary]), end="")
+    else:
+        print(_human(patch))
+    if a.sections_csv:
+        rows = [
+            {
+                "phi_rad": f,
+                "x_mm": x,
+                "edge1_mm": e1,
+                "edge2_mm": e2,
+                "width_mm": e2 - e1,
+                "radius1_mm": r1,
+                "radius2_mm": r2,
+                "dv_mm": dv,
+                "dh_mm": dh,
+                "dS_N_per_mm": ds,
+                "dN_N_per_mm": dn,
+            }
+            for f, x, e1, e2, r1, r2, dv, dh, ds, dn in zip(
+                patch.phi,
+                patch.x,
+                patch.sections.edge1,
+                patch.sections.edge2,
+                patch.sections.radius1,
+                patch.sections.radius2,
+                patch.sections.vert_deflection,
+                patch.sections.horz_deflection,
+                patch.lateral_force_density,
+                patch.vertical_force_density,
+                strict=True,
+            )
+        ]
+        write_text_atomic(
+            a.sections_csv, _csv([{k: float(v) for k, v in r.items()} for r in rows])
+        )
+    if a.outline_csv:
+        rows = [{"x_mm": float(x), "y_mm": float(y)} for x, y in patch.outline]
+        write_text_atomic(a.outline_csv, _csv(rows))
+    return 0
+
+
+def build_parser() -> argparse.ArgumentParser:
+    parser = argparse.ArgumentParser(
+        prog="tiremesh",
+        description="Rotta model of a bicycle tire pressed on a surface (Dressel 2013, ch. 5).",
+    )
+    sub = parser.add_subparsers(dest="command", required=True)
+    p = sub.add_parser("solve", help="solve one load case and print the contact patch and forces")
+    add_tire_options(p)
+    out = p.add_mutually_exclusive_group()
+    out.add_argument("--json", action="store_true", help="print the summary as JSON")
+    out.add_argument("--csv", action="store_true", help="print the summary as one CSV row")
+    p.add_argument("--sections-csv", metavar="FILE", help="write per-section arrays to FILE")
+    p.add_argument("--outline-csv", metavar="FILE", help="write the patch outline polygon to FILE")
+    p.set_defaults(func=_cmd_solve)
+    return parser
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    parser = build_parser()
+    a = parser.parse_args(argv)
+    try:
+        return a.func(a)
+    except TireModelError as exc:
+        print(f"error: {exc}", file=sys.stderr)
+        return 2
+    except BrokenPipeError:  # e.g. piped into `head`
+        sys.stderr.close()
+        return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,70 @@
+"""Exception hierarchy of :mod:`tiremesh`.
+
+``TireModelError`` is the base; catch it to catch everything the model raises.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+
+class TireModelError(Exception):
+    """Base class of every error raised by :mod:`tiremesh`."""
+
+
+class InvalidParameter(TireModelError, ValueError):
+    """A parameter is outside the range the model accepts.
+
+    Attributes
+    ----------
+    name : str
+        Parameter name as the caller spelled it.
+    value : Any
+        The offending value.
+    allowed : str
+        Human-readable allowed range.
+    """
+
+    def __init__(self, name: str, value: Any, allowed: str, detail: str = "") -> None:
+        self.name = name
+        self.value = value
+        self.allowed = allowed
+        msg = f"{name} = {value!r} is invalid: allowed {allowed}"
+        if detail:
+            msg += f" ({detail})"
+        super().__init__(msg)
+
+
+class LoadTooHigh(InvalidParameter):
+    """The tire cannot carry the requested load at this pressure.
+
+    Attributes
+    ----------
+    max_load : float [N]
+        Largest vertical load the model carries before a bead reaches the ground.
+    """
+
+    def __init__(self, name: str, value: Any, max_load: float, detail: str = "") -> None:
+        self.max_load = float(max_load)
+        super().__init__(
+            name,
+            value,
+            f"0 < {name} <= {self.max_load:.6g} N (the largest load this tire carries "
+            "at this pressure before the rim reaches the ground)",
+            detail,
+        )
+
+
+class NoContact(TireModelError):
+    """The tire does not touch the support surface (e.g. zero deflection, or a
+    lateral displacement so large that even the central section's edges cross)."""
+
+
+class NotConverged(TireModelError):
+    """An iteration did not converge; ``state`` holds what it reached."""
+
+    def __init__(self, what: str, state: dict[str, Any]) -> None:
+        self.what = what
+        self.state = state
+        parts = ", ".join(f"{k}={v!r}" for k, v in state.items())
+        super().__init__(f"{what} did not converge; state reached: {parts}")
