@@ -36,6 +36,16 @@ class Tolerances:
         Clenshaw-Curtis sections per patch used inside the load search. The patch
         integrals converge spectrally (the patch width is analytic between its
         exact ends), so 65 nodes already give the area to ~1e-12 relative.
+    end_width_atol : float [mm]
+        Patch width at a converged patch end in the joint load search; the end
+        angle is then exact to ~1e-11 rad (4e-9 mm along the patch).
+    bulge_fast_step : float [rad]
+        The second Newton step for a side-bulge angle from its table guess is
+        ~1e-15 rad; a larger step means the guess was poor (ratio outside the
+        table) and the bracketed solver takes over.
+    series_below : float [rad]
+        Below this bulge angle, ``theta - sin(theta)`` is evaluated by its Taylor
+        series (no cancellation).
     rim_clearance : float [-]
         Largest usable wheel deflection as a fraction of the deflection at which a
         bead reaches the ground (where Rotta's bulge radius becomes infinite).
@@ -48,6 +58,9 @@ class Tolerances:
     max_iter: int = 60
     geometry_xtol: float = 1e-15
     search_sections: int = 65
+    end_width_atol: float = 1e-9
+    bulge_fast_step: float = 1e-11
+    series_below: float = 0.3
     rim_clearance: float = 0.995
 
 

@@ -28,10 +28,30 @@ from .patch import (
     _patch_ends,
     _sections_at,
     _single_cases,
+    area_jacobian,
     clenshaw_curtis,
     solve_patch,
 )
 from .surface import Flat, Surface
+
+
+# relative step of the directional difference in _djac_ddw (~sqrt(eps) of the smooth,
+# O(1)-curvature Jacobian: ~1e-8 relative accuracy, enough for a Newton derivative)
+_DIFF_STEP = 1e-7
+
+
+def _djac_ddw(sol, dv, ddv_dphi, phi, cs: _Cases, jac, dw):
+    """d(area Jacobian)/d(wheel deflection): a directional difference along the exact
+    d dv/d dw = cos(camber)/cos(phi) (Eq. 5-17), moving the section midpoints by
+    their analytic sensitivities."""
+    h = _DIFF_STEP * dw
+    cg, cp = np.cos(cs.gamma), np.cos(phi)
+    ddv_ddw = cg / cp
+    ddh_ddw = np.tan(cs.gamma) * ddv_ddw - np.tan(cs.slip) * cg * np.tan(phi)
+    xm = 0.5 * (sol.edge1 + sol.edge2) + h * (sol.dmid_ddv * ddv_ddw + sol.dmid_ddh * ddh_ddw)
+    dv2 = dv + h * ddv_ddw
+    ddv2 = ddv_dphi + h * cg * np.sin(phi) / (cp * cp)
+    return (area_jacobian(sol, dv2, ddv2, phi, cs, xm) - jac) / h
 
 
 def _area_and_slope(cs: _Cases, dw, n: int, guess=None):
@@ -46,15 +66,21 @@ def _area_and_slope(cs: _Cases, dw, n: int, guess=None):
     t, wts = clenshaw_curtis(n)
     half = 0.5 * (front - rear)
     phi = 0.5 * (front + rear) + half * t
-    sol, (_, _, _, _, _, dx) = _sections_at(phi, dwe, cs, offset)
+    sol, (dv, ddv_dphi, _, _, _, dx) = _sections_at(phi, dwe, cs, offset)
+    jac = area_jacobian(sol, dv, ddv_dphi, phi, cs)
     cg, tg, ta = np.cos(cs.gamma), np.tan(cs.gamma), np.tan(cs.slip)
     cp, tp = np.cos(phi), np.tan(phi)
     ddv = cg / cp  # d dv / d dw
     ddh = tg * ddv - ta * cg * tp  # d dh / d dw (disk offset held fixed)
     width = np.maximum(sol.width, 0.0)
-    area = half * (wts * width * dx).sum(-1, keepdims=True)
+    area = half * (wts * width * jac).sum(-1, keepdims=True)
+    # d jac / d dw ~ (jac / dx) d dx / d dw (exact without camber)
     slope = half * (
-        wts * ((sol.dwidth_ddv * ddv + sol.dwidth_ddh * ddh) * dx - width * cg / (cp * cp))
+        wts
+        * (
+            (sol.dwidth_ddv * ddv + sol.dwidth_ddh * ddh) * jac
+            - width * (jac / dx) * cg / (cp * cp)
+        )
     ).sum(-1, keepdims=True)
     area = np.where(touching, area, 0.0)
     slope = np.where(touching, slope, 0.0)
@@ -92,23 +118,25 @@ def _joint_newton(cs: _Cases, load, n: int):
         half = 0.5 * (phi_f - phi_r)
         phi = 0.5 * (phi_f + phi_r) + half * t
         try:
-            sol, (_, ddv, _, ddh, _, dx) = _sections_at(phi, dw, cs, 0.0)
+            sol, (dv, ddv, _, ddh, _, _) = _sections_at(phi, dw, cs, 0.0)
         except TireModelError:
             return None
+        jac = area_jacobian(sol, dv, ddv, phi, cs)
         width = sol.width
         cp = np.cos(phi)
         dv_dw = cg / cp
         dh_dw = tg * dv_dw - ta * cg * np.tan(phi)
         dwid_dw = sol.dwidth_ddv * dv_dw + sol.dwidth_ddh * dh_dw
         dwid_dphi = sol.dwidth_ddv * ddv + sol.dwidth_ddh * ddh
-        area = half * (wts * width * dx).sum(-1, keepdims=True)
+        area = half * (wts * width * jac).sum(-1, keepdims=True)
         if np.any(area <= 0):
             return None
-        slope = half * (wts * (dwid_dw * dx - width * cg / (cp * cp))).sum(-1, keepdims=True)
+        djac = _djac_ddw(sol, dv, ddv, phi, cs, jac, dw)
+        slope = half * (wts * (dwid_dw * jac + width * djac)).sum(-1, keepdims=True)
         f1, f2 = width[:, :1], width[:, -1:]
         a1, a2 = dwid_dphi[:, :1], dwid_dphi[:, -1:]
         b1, b2 = dwid_dw[:, :1], dwid_dw[:, -1:]
-        c1, c2 = -f1 * dx[:, :1] / area, f2 * dx[:, -1:] / area
+        c1, c2 = -f1 * jac[:, :1] / area, f2 * jac[:, -1:] / area
         f3 = np.log(cs.pressure * area) - target
         s = slope / area
         step_dw = (-f3 + c1 * f1 / a1 + c2 * f2 / a2) / (s - c1 * b1 / a1 - c2 * b2 / a2)
@@ -127,17 +155,13 @@ def _joint_newton(cs: _Cases, load, n: int):
             return None
         done = (
             (np.abs(f3) <= tol.load_rtol)
-            & (np.abs(f1) <= _END_WIDTH_ATOL)
-            & (np.abs(f2) <= _END_WIDTH_ATOL)
+            & (np.abs(f1) <= tol.end_width_atol)
+            & (np.abs(f2) <= tol.end_width_atol)
             & (np.abs(step_dw) <= tol.load_rtol * dw)
         )
         if np.all(done):
             return dw, (phi_r, phi_f)
     return None
-
-
-# patch width at a converged end [mm]: the end angle is then exact to ~1e-13 rad
-_END_WIDTH_ATOL = 1e-11
 
 
 def _find_deflection(cs: _Cases, load, n: int | None = None):

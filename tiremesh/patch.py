@@ -291,6 +291,34 @@ def section_to_ground(xs, zs, phi, *, tire_radius, wheel_radius, camber, ground_
     return x, y, z
 
 
+def area_jacobian(sol, dv, ddv, phi, cs: _Cases, xm=None):
+    """Ground area per unit section width and per radian of ``phi`` [mm/rad].
+
+    The contact segment ``[e1, e2]`` of the section at ``phi`` maps to the ground by
+    :func:`section_to_ground`, which is linear in the section coordinate, so the
+    patch area is exactly ``integral (e2 - e1) |J(x_mid, phi)| dphi`` with ``J`` the
+    Jacobian determinant of ``(x_s, phi) -> (x, y)`` at the segment midpoint. For an
+    uncambered tire ``|J| = dx/dphi`` (Eq. 5-26's ``dy``); a cambered section plane is
+    tilted, which makes its ground footprint slightly smaller (the appendix, which
+    takes ``polyarea`` of the projected outline, includes this too). On a drum the
+    area is measured along the drum surface (unrolled), as an ink print would be.
+    """
+    c, s = np.cos(cs.gamma), np.sin(cs.gamma)
+    zs, dzs = -cs.r0 + dv, ddv
+    xm = 0.5 * (sol.edge1 + sol.edge2) if xm is None else xm
+    rho = cs.R - cs.r0 - (s * xm + c * zs)
+    drho = -c * dzs
+    sp, cp = np.sin(phi), np.cos(phi)
+    dx_dxs, dy_dxs = -s * sp, c * c + s * s * cp
+    dx_dphi = drho * sp + rho * cp
+    dy_dphi = -c * s * dzs - s * (drho * cp - rho * sp)
+    jac = np.abs(dx_dxs * dy_dphi - dx_dphi * dy_dxs)
+    if np.any(cs.k_drum):
+        u = cs.k_drum * rho * sp
+        jac = jac / np.sqrt(np.maximum(1.0 - u * u, 1e-300))
+    return jac
+
+
 def _refined_extreme(phi, f, sign):
     """Max (sign=+1) or min (sign=-1) over nodes along the last axis, refined by a
     parabola through the extreme node and its neighbours."""
@@ -318,9 +346,9 @@ def _evaluate(cs: _Cases, dw, n: int, *, full: bool = True, ends=None):
     t, wts = clenshaw_curtis(n)
     half = 0.5 * (front - rear)
     phi = 0.5 * (front + rear) + half * t
-    sol, (dv, _, dh, _, x, dx) = _sections_at(phi, dw, cs, offset, broadcast=True)
+    sol, (dv, ddv, dh, _, x, dx) = _sections_at(phi, dw, cs, offset, broadcast=True)
     width = np.maximum(sol.width, 0.0)
-    area = half[:, 0] * (wts * width * dx).sum(-1)
+    area = half[:, 0] * (wts * width * area_jacobian(sol, dv, ddv, phi, cs)).sum(-1)
     lat = cs.pressure[:, 0] * half[:, 0] * (wts * (sol.radius1 - sol.radius2) * dx).sum(-1)
     out = {
         "phi": phi,
@@ -353,6 +381,7 @@ def _evaluate(cs: _Cases, dw, n: int, *, full: bool = True, ends=None):
         )
         x1, x2, xc = unroll(x1), unroll(x2), unroll(xc)
     out.update(edge1_xy=(x1, y1), edge2_xy=(x2, y2), centre_xy=(xc, yc), edge_z=(z1, z2))
+    out["surface_z"] = ground_z[:, 0]
     out["length"] = np.maximum(x1[:, -1], x2[:, -1]) - np.minimum(x1[:, 0], x2[:, 0])
     out["width"] = _refined_extreme(phi, y2, +1) - _refined_extreme(phi, y1, -1)
     out["dv"], out["dh"] = dv, dh
@@ -415,6 +444,8 @@ class ContactPatch:
     lateral_force: float
     disk_offset: float
     flatness: float
+    surface_z: float = 0.0
+    phi_ends: tuple[float, float] = (0.0, 0.0)
 
     @property
     def net_force_orientation(self) -> float:
@@ -442,6 +473,43 @@ class ContactPatch:
         dn = self.vertical_force_density
         with np.errstate(divide="ignore", invalid="ignore"):
             return np.where(dn > 0, np.abs(self.lateral_force_density) / dn, np.inf)
+
+    def sections_at(self, phi) -> tuple[SectionSolution, np.ndarray]:
+        """Rotta sections of this load case at any angles ``phi`` (n,) [rad], inside or
+        beyond the patch (beyond it the edges cross: negative width).
+
+        Returns
+        -------
+        sections : SectionSolution, arrays (n,)
+        x : (n,) float [mm]
+            Forward position ``(R - dv) sin phi``.
+        """
+        cs = _single_cases(
+            self.tire, self.pressure, self.camber, self.slip, self.lateral, self.surface
+        )
+        phi = np.atleast_1d(np.asarray(phi, float))[None, :]
+        sol, disp = _sections_at(phi, np.array([[self.deflection]]), cs, self.disk_offset, True)
+        flat = {}
+        for f in sol.__dataclass_fields__:
+            val = getattr(sol, f)
+            if isinstance(val, tuple):
+                flat[f] = tuple(np.broadcast_to(a, phi.shape)[0] for a in val)
+            else:
+                flat[f] = np.broadcast_to(val, phi.shape)[0]
+        return SectionSolution(**flat), disp[4][0]
+
+    def to_ground(self, xs, zs, phi):
+        """Section-frame points -> ground frame ``(x, y, z)`` [mm] (z = 0 on the surface
+        under the central section), see :func:`section_to_ground`."""
+        return section_to_ground(
+            xs,
+            zs,
+            phi,
+            tire_radius=self.tire.tire_radius,
+            wheel_radius=self.tire.wheel_radius,
+            camber=self.camber,
+            ground_z=self.surface_z,
+        )
 
     def summary(self) -> dict[str, float | str]:
         """Scalar results with unit-carrying names (for tables, JSON, CSV)."""
@@ -560,6 +628,8 @@ def _build(
         lateral_force=float(out["lateral_force"][0]),
         disk_offset=float(out["offset"][0]),
         flatness=float(max(np.abs(z1).max(), np.abs(z2).max())),
+        surface_z=float(out["surface_z"][0]),
+        phi_ends=(float(out["ends"][0][0, 0]), float(out["ends"][1][0, 0])),
     )
 
 

@@ -50,12 +50,11 @@ from ._tol import tol
 from .errors import InvalidParameter
 
 TWO_PI = 2.0 * np.pi
-_SERIES_BELOW = 0.3  # [rad] below this, theta - sin(theta) by its Taylor series
 
 
 def _theta_minus_sin(t):
     t = np.asarray(t, float)
-    if t.size and t.min() >= _SERIES_BELOW:
+    if t.size and t.min() >= tol.series_below:
         return t - np.sin(t)
     t2 = t * t
     series = (t2 * t / 6.0) * (
@@ -64,7 +63,7 @@ def _theta_minus_sin(t):
         / 20.0
         * (1.0 - t2 / 42.0 * (1.0 - t2 / 72.0 * (1.0 - t2 / 110.0 * (1.0 - t2 / 156.0))))
     )
-    return np.where(t < _SERIES_BELOW, series, t - np.sin(t))
+    return np.where(t < tol.series_below, series, t - np.sin(t))
 
 
 def bulge_ratio(theta):
@@ -129,7 +128,7 @@ def solve_bulge_angle(ratio):
         q, dq = bulge_ratio(theta)
         step = (q - y) / dq
         theta = theta - step
-    if np.all(np.abs(step) <= _FAST_STEP_OK):
+    if np.all(np.abs(step) <= tol.bulge_fast_step):
         return theta
     x0 = np.where(
         np.isfinite(theta), theta, np.where(y < 1.0, 3.0 * y, TWO_PI - np.sqrt(4 * np.pi / y))
@@ -148,11 +147,6 @@ def solve_bulge_angle(ratio):
         what="side-bulge angle (section 5.1)",
         sign_lo=-1.0,
     )
-
-
-# the second Newton step from a table guess is ~1e-15; anything above this means the
-# guess was poor (outside the table) and the bracketed solver takes over
-_FAST_STEP_OK = 1e-11
 
 
 def bead_positions(tire_radius, rim_width, camber):
@@ -204,6 +198,8 @@ class SectionSolution:
     dwidth_ddv, dwidth_ddh : (...) float [-]
         Sensitivities of the patch width to ``dv`` and ``dh`` (implicit
         differentiation of the two root equations).
+    dmid_ddv, dmid_ddh : (...) float [-]
+        Sensitivities of the patch midpoint ``(e1 + e2) / 2``.
     """
 
     edge1: np.ndarray
@@ -224,6 +220,8 @@ class SectionSolution:
     lowest2: np.ndarray
     dwidth_ddv: np.ndarray
     dwidth_ddh: np.ndarray
+    dmid_ddv: np.ndarray
+    dmid_ddh: np.ndarray
 
     @property
     def width(self) -> np.ndarray:
@@ -278,7 +276,10 @@ def _solve_sections(r0, w, dv, dh, camber, delta, broadcast=False):
     dd1_dv = -cot1 - r1 * (y1 / h1s) / dq1
     dd2_dv = -cot2 - r2 * (y2 / h2s) / dq2
     dwidth_ddv = -(dd1_dv + dd2_dv)
-    dwidth_ddh = -(r1 / (h1s * dq1) - r2 / (h2s * dq2))
+    dd1_dh, dd2_dh = r1 / (h1s * dq1), -r2 / (h2s * dq2)
+    dwidth_ddh = -(dd1_dh + dd2_dh)
+    dmid_ddv = 0.5 * (dd1_dv - dd2_dv)
+    dmid_ddh = 0.5 * (dd1_dh - dd2_dh)
     if not broadcast:
         sol = SectionSolution(
             edge1=e1,
@@ -299,6 +300,8 @@ def _solve_sections(r0, w, dv, dh, camber, delta, broadcast=False):
             lowest2=low2,
             dwidth_ddv=dwidth_ddv,
             dwidth_ddh=dwidth_ddh,
+            dmid_ddv=dmid_ddv,
+            dmid_ddh=dmid_ddh,
         )
         return sol, bad_h, bad_c
     shape = np.broadcast(e1, e2).shape
@@ -322,6 +325,8 @@ def _solve_sections(r0, w, dv, dh, camber, delta, broadcast=False):
         lowest2=b(low2),
         dwidth_ddv=b(dwidth_ddv),
         dwidth_ddh=b(dwidth_ddh),
+        dmid_ddv=b(dmid_ddv),
+        dmid_ddh=b(dmid_ddh),
     )
     return sol, np.broadcast_to(bad_h, shape), np.broadcast_to(bad_c, shape)
 

@@ -82,8 +82,9 @@ def camber_thrust():
 
 
 def test_camber_thrust_flat_section_7_2(camber_thrust):
-    # section 7.2.2: 214.3 N on a straight track (the printed appendix code's value)
-    assert_allclose(camber_thrust["flat"].lateral_force, 214.3, rtol=0.02)
+    # section 7.2.2: 214.3 N on a straight track (the printed appendix code's value;
+    # the issue asks 2 %, the model gives 214.45 N)
+    assert_allclose(camber_thrust["flat"].lateral_force, 214.3, rtol=0.005)
     assert_allclose(camber_thrust["flat"].vertical_force, 400.0, rtol=1e-9)
 
 
@@ -91,6 +92,7 @@ def test_camber_thrust_drum_section_5_3_1(camber_thrust):
     # sections 5.3.1, 7.2.2: a 2.5 m drum lowers camber thrust by 2 to 3 % (1 to 4 % asked)
     ratio = camber_thrust["drum"].lateral_force / camber_thrust["flat"].lateral_force
     assert 0.96 <= ratio <= 0.99
+    assert_allclose(camber_thrust["drum"].lateral_force, 208.5, rtol=0.005)  # 7.2.2
 
 
 def test_camber_thrust_disk_section_5_3_2(camber_thrust):
