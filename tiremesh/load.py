@@ -34,7 +34,6 @@ from .patch import (
 )
 from .surface import Flat, Surface
 
-
 # relative step of the directional difference in _djac_ddw (~sqrt(eps) of the smooth,
 # O(1)-curvature Jacobian: ~1e-8 relative accuracy, enough for a Newton derivative)
 _DIFF_STEP = 1e-7
