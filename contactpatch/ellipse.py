@@ -83,9 +83,14 @@ def _prepare(points, method):
         return None, None, None, EllipseFit.failed(method, f"points must be (n, 2), got {p.shape}")
     if not np.all(np.isfinite(p)):
         return None, None, None, EllipseFit.failed(method, "points contain NaN or inf")
-    p = np.unique(p, axis=0)
-    if len(p) < tol.min_fit_points:
-        return None, None, None, EllipseFit.failed(method, f"{len(p)} distinct points, need >= 5")
+    distinct = len(np.unique(p, axis=0))  # repeated points keep their weight in the fit
+    if distinct < tol.min_fit_points:
+        return (
+            None,
+            None,
+            None,
+            EllipseFit.failed(method, f"{distinct} distinct points, need >= 5"),
+        )
     mean = p.mean(axis=0)
     scale = np.sqrt(np.mean(np.sum((p - mean) ** 2, axis=1)))
     if scale == 0:
@@ -151,12 +156,12 @@ def fit_ellipse_direct(points) -> EllipseFit:
     M = np.array([M[2] / 2, -M[1], M[0] / 2])  # C1^-1 M
     with np.errstate(all="ignore"):
         w, vecs = np.linalg.eig(M)
-    if np.iscomplexobj(vecs):
-        vecs = np.real_if_close(vecs, tol=1e6)
-        if np.iscomplexobj(vecs):
-            return EllipseFit.failed(method, "complex eigenvectors (degenerate data)")
+    # the ellipse is a real eigenpair (for exact data, the zero eigenvalue; the other
+    # two may then form a complex pair): keep real ones with 4AC - B^2 > 0
+    real = np.abs(np.imag(w)) <= 1e-8 * max(np.max(np.abs(w)), np.finfo(float).tiny)
+    vecs = np.real(vecs)
     cond = 4 * vecs[0] * vecs[2] - vecs[1] ** 2
-    ok = np.nonzero(cond > 0)[0]
+    ok = np.nonzero(real & (cond > 0))[0]
     if ok.size == 0:
         return EllipseFit.failed(method, "no elliptical solution")
     a1 = vecs[:, ok[np.argmin(np.abs(w[ok]))]]

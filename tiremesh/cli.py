@@ -165,6 +165,85 @@ def _cmd_solve(a: argparse.Namespace) -> int:
     return 0
 
 
+def _mesh_options(p: argparse.ArgumentParser) -> None:
+    g = p.add_argument_group("mesh resolution")
+    g.add_argument(
+        "--around", type=int, default=720, help="sections around the wheel (default 720)"
+    )
+    g.add_argument(
+        "--patch-sections", type=int, default=None, help="of which in the patch (default around/3)"
+    )
+    g.add_argument(
+        "--bulge-points", type=int, default=32, help="segments per side bulge (default 32)"
+    )
+    g.add_argument(
+        "--contact-points", type=int, default=12, help="segments across the patch (default 12)"
+    )
+
+
+def _mesh_from_args(a: argparse.Namespace):
+    from .mesh import build_mesh
+
+    patch = solve_from_args(a)
+    return build_mesh(
+        patch,
+        n_around=a.around,
+        n_patch=a.patch_sections,
+        bulge_points=a.bulge_points,
+        contact_points=a.contact_points,
+        close_rim=getattr(a, "close_rim", False),
+    )
+
+
+def _cmd_mesh(a: argparse.Namespace) -> int:
+    from .export import export_mesh
+
+    tire_mesh = _mesh_from_args(a)
+    for path in export_mesh(tire_mesh, a.output, patch=not a.no_patch):
+        print(f"wrote {path}")
+    print(f"{len(tire_mesh.mesh.vertices)} vertices, {tire_mesh.n_faces} faces")
+    return 0
+
+
+def _parse_size(text: str) -> tuple[int, int]:
+    from .errors import InvalidParameter
+
+    try:
+        w, h = (int(t) for t in text.lower().split("x"))
+    except ValueError as exc:
+        raise InvalidParameter(
+            "--image-size", text, "WIDTHxHEIGHT in pixels, e.g. 1200x900"
+        ) from exc
+    return w, h
+
+
+def _cmd_render(a: argparse.Namespace) -> int:
+    from .render import render
+
+    tire_mesh = _mesh_from_args(a)
+    scalars = {"radial": "radial_deformation", "lateral": "lateral_displacement"}.get(
+        a.scalars, a.scalars
+    )
+    render(tire_mesh, a.output, view=a.view, scalars=scalars, size=_parse_size(a.image_size))
+    print(f"wrote {a.output}")
+    return 0
+
+
+def _cmd_section(a: argparse.Namespace) -> int:
+    import matplotlib
+
+    matplotlib.use("Agg")
+    from ._io import atomic_path
+    from .plot import plot_section
+
+    patch = solve_from_args(a)
+    ax = plot_section(patch, math.radians(a.phi))
+    with atomic_path(a.output) as tmp:
+        ax.figure.savefig(tmp, dpi=a.dpi, bbox_inches="tight", format=a.output.rsplit(".", 1)[-1])
+    print(f"wrote {a.output}")
+    return 0
+
+
 def build_parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(
         prog="tiremesh",
@@ -179,6 +258,32 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--sections-csv", metavar="FILE", help="write per-section arrays to FILE")
     p.add_argument("--outline-csv", metavar="FILE", help="write the patch outline polygon to FILE")
     p.set_defaults(func=_cmd_solve)
+
+    p = sub.add_parser("mesh", help="build the deformed tire mesh and export it")
+    add_tire_options(p)
+    _mesh_options(p)
+    p.add_argument("-o", "--output", required=True, help="tire.vtp | .ply | .stl | .obj | .glb")
+    p.add_argument("--close-rim", action="store_true", help="close the beads with a rim band")
+    p.add_argument("--no-patch", action="store_true", help="do not write <stem>_patch.vtp")
+    p.set_defaults(func=_cmd_mesh)
+
+    p = sub.add_parser("render", help="render the deformed tire to PNG (off-screen)")
+    add_tire_options(p)
+    _mesh_options(p)
+    p.add_argument("-o", "--output", required=True, help="view.png")
+    p.add_argument("--view", choices=["iso", "side", "front", "bottom"], default="iso")
+    p.add_argument("--scalars", default="radial", help="radial | lateral | contact | section")
+    p.add_argument("--image-size", default="1200x900", help="WIDTHxHEIGHT [px] (default 1200x900)")
+    p.set_defaults(func=_cmd_render)
+
+    p = sub.add_parser("section", help="plot one Rotta cross section (Figure 5-5)")
+    add_tire_options(p)
+    p.add_argument("-o", "--output", required=True, help="section.png | .svg | .pdf")
+    p.add_argument(
+        "--phi", type=float, default=0.0, help="section angle from bottom dead centre [deg]"
+    )
+    p.add_argument("--dpi", type=int, default=150)
+    p.set_defaults(func=_cmd_section)
     return parser
 
 

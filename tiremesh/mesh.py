@@ -6,8 +6,10 @@ beyond it the undeformed torus. Every section carries the same number of vertice
 on each bulge, so neighbouring sections triangulate as quads; contact sections
 also carry the contact segment, which fans into the single touching point of the
 two end sections (the exact patch ends, where the width is zero). The patch edges
-are therefore mesh vertices, and the contact faces lie on the support surface
-(their vertices are snapped onto it; the move is at most the patch's ``flatness``).
+are therefore mesh vertices, and the contact faces lie on the support surface: each
+section in contact is translated vertically onto it and its contact vertices are
+snapped to it (a move of at most the patch's ``flatness``, the small non-flatness of
+the 3D Rotta patch of a cambered tire, Figure 5-9).
 
 Topology (vertex ring of one section, from bead 1 to bead 2)::
 
@@ -244,6 +246,9 @@ def build_mesh(
         n, m = bx.shape
         bphi = np.broadcast_to(np.atleast_1d(bphi), (n,))
         X, Y, Z = patch.to_ground(bx, bz, bphi[:, None])
+        if bcon.any():  # translate sections in contact onto the surface (<= flatness)
+            gap = np.where(bcon, Z - surface_height(patch.surface, X), 0.0)
+            Z = Z - (gap.sum(axis=1) / bcon.sum(axis=1))[:, None]
         pts.append(np.stack([X, Y, Z], -1).reshape(-1, 3))
         # per-vertex displacement against the same carcass point undeformed
         ux, uz = _undeformed(bs, r0, s0, gam)
@@ -257,7 +262,8 @@ def build_mesh(
         sec += n
     vertices = np.concatenate(pts)
     contact = np.concatenate(data_con)
-    # contact vertices onto the support surface (moves them by at most `flatness`)
+    # contact vertices exactly onto the support surface (the residual tilt across one
+    # section is a tiny fraction of the patch `flatness`)
     vertices[contact, 2] = surface_height(patch.surface, vertices[contact, 0])
     rt, rc, ft, rf = rings[0][0], rings[1], rings[2][0], rings[3]
 
@@ -320,33 +326,66 @@ def _ring_lengths(tm_: TireMesh) -> np.ndarray:
     return np.bincount(sec[1:][same], weights=seg[same], minlength=sec.max() + 1)
 
 
-def support_mesh(patch: ContactPatch, *, extent: float | None = None, resolution: int = 60):
-    """Mesh of the support surface under the patch (for renders).
+def support_mesh(
+    patch: ContactPatch,
+    *,
+    extent: float | None = None,
+    thickness: float | None = None,
+    sink: float = 0.0,
+    resolution: int = 240,
+):
+    """Mesh of the support surface under the patch (for renders), as a slab.
 
     Flat ground and the disk (a plane; the disk's track is curved, not its surface)
-    give a rectangle; a drum gives a cylinder segment of its radius.
-    ``extent`` is the half-size along x [mm] (default 0.6 x the wheel radius).
+    give a box; a drum gives a thick cylinder segment of its radius.
+
+    Parameters
+    ----------
+    extent : float [mm], optional
+        Half-size along x (default 0.6 x the wheel radius).
+    thickness : float [mm], optional
+        Slab thickness below the surface (default the tire radius).
+    sink : float [mm]
+        Lower the top face by this much (renders use a fraction of a mm so the contact
+        faces, which lie exactly on the surface, do not z-fight with it).
+    resolution : int
+        Segments along x (the drum's facets must stay well below the patch).
     """
     import trimesh
 
-    R = patch.tire.wheel_radius
+    R, r0 = patch.tire.wheel_radius, patch.tire.tire_radius
     ext = 0.6 * R if extent is None else float(v.positive("extent", extent, unit="mm"))
-    half_y = 4.0 * patch.tire.tire_radius
-    x = np.linspace(-ext, ext, resolution)
-    y = np.linspace(-half_y, half_y, 2)
+    th = r0 if thickness is None else float(v.positive("thickness", thickness, unit="mm"))
+    n = v.integer("resolution", resolution, 2, 100_000)
+    half_y = 4.0 * r0
     if isinstance(patch.surface, Drum):
         rd = 0.5 * patch.surface.diameter
-        ang = np.linspace(-ext / rd, ext / rd, resolution)
-        x, zline = rd * np.sin(ang), rd * np.cos(ang) - rd
+        ang = np.linspace(-ext / rd, ext / rd, n + 1)
+        top = np.column_stack([(rd - sink) * np.sin(ang), (rd - sink) * np.cos(ang) - rd])
+        bot = np.column_stack(
+            [(rd - sink - th) * np.sin(ang), (rd - sink - th) * np.cos(ang) - rd]
+        )
     else:
-        zline = np.zeros_like(x)
-    X = np.repeat(x[:, None], 2, 1)
-    Z = np.repeat(zline[:, None], 2, 1)
-    Y = np.repeat(y[None, :], len(x), 0)
-    verts = np.stack([X, Y, Z], -1).reshape(-1, 3)
-    idx = np.arange(len(verts)).reshape(len(x), 2)
-    faces = _quads(idx[:-1].T, idx[1:].T)
-    return trimesh.Trimesh(verts, faces[:, ::-1], process=False)
+        x = np.linspace(-ext, ext, n + 1)
+        top = np.column_stack([x, np.full_like(x, -sink)])
+        bot = np.column_stack([x, np.full_like(x, -sink - th)])
+    prof = np.concatenate([top, bot[::-1]])  # closed profile in (x, z)
+    m = len(prof)
+    verts = np.concatenate(
+        [np.column_stack([prof[:, 0], np.full(m, y), prof[:, 1]]) for y in (-half_y, half_y)]
+    )
+    ring = np.arange(m)
+    sides = _quads(np.append(ring, 0)[None, :], np.append(ring + m, m)[None, :])
+    # end caps: the profile is a simple polygon; fan-free strip triangulation
+    k = n + 1
+    cap = np.concatenate([
+        np.column_stack([ring[: k - 1], ring[1:k], ring[m - 1 : m - k : -1][: k - 1]]),
+        np.column_stack([ring[1:k], ring[m - 2 : m - k - 1 : -1][: k - 1], ring[m - 1 : m - k : -1][: k - 1]]),
+    ])  # fmt: skip
+    faces = np.concatenate([sides, cap[:, ::-1], cap + m])
+    mesh = trimesh.Trimesh(verts, faces, process=False)
+    mesh.fix_normals()
+    return mesh
 
 
 def rim_mesh(tire_mesh: TireMesh, *, depth: float = 12.0):
