@@ -104,7 +104,7 @@ class _Cases:
         delta = self.r0 * self.gamma
         c1_room = half_s0 + delta + xb1 - self.lateral  # c1 > 0 -> dv tan g < c1_room
         c2_room = half_s0 - delta - xb2 + self.lateral  # c2 > 0 -> dv tan g > -c2_room
-        with np.errstate(divide="ignore", invalid="ignore"):
+        with np.errstate(all="ignore"):
             lim1 = np.where(sg > 0, c1_room / sg, np.inf)
             lim2 = np.where(sg < 0, -c2_room / sg, np.inf)
         return tol.rim_clearance * np.minimum(limit, np.minimum(lim1, lim2))
