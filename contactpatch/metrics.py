@@ -140,7 +140,14 @@ def resample_ring(coords, n: int) -> np.ndarray:
     return np.column_stack([np.interp(t, s, c[:, 0]), np.interp(t, s, c[:, 1])])
 
 
-def measure(region, *, axis: float | None = None, stations=DEFAULT_STATIONS) -> PatchMetrics:
+def measure(
+    region,
+    *,
+    axis: float | None = None,
+    stations=DEFAULT_STATIONS,
+    net_area: float | None = None,
+    net_centroid: tuple[float, float] | None = None,
+) -> PatchMetrics:
     """Measure a contact patch.
 
     Parameters
@@ -152,6 +159,9 @@ def measure(region, *, axis: float | None = None, stations=DEFAULT_STATIONS) -> 
         the hull (prints may be rotated on the sheet).
     stations : sequence of float
         Lateral stations in fractions of the half width (|f| < 1).
+    net_area, net_centroid : optional
+        Net (ink) area and centroid when the region passed is only the outline (an
+        ink print's hull, with the ink counted in pixels).
 
     Returns
     -------
@@ -182,10 +192,16 @@ def measure(region, *, axis: float | None = None, stations=DEFAULT_STATIONS) -> 
     centre = chords[np.argmin(np.abs(st))]
     shoulder = chords[outer].mean()
     c = geom.centroid
+    area = float(geom.area) if net_area is None else float(net_area)
+    if not (np.isfinite(area) and 0 < area <= hull.area * (1 + 1e-9)):
+        raise InvalidInput("net_area", net_area, f"(0, hull area = {hull.area:.6g}]")
+    centroid = (
+        (float(c.x), float(c.y)) if net_centroid is None else tuple(map(float, net_centroid))
+    )
     boundary = resample_ring(hull.exterior.coords, tol.boundary_samples)
     return PatchMetrics(
-        area=float(geom.area), hull_area=float(hull.area), solidity=float(geom.area / hull.area),
-        perimeter=float(hull.length), centroid=(float(c.x), float(c.y)), orientation=ang,
+        area=area, hull_area=float(hull.area), solidity=float(area / hull.area),
+        perimeter=float(hull.length), centroid=centroid, orientation=ang,
         length=float(length), width=float(width), aspect_ratio=float(length / width),
         stations=st, station_lengths=chords,
         shape_factor=float(centre / shoulder) if shoulder > 0 else np.inf,
