@@ -226,8 +226,13 @@ def _cov_to_ellipse(center, cov, method) -> EllipseFit:
     elif angle > np.pi / 2:
         angle -= np.pi
     # a uniform ellipse with semi-axes a, b has variances a^2 / 4 and b^2 / 4
-    return EllipseFit((float(center[0]), float(center[1])), float(4 * np.sqrt(lam[1])),
-                      float(4 * np.sqrt(lam[0])), angle, method)  # fmt: skip
+    return EllipseFit(
+        (float(center[0]), float(center[1])),
+        float(4 * np.sqrt(lam[1])),
+        float(4 * np.sqrt(lam[0])),
+        angle,
+        method,
+    )
 
 
 def ellipse_from_moments(region) -> EllipseFit:

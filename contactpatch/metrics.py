@@ -200,10 +200,18 @@ def measure(
     )
     boundary = resample_ring(hull.exterior.coords, tol.boundary_samples)
     return PatchMetrics(
-        area=area, hull_area=float(hull.area), solidity=float(area / hull.area),
-        perimeter=float(hull.length), centroid=centroid, orientation=ang,
-        length=float(length), width=float(width), aspect_ratio=float(length / width),
-        stations=st, station_lengths=chords,
+        area=area,
+        hull_area=float(hull.area),
+        solidity=float(area / hull.area),
+        perimeter=float(hull.length),
+        centroid=centroid,
+        orientation=ang,
+        length=float(length),
+        width=float(width),
+        aspect_ratio=float(length / width),
+        stations=st,
+        station_lengths=chords,
         shape_factor=float(centre / shoulder) if shoulder > 0 else np.inf,
-        ellipse_direct=fit_ellipse_direct(boundary), ellipse_moments=ellipse_from_moments(hull),
-    )  # fmt: skip
+        ellipse_direct=fit_ellipse_direct(boundary),
+        ellipse_moments=ellipse_from_moments(hull),
+    )

@@ -78,19 +78,31 @@ class SheetResult:
         out = []
         for p in self.prints:
             row = {
-                "file": self.path, "page": self.page, "print": p.index, "n_prints": len(self.prints),
-                "status": "ok", "error": "", "mm_per_px": self.mm_per_px, "dpi": 25.4 / self.mm_per_px,
-                "scale_source": self.scale_source, "threshold_method": self.method,
+                "file": self.path,
+                "page": self.page,
+                "print": p.index,
+                "n_prints": len(self.prints),
+                "status": "ok",
+                "error": "",
+                "mm_per_px": self.mm_per_px,
+                "dpi": 25.4 / self.mm_per_px,
+                "scale_source": self.scale_source,
+                "threshold_method": self.method,
                 "threshold": self.threshold,
-            }  # fmt: skip
+            }
             row.update(p.metrics.as_row(unit=u))
             a = p.metrics_all
-            row.update({
-                f"all_ink_area_{u}2": a.area, f"all_ink_hull_area_{u}2": a.hull_area,
-                f"all_ink_length_{u}": a.length, f"all_ink_width_{u}": a.width,
-                "n_blobs": p.n_blobs, "n_edge_spots": p.n_edge_spots,
-                f"edge_spot_area_{u}2": p.edge_spot_area,
-            })  # fmt: skip
+            row.update(
+                {
+                    f"all_ink_area_{u}2": a.area,
+                    f"all_ink_hull_area_{u}2": a.hull_area,
+                    f"all_ink_length_{u}": a.length,
+                    f"all_ink_width_{u}": a.width,
+                    "n_blobs": p.n_blobs,
+                    "n_edge_spots": p.n_edge_spots,
+                    f"edge_spot_area_{u}2": p.edge_spot_area,
+                }
+            )
             for key, (lo, hi) in p.band.items():
                 unit = f"_{u}2" if "area" in key else f"_{u}"
                 row[f"{key}{unit}_lo"], row[f"{key}{unit}_hi"] = lo, hi
@@ -106,12 +118,20 @@ def contact_pressure(metrics, load: float | None, pressure: float | None) -> dic
     """
     nan = float("nan")
     if load is None or not np.isfinite(load):
-        return {"load_per_hull_area_N_mm2": nan, "load_per_hull_area_pct": nan,
-                "load_per_net_area_N_mm2": nan, "load_per_net_area_pct": nan}  # fmt: skip
+        return {
+            "load_per_hull_area_N_mm2": nan,
+            "load_per_hull_area_pct": nan,
+            "load_per_net_area_N_mm2": nan,
+            "load_per_net_area_pct": nan,
+        }
     gross, net = load / metrics.hull_area, load / metrics.area
     pct = (lambda q: 100.0 * q / pressure) if pressure else (lambda q: nan)
-    return {"load_per_hull_area_N_mm2": gross, "load_per_hull_area_pct": pct(gross),
-            "load_per_net_area_N_mm2": net, "load_per_net_area_pct": pct(net)}  # fmt: skip
+    return {
+        "load_per_hull_area_N_mm2": gross,
+        "load_per_hull_area_pct": pct(gross),
+        "load_per_net_area_N_mm2": net,
+        "load_per_net_area_pct": pct(net),
+    }
 
 
 def _hull_px(mask, field, r0: int, c0: int) -> np.ndarray:
@@ -181,8 +201,14 @@ def measure_mask(mask, r0: int, c0: int, *, n_rows: int, mm_per_px: float, field
 
 
 def _band_values(m) -> dict:
-    return {"length": m.length, "width": m.width, "hull_area": m.hull_area, "area": m.area,
-            "ellipse_length": m.ellipse_direct.length, "ellipse_width": m.ellipse_direct.width}  # fmt: skip
+    return {
+        "length": m.length,
+        "width": m.width,
+        "hull_area": m.hull_area,
+        "area": m.area,
+        "ellipse_length": m.ellipse_direct.length,
+        "ellipse_width": m.ellipse_direct.width,
+    }
 
 
 def _sensitivity(scan: Scan, b, g: Group, base: dict) -> dict:
@@ -262,15 +288,31 @@ def analyze_scan(
         band = (
             _sensitivity(scan, b, g, base) if sensitivity else {k: (v, v) for k, v in base.items()}
         )
-        prints.append(PrintResult(
-            index=len(prints), metrics=m, metrics_all=m_all, n_blobs=spots.n_blobs,
-            n_edge_spots=spots.n_spots, edge_spot_area=area_mm2(spots.spot_pixels, s), hull_px=hull_px,
-            band=band, bbox=(g.rows.start, g.cols.start, g.rows.stop, g.cols.stop),
-        ))  # fmt: skip
+        prints.append(
+            PrintResult(
+                index=len(prints),
+                metrics=m,
+                metrics_all=m_all,
+                n_blobs=spots.n_blobs,
+                n_edge_spots=spots.n_spots,
+                edge_spot_area=area_mm2(spots.spot_pixels, s),
+                hull_px=hull_px,
+                band=band,
+                bbox=(g.rows.start, g.cols.start, g.rows.stop, g.cols.stop),
+            )
+        )
     if not prints:
         why = f" ({'; '.join(rejected[:3])})" if rejected else ""
         raise NoInk(f"no contact print on the sheet{why}")
     return SheetResult(
-        path=scan.path, page=scan.page, mm_per_px=s, scale_source=scan.scale_source, unit=scan.unit,
-        method=b.method, threshold=b.threshold, shape=scan.grey.shape, prints=prints, rejected=rejected,
-    )  # fmt: skip
+        path=scan.path,
+        page=scan.page,
+        mm_per_px=s,
+        scale_source=scan.scale_source,
+        unit=scan.unit,
+        method=b.method,
+        threshold=b.threshold,
+        shape=scan.grey.shape,
+        prints=prints,
+        rejected=rejected,
+    )

@@ -145,8 +145,16 @@ def process_file(job: Job, options: Options) -> list[dict]:
     try:
         digest = file_hash(job.path)
     except OSError as exc:
-        return [{**_row_meta(job, -1), **base, "print": "", "status": "error", "sha256": "",
-                 "error": f"{type(exc).__name__}: {exc}"}]  # fmt: skip
+        return [
+            {
+                **_row_meta(job, -1),
+                **base,
+                "print": "",
+                "status": "error",
+                "sha256": "",
+                "error": f"{type(exc).__name__}: {exc}",
+            }
+        ]
     try:
         meta0 = _row_meta(job, 0)
         dpi = options.dpi if options.dpi is not None else _num(meta0.get("dpi"))
@@ -155,8 +163,12 @@ def process_file(job: Job, options: Options) -> list[dict]:
             dpi = None if options.dpi is None else dpi
             mmpp = None if dpi is not None else mmpp
         scan = read_scan(job.path, dpi=dpi, mm_per_px=mmpp, allow_pixels=options.allow_pixels)
-        result = analyze_scan(scan, method=options.method, threshold=options.threshold,
-                              sensitivity=options.sensitivity)  # fmt: skip
+        result = analyze_scan(
+            scan,
+            method=options.method,
+            threshold=options.threshold,
+            sensitivity=options.sensitivity,
+        )
         rows = []
         for p in result.prints:
             meta = _row_meta(job, p.index)
@@ -172,8 +184,17 @@ def process_file(job: Job, options: Options) -> list[dict]:
             )
         return rows
     except (InkPrintError, ValueError, OSError, MemoryError) as exc:
-        return [{**_row_meta(job, -1), **_row_meta(job, 0), **base, "print": "", "status": "error",
-                 "sha256": digest, "error": f"{type(exc).__name__}: {exc}"}]  # fmt: skip
+        return [
+            {
+                **_row_meta(job, -1),
+                **_row_meta(job, 0),
+                **base,
+                "print": "",
+                "status": "error",
+                "sha256": digest,
+                "error": f"{type(exc).__name__}: {exc}",
+            }
+        ]
 
 
 def _columns(rows: list[dict]) -> list[str]:
@@ -281,8 +302,13 @@ def run_batch(
     bar.close()
     outputs = write_outputs(rows, out)
     n_err = sum(1 for r in rows if r.get("status") == "error")
-    return BatchResult(rows=sorted(rows, key=_sort_key), n_files=len(jobs), n_skipped=skipped,
-                       n_errors=n_err, outputs=outputs)  # fmt: skip
+    return BatchResult(
+        rows=sorted(rows, key=_sort_key),
+        n_files=len(jobs),
+        n_skipped=skipped,
+        n_errors=n_err,
+        outputs=outputs,
+    )
 
 
 def _progress(total: int, enabled: bool):

@@ -38,8 +38,14 @@ class Binarization:
     level: object
 
 
-def threshold_level(grey, *, method: str = "otsu", threshold: float | None = None,
-                    window_px: int = 51, k: float = 0.2):  # fmt: skip
+def threshold_level(
+    grey,
+    *,
+    method: str = "otsu",
+    threshold: float | None = None,
+    window_px: int = 51,
+    k: float = 0.2,
+):
     """Threshold for ``grey``: a scalar, or a local map for ``sauvola``."""
     if method not in METHODS:
         raise InvalidInput("method", method, " | ".join(METHODS))
@@ -101,8 +107,9 @@ def binarize(
     ------
     NoInk, AllInk
     """
-    level = threshold_level(grey, method=method, threshold=threshold,
-                            window_px=round(window_mm / mm_per_px), k=k)  # fmt: skip
+    level = threshold_level(
+        grey, method=method, threshold=threshold, window_px=round(window_mm / mm_per_px), k=k
+    )
     level = level * scale_level
     mask = grey < level
     frac = float(mask.mean())

@@ -34,13 +34,33 @@ def _scale_options(p: argparse.ArgumentParser) -> None:
 def _options(a):
     from .batch import Options
 
-    return Options(dpi=a.dpi, mm_per_px=a.mm_per_px, allow_pixels=a.pixels, method=a.method,
-                   threshold=a.threshold, sensitivity=not a.no_band, overlay_dir=a.overlay)  # fmt: skip
+    return Options(
+        dpi=a.dpi,
+        mm_per_px=a.mm_per_px,
+        allow_pixels=a.pixels,
+        method=a.method,
+        threshold=a.threshold,
+        sensitivity=not a.no_band,
+        overlay_dir=a.overlay,
+    )
 
 
-SUMMARY = ["file", "print", "status", "length_mm", "width_mm", "hull_area_mm2", "area_mm2", "net_to_gross",
-           "ellipse_length_mm", "ellipse_width_mm", "angle_deg", "n_edge_spots", "load_per_hull_area_pct",
-           "error"]  # fmt: skip
+SUMMARY = [
+    "file",
+    "print",
+    "status",
+    "length_mm",
+    "width_mm",
+    "hull_area_mm2",
+    "area_mm2",
+    "net_to_gross",
+    "ellipse_length_mm",
+    "ellipse_width_mm",
+    "angle_deg",
+    "n_edge_spots",
+    "load_per_hull_area_pct",
+    "error",
+]
 
 
 def _cmd_analyze(a) -> int:
@@ -74,10 +94,12 @@ def _cmd_analyze(a) -> int:
             if r["status"] != "ok":
                 print(f"{r['file']}: error: {r['error']}")
                 continue
-            line = (f"{r['file']} #{r['print']}: L {r[f'length_{unit}']:.2f} {unit}, W {r[f'width_{unit}']:.2f} {unit}, "
-                    f"gross {r[f'hull_area_{unit}2']:.1f} {unit}2, net {r[f'area_{unit}2']:.1f} {unit}2 "
-                    f"({100 * r['net_to_gross']:.0f} %), ellipse {r[f'ellipse_length_{unit}']:.2f} x "
-                    f"{r[f'ellipse_width_{unit}']:.2f} {unit}, {r['n_edge_spots']} edge spots")  # fmt: skip
+            line = (
+                f"{r['file']} #{r['print']}: L {r[f'length_{unit}']:.2f} {unit}, W {r[f'width_{unit}']:.2f} {unit}, "
+                f"gross {r[f'hull_area_{unit}2']:.1f} {unit}2, net {r[f'area_{unit}2']:.1f} {unit}2 "
+                f"({100 * r['net_to_gross']:.0f} %), ellipse {r[f'ellipse_length_{unit}']:.2f} x "
+                f"{r[f'ellipse_width_{unit}']:.2f} {unit}, {r['n_edge_spots']} edge spots"
+            )
             pct = r.get("load_per_hull_area_pct")
             if pct is not None and pct == pct:
                 line += f", load/area {r['load_per_hull_area_N_mm2']:.4f} N/mm2 ({pct:.1f} % of inflation)"
@@ -88,9 +110,17 @@ def _cmd_analyze(a) -> int:
 def _cmd_batch(a) -> int:
     from .batch import run_batch
 
-    res = run_batch(a.src, a.output, manifest=a.manifest, options=_options(a), workers=a.workers,
-                    scheduler=a.scheduler, resume=not a.no_resume, retry_errors=a.retry_errors,
-                    progress=not a.quiet)  # fmt: skip
+    res = run_batch(
+        a.src,
+        a.output,
+        manifest=a.manifest,
+        options=_options(a),
+        workers=a.workers,
+        scheduler=a.scheduler,
+        resume=not a.no_resume,
+        retry_errors=a.retry_errors,
+        progress=not a.quiet,
+    )
     n_ok = sum(1 for r in res.rows if r.get("status") == "ok")
     print(
         f"{res.n_files} files ({res.n_skipped} already done), {n_ok} prints, {res.n_errors} errors"

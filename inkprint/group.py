@@ -149,7 +149,7 @@ def edge_spots(group: Group, darkness, *, mm_per_px: float) -> EdgeSpots:
                 (lab == i + 1).astype(np.uint8), cv2.RETR_EXTERNAL, cv2.CHAIN_APPROX_SIMPLE
             )[0][0]
             for i in np.nonzero(core)[0]
-        ]  # fmt: skip
+        ]
     )
     hull = cv2.convexHull(core_pts)
     dist = np.array([cv2.pointPolygonTest(hull, (float(x), float(y)), True) for x, y in cent[1:]])

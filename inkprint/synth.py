@@ -43,8 +43,14 @@ def superellipse_area(length: float, width: float, n: float = SUPERELLIPSE_N) ->
     return length * width * math.gamma(1 + 1 / n) ** 2 / math.gamma(1 + 2 / n)
 
 
-def outline_law(load: float, pressure: float, tire_radius: float, *, surface: str = "plate",
-                kappa: float = KAPPA) -> tuple[float, float]:  # fmt: skip
+def outline_law(
+    load: float,
+    pressure: float,
+    tire_radius: float,
+    *,
+    surface: str = "plate",
+    kappa: float = KAPPA,
+) -> tuple[float, float]:
     """(length, width) [mm] of a print from the module's outline law.
 
     ``load`` [N], ``pressure`` [N/mm^2], ``tire_radius`` [mm], ``surface`` plate|drum.
@@ -260,8 +266,16 @@ def render_sheet(spec: SheetSpec) -> tuple[np.ndarray, list[PrintTruth]]:
     out = (img * 255).astype(np.uint8)
     if spec.label:  # a pen label, top left
         scale = 0.12 / mm
-        cv2.putText(out, spec.label, (int(12 / mm), int(14 / mm)), cv2.FONT_HERSHEY_SIMPLEX, scale,
-                    40, max(1, int(0.35 / mm)), cv2.LINE_AA)  # fmt: skip
+        cv2.putText(
+            out,
+            spec.label,
+            (int(12 / mm), int(14 / mm)),
+            cv2.FONT_HERSHEY_SIMPLEX,
+            scale,
+            40,
+            max(1, int(0.35 / mm)),
+            cv2.LINE_AA,
+        )
     if spec.ruler:  # a ruler along the right edge, ticks every 10 mm
         x = int(cols - 12 / mm)
         cv2.line(out, (x, int(20 / mm)), (x, int(170 / mm)), 30, max(1, int(0.4 / mm)))
@@ -295,9 +309,18 @@ def save_scan(image: np.ndarray, path, *, dpi: float, jpeg_quality: int | None =
     return path
 
 
-def drum_and_plate_sheet(*, tire_radius: float, load: float, pressure: float, dpi: float = 150.0,
-                         tread: str = "ribbed", seed: int = 0, label: str | None = None,
-                         angle: float = 0.0, halo_spots: int = 6) -> SheetSpec:  # fmt: skip
+def drum_and_plate_sheet(
+    *,
+    tire_radius: float,
+    load: float,
+    pressure: float,
+    dpi: float = 150.0,
+    tread: str = "ribbed",
+    seed: int = 0,
+    label: str | None = None,
+    angle: float = 0.0,
+    halo_spots: int = 6,
+) -> SheetSpec:
     """A sheet like Figure 3-2: the drum print on top, the plate print below."""
     rng = np.random.default_rng(seed)
     specs = []
@@ -305,8 +328,17 @@ def drum_and_plate_sheet(*, tire_radius: float, load: float, pressure: float, dp
         L, W = outline_law(
             load, pressure, tire_radius, surface=surface, kappa=KAPPA * rng.uniform(0.98, 1.03)
         )
-        specs.append(PrintSpec(L, W, (105.0 + rng.uniform(-5, 5), y), angle + rng.uniform(-3, 3), tread,
-                               ink=rng.uniform(0.75, 0.9), halo_spots=halo_spots))  # fmt: skip
+        specs.append(
+            PrintSpec(
+                L,
+                W,
+                (105.0 + rng.uniform(-5, 5), y),
+                angle + rng.uniform(-3, 3),
+                tread,
+                ink=rng.uniform(0.75, 0.9),
+                halo_spots=halo_spots,
+            )
+        )
     return SheetSpec(tuple(specs), dpi=dpi, label=label, ruler=True, seed=seed)
 
 
@@ -331,19 +363,43 @@ def make_sample_set(out_dir, *, dpi: float = 150.0, jpeg_quality: int = 88) -> P
         for p_bar in SAMPLE_PRESSURES_BAR:
             for load in SAMPLE_LOADS_N:
                 name = f"tire{tire_id:02d}_{p_bar:g}bar_{load:.0f}N.jpg"
-                spec = drum_and_plate_sheet(tire_radius=radius, load=load, pressure=0.1 * p_bar,
-                                            dpi=dpi, tread=tread, seed=100 + k,
-                                            label=f"{tire_name} {p_bar:g} bar {load:.0f} N")  # fmt: skip
+                spec = drum_and_plate_sheet(
+                    tire_radius=radius,
+                    load=load,
+                    pressure=0.1 * p_bar,
+                    dpi=dpi,
+                    tread=tread,
+                    seed=100 + k,
+                    label=f"{tire_name} {p_bar:g} bar {load:.0f} N",
+                )
                 img, truths = render_sheet(spec)
                 save_scan(img, out / name, dpi=dpi, jpeg_quality=jpeg_quality)
                 for i, (surface, t) in enumerate(zip(("drum", "plate"), truths, strict=True)):
-                    manifest.append({"file": name, "print": i, "tire": tire_name, "tire_id": tire_id,
-                                     "rim_width_mm": rim, "pressure_bar": p_bar, "load_N": load,
-                                     "surface": surface, "drum_diameter_mm": 2500 if surface == "drum" else "",
-                                     "dpi": dpi})  # fmt: skip
-                    truth.append({"file": name, "print": i, "length_mm": t.length, "width_mm": t.width,
-                                  "hull_area_mm2": t.hull_area, "net_area_mm2": t.net_area,
-                                  "angle_deg": t.angle})  # fmt: skip
+                    manifest.append(
+                        {
+                            "file": name,
+                            "print": i,
+                            "tire": tire_name,
+                            "tire_id": tire_id,
+                            "rim_width_mm": rim,
+                            "pressure_bar": p_bar,
+                            "load_N": load,
+                            "surface": surface,
+                            "drum_diameter_mm": 2500 if surface == "drum" else "",
+                            "dpi": dpi,
+                        }
+                    )
+                    truth.append(
+                        {
+                            "file": name,
+                            "print": i,
+                            "length_mm": t.length,
+                            "width_mm": t.width,
+                            "hull_area_mm2": t.hull_area,
+                            "net_area_mm2": t.net_area,
+                            "angle_deg": t.angle,
+                        }
+                    )
                 k += 1
     for fname, rows in (("manifest.csv", manifest), ("truth.csv", truth)):
         with (out / fname).open("w", newline="") as fh:

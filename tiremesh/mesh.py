@@ -148,8 +148,12 @@ def _free_rings(n: int, K: int, r0, s0, theta0, camber):
     s = np.concatenate([low * u, low + (s0 - low) * u[1:]])
     xs, zs = _undeformed(s, r0, s0, camber)
     shape = (n, len(s))
-    return (np.broadcast_to(xs, shape), np.broadcast_to(zs, shape), np.broadcast_to(s, shape),
-            np.zeros(shape, bool))  # fmt: skip
+    return (
+        np.broadcast_to(xs, shape),
+        np.broadcast_to(zs, shape),
+        np.broadcast_to(s, shape),
+        np.zeros(shape, bool),
+    )
 
 
 def _quads(a, b):
@@ -313,9 +317,14 @@ def build_mesh(
     }
     section_phi = np.concatenate(phis)
     return TireMesh(
-        mesh=mesh, point_data=point_data, face_contact=face_contact, patch=patch,
-        section_phi=section_phi, bead_vertices=beads, closed=close_rim,
-    )  # fmt: skip
+        mesh=mesh,
+        point_data=point_data,
+        face_contact=face_contact,
+        patch=patch,
+        section_phi=section_phi,
+        bead_vertices=beads,
+        closed=close_rim,
+    )
 
 
 def _ring_lengths(tm_: TireMesh) -> np.ndarray:
@@ -378,10 +387,18 @@ def support_mesh(
     sides = _quads(np.append(ring, 0)[None, :], np.append(ring + m, m)[None, :])
     # end caps: the profile is a simple polygon; fan-free strip triangulation
     k = n + 1
-    cap = np.concatenate([
-        np.column_stack([ring[: k - 1], ring[1:k], ring[m - 1 : m - k : -1][: k - 1]]),
-        np.column_stack([ring[1:k], ring[m - 2 : m - k - 1 : -1][: k - 1], ring[m - 1 : m - k : -1][: k - 1]]),
-    ])  # fmt: skip
+    cap = np.concatenate(
+        [
+            np.column_stack([ring[: k - 1], ring[1:k], ring[m - 1 : m - k : -1][: k - 1]]),
+            np.column_stack(
+                [
+                    ring[1:k],
+                    ring[m - 2 : m - k - 1 : -1][: k - 1],
+                    ring[m - 1 : m - k : -1][: k - 1],
+                ]
+            ),
+        ]
+    )
     faces = np.concatenate([sides, cap[:, ::-1], cap + m])
     mesh = trimesh.Trimesh(verts, faces, process=False)
     mesh.fix_normals()

@@ -118,12 +118,25 @@ def render(
     pl = pv.Plotter(off_screen=True, window_size=(w, h))
     try:
         pl.set_background("white")
-        bar = dict(title=SCALARS[scalars], color="black", vertical=False, position_x=0.2,
-                   position_y=0.87, width=0.6, height=0.06, fmt="%.2f")  # fmt: skip
+        bar = dict(
+            title=SCALARS[scalars],
+            color="black",
+            vertical=False,
+            position_x=0.2,
+            position_y=0.87,
+            width=0.6,
+            height=0.06,
+            fmt="%.2f",
+        )
         pl.add_mesh(
-            poly, scalars=scalars, cmap=cmap, smooth_shading=True, show_scalar_bar=scalar_bar,
-            scalar_bar_args=bar, specular=0.2,
-        )  # fmt: skip
+            poly,
+            scalars=scalars,
+            cmap=cmap,
+            smooth_shading=True,
+            show_scalar_bar=scalar_bar,
+            scalar_bar_args=bar,
+            specular=0.2,
+        )
         if show_surface:
             ground = _trimesh_to_pv(support_mesh(tire_mesh.patch, sink=0.3))
             opacity = 0.25 if view == "bottom" else 1.0
@@ -165,8 +178,16 @@ def _add_ruler(pl, tire_mesh: TireMesh, view: str) -> None:
         else:
             y = 2.2 * r0 * side
             a, b = (-length / 2, y, 0.0), (length / 2, y, 0.0)
-    pl.add_ruler(a, b, title="mm", number_labels=3, font_size_factor=0.8, label_color="black",
-                 tick_color="black", label_format="%.0f")  # fmt: skip
+    pl.add_ruler(
+        a,
+        b,
+        title="mm",
+        number_labels=3,
+        font_size_factor=0.8,
+        label_color="black",
+        tick_color="black",
+        label_format="%.0f",
+    )
 
 
 def _headless() -> None:

@@ -13,9 +13,12 @@ import contactpatch as cp
 
 ellipses = st.builds(
     lambda cx, cy, a, ratio, ang: cp.EllipseFit((cx, cy), 2 * a, 2 * a / ratio, ang),
-    st.floats(-1e4, 1e4), st.floats(-1e4, 1e4), st.floats(0.05, 500.0), st.floats(1.05, 20.0),
+    st.floats(-1e4, 1e4),
+    st.floats(-1e4, 1e4),
+    st.floats(0.05, 500.0),
+    st.floats(1.05, 20.0),
     st.floats(-math.pi / 2 + 1e-3, math.pi / 2),
-)  # fmt: skip
+)
 
 
 def angle_diff(a, b):
@@ -29,8 +32,12 @@ def test_fit_recovers_exact_ellipse(e, n, fit):
     t = np.linspace(0, 2 * np.pi, n, endpoint=False) + 0.3
     a, b = e.length / 2, e.width / 2
     c, s = np.cos(e.angle), np.sin(e.angle)
-    pts = np.column_stack([e.center[0] + c * a * np.cos(t) - s * b * np.sin(t),
-                           e.center[1] + s * a * np.cos(t) + c * b * np.sin(t)])  # fmt: skip
+    pts = np.column_stack(
+        [
+            e.center[0] + c * a * np.cos(t) - s * b * np.sin(t),
+            e.center[1] + s * a * np.cos(t) + c * b * np.sin(t),
+        ]
+    )
     r = fit(pts)
     assert r, r.reason
     assert_allclose([r.length, r.width], [e.length, e.width], rtol=1e-9)

@@ -39,8 +39,14 @@ def test_patch_from_mesh_split_pieces(mesh):
     v = np.array(mesh.mesh.vertices)
     mid = np.abs(v[:, 0]) < 5.0
     v[mid, 2] += 1.0
-    t = TireMesh(trimesh.Trimesh(v, mesh.mesh.faces, process=False), mesh.point_data,
-                 mesh.face_contact, mesh.patch, mesh.section_phi, mesh.bead_vertices)  # fmt: skip
+    t = TireMesh(
+        trimesh.Trimesh(v, mesh.mesh.faces, process=False),
+        mesh.point_data,
+        mesh.face_contact,
+        mesh.patch,
+        mesh.section_phi,
+        mesh.bead_vertices,
+    )
     geom = cp.patch_from_mesh(t)
     assert geom.geom_type == "MultiPolygon" and len(geom.geoms) == 2
     with pytest.raises(cp.NoPatch, match="2 pieces"):

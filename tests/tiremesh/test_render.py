@@ -51,8 +51,10 @@ def test_render_colours_by_scalars(tire_mesh):
     assert np.abs(a.astype(int) - b.astype(int)).mean() > 1.0
 
 
-@pytest.mark.parametrize(("kw", "match"), [({"view": "top"}, "view"), ({"scalars": "heat"}, "scalars"),
-                                           ({"size": (4, 4)}, "width")])  # fmt: skip
+@pytest.mark.parametrize(
+    ("kw", "match"),
+    [({"view": "top"}, "view"), ({"scalars": "heat"}, "scalars"), ({"size": (4, 4)}, "width")],
+)
 def test_render_invalid(tire_mesh, kw, match):
     with pytest.raises(tm.InvalidParameter, match=match):
         render(tire_mesh, **kw)
@@ -102,8 +104,18 @@ def test_cli_mesh_render_section(tmp_path):
     assert "faces" in out
     _cli("mesh", *common, "--around", "120", "--close-rim", "-o", str(tmp_path / "t.stl"))
     assert (tmp_path / "t.stl").stat().st_size > 0
-    _cli("render", *common, "--around", "120", "--view", "bottom", "--image-size", "200x150",
-         "-o", str(tmp_path / "v.png"))  # fmt: skip
+    _cli(
+        "render",
+        *common,
+        "--around",
+        "120",
+        "--view",
+        "bottom",
+        "--image-size",
+        "200x150",
+        "-o",
+        str(tmp_path / "v.png"),
+    )
     assert Image.open(tmp_path / "v.png").size == (200, 150)
     _cli("section", *common, "-o", str(tmp_path / "s.png"))
     assert Image.open(tmp_path / "s.png").size[0] > 100
