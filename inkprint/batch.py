@@ -4,8 +4,10 @@
   through; files are identified by the SHA-256 of their content.
 * Parallel across local cores (processes) by default, or on a Dask cluster
   (``scheduler="tcp://host:8786"``, dask.distributed).
-* Resumable: rows already in the output (by content hash) are kept and their files
-  skipped. A bad file becomes an error row; the batch goes on.
+* Resumable: files whose content (SHA-256) already has rows in the output are
+  skipped (a renamed copy reuses those rows); a file whose content changed is
+  analysed again and its old rows dropped. A bad file becomes an error row; the
+  batch goes on.
 * Outputs (CSV, plus the same rows as JSON) are written atomically and checkpointed
   while the batch runs, so a killed batch leaves complete files and a re-run resumes.
 
@@ -132,6 +134,18 @@ def _paths(src) -> list[str]:
     return [h for h in hits if Path(h).is_file()]
 
 
+def _display(job: Job) -> str:
+    """The name a job's rows carry: the manifest's ``file`` entry, else the path."""
+    return next((m.get("file", job.path) for m in job.meta.values()), job.path)
+
+
+def _int(v) -> int:
+    try:
+        return int(v)
+    except (TypeError, ValueError):
+        return -1
+
+
 def _row_meta(job: Job, index: int) -> dict:
     return dict(job.meta.get(index) or job.meta.get(-1) or {})
 
@@ -141,7 +155,7 @@ def process_file(job: Job, options: Options) -> list[dict]:
     from .analyze import analyze_scan
     from .read import read_scan
 
-    base = {"file": next((m.get("file", job.path) for m in job.meta.values()), job.path)}
+    base = {"file": _display(job)}
     try:
         digest = file_hash(job.path)
     except OSError as exc:
@@ -277,20 +291,32 @@ def run_batch(
     kept = _read_existing(out) if resume else []
     if retry_errors:
         kept = [r for r in kept if r.get("status") == "ok"]
-    done = {r.get("sha256") for r in kept if r.get("sha256")}
+    by_hash: dict[str, list[dict]] = {}
+    for r in kept:
+        if r.get("sha256"):
+            by_hash.setdefault(r["sha256"], []).append(r)
+    names = {_display(j) for j in jobs}
+    rows = [r for r in kept if r.get("file") not in names]  # rows of files not in this run
     todo, skipped = [], 0
     for j in jobs:
         try:
-            digest = file_hash(j.path) if done else None
+            digest = file_hash(j.path) if by_hash else None
         except OSError:
             digest = None
-        if digest is not None and digest in done:
-            skipped += 1
-        else:
-            todo.append(j)
+        done = by_hash.get(digest) if digest else None
+        if not done:
+            todo.append(j)  # new, changed (its old rows are dropped) or unreadable
+            continue
+        skipped += 1
+        same = [r for r in done if r.get("file") == _display(j)]
+        if same:
+            rows.extend(same)
+        else:  # the same content under another name: reuse the rows
+            rows.extend(
+                {**r, **_row_meta(j, _int(r.get("print"))), "file": _display(j)} for r in done
+            )
     if options.overlay_dir:
         Path(options.overlay_dir).mkdir(parents=True, exist_ok=True)
-    rows = list(kept)
     last = time.monotonic()
     bar = _progress(len(todo), progress)
     for new in _execute(todo, options, workers, scheduler):

@@ -103,6 +103,10 @@ def binarize(
     scale_level : float
         Multiply the threshold (the sensitivity band uses 0.9 and 1.1).
 
+    Specks are removed per print later (:func:`remove_specks` on each group's box):
+    cheaper than on the whole sheet, and a speck far from any print only forms a
+    group too small to be a print.
+
     Raises
     ------
     NoInk, AllInk
@@ -117,8 +121,7 @@ def binarize(
         raise AllInk(
             f"{100 * frac:.0f} % of the sheet is darker than the threshold: no paper to measure against"
         )
-    mask = remove_specks(mask, int(np.ceil(tol.speck_area_mm2 / mm_per_px**2)))
-    if float(mask.mean()) < tol.min_ink_fraction:
+    if frac < tol.min_ink_fraction:
         raise NoInk("no ink on the sheet (blank page)")
     med = float(level) if np.ndim(level) == 0 else float(np.median(level))
     return Binarization(mask=mask, threshold=med, method=method, level=level)

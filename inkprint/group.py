@@ -71,19 +71,25 @@ def group_blobs(mask, *, mm_per_px: float, distance_mm: float | None = None) -> 
     f = max(1, int(d_px // 4))
     h, w = mask.shape
     H, W = -(-h // f) * f, -(-w // f) * f
-    padded = np.zeros((H, W), bool)
-    padded[:h, :w] = mask
+    if (H, W) != (h, w):
+        padded = np.zeros((H, W), bool)
+        padded[:h, :w] = mask
+    else:
+        padded = mask
     small = padded.reshape(H // f, f, W // f, f).any(axis=(1, 3)).astype(np.uint8)
     grown = cv2.dilate(small, _disk(int(np.ceil(0.5 * d_px / f))))
     _, small_labels = cv2.connectedComponents(grown, connectivity=8)
-    full = np.zeros((h, w), np.int32)
-    rr, cc = np.nonzero(mask)
-    full[rr, cc] = small_labels[rr // f, cc // f]
     groups = []
-    for label, box in enumerate(ndimage.find_objects(full), start=1):
+    # boxes on the pooled image; the full-resolution group mask is read off per box
+    for label, box in enumerate(ndimage.find_objects(small_labels), start=1):
         if box is None:
             continue
-        groups.append(Group(box[0], box[1], full[box] == label))
+        rows = slice(box[0].start * f, min(box[0].stop * f, h))
+        cols = slice(box[1].start * f, min(box[1].stop * f, w))
+        lab = np.repeat(np.repeat(small_labels[box] == label, f, axis=0), f, axis=1)
+        sub = mask[rows, cols] & lab[: rows.stop - rows.start, : cols.stop - cols.start]
+        if sub.any():
+            groups.append(Group(rows, cols, sub))
     groups.sort(key=lambda g: (g.rows.start + g.rows.stop, g.cols.start))
     return groups
 
@@ -128,14 +134,16 @@ class EdgeSpots:
 def edge_spots(group: Group, darkness, *, mm_per_px: float) -> EdgeSpots:
     """Apply the section 7.1.1 rule to one group (``darkness`` = 1 - grey, same box)."""
     import cv2
-    from scipy import ndimage
 
     ink = group.mask.astype(np.uint8)
     n, lab, stats, cent = cv2.connectedComponentsWithStats(ink, connectivity=8)
     if n <= 2:
         return EdgeSpots(group.mask, int(n - 1), 0, 0)
     areas = stats[1:, cv2.CC_STAT_AREA] * mm_per_px**2
-    peak = ndimage.maximum(np.asarray(darkness, float), lab, np.arange(1, n))
+    ink_labels = lab[group.mask]
+    peak = np.zeros(n)
+    np.maximum.at(peak, ink_labels, np.asarray(darkness, float)[group.mask])
+    peak = peak[1:]
     large = areas >= tol.edge_spot_area_mm2
     if not large.any():
         large = areas == areas.max()
@@ -143,13 +151,9 @@ def edge_spots(group: Group, darkness, *, mm_per_px: float) -> EdgeSpots:
     core = large & (peak >= tol.edge_spot_faintness * ref)
     if not core.any():
         core = large
+    core_mask = np.concatenate([[False], core])[lab].astype(np.uint8)
     core_pts = np.concatenate(
-        [
-            cv2.findContours(
-                (lab == i + 1).astype(np.uint8), cv2.RETR_EXTERNAL, cv2.CHAIN_APPROX_SIMPLE
-            )[0][0]
-            for i in np.nonzero(core)[0]
-        ]
+        cv2.findContours(core_mask, cv2.RETR_EXTERNAL, cv2.CHAIN_APPROX_SIMPLE)[0]
     )
     hull = cv2.convexHull(core_pts)
     dist = np.array([cv2.pointPolygonTest(hull, (float(x), float(y)), True) for x, y in cent[1:]])

@@ -1,0 +1,162 @@
+"""Print analysis on generated scans with exact truth (issue 4; sections 4.1.1, 7.1.1)."""
+
+import math
+
+import numpy as np
+import pytest
+from numpy.testing import assert_allclose
+
+import inkprint as ip
+from inkprint.read import Scan
+from inkprint.synth import SheetSpec, render_sheet, superellipse_area
+
+from .conftest import one_print_sheet
+
+
+def check(result, truths, dpi):
+    mm = 25.4 / dpi
+    assert len(result.prints) == len(truths)
+    for p, t in zip(result.prints, truths, strict=True):
+        m = p.metrics
+        assert abs(m.length - t.length) <= max(0.01 * t.length, mm)
+        assert abs(m.width - t.width) <= max(0.01 * t.width, mm)
+        assert_allclose(m.hull_area, t.hull_area, rtol=0.02)
+        assert_allclose(math.degrees(m.orientation) % 180, t.angle % 180, atol=2.0)
+
+
+@pytest.mark.parametrize("dpi", [150, 300, 600])
+@pytest.mark.parametrize("tread", ["slick", "ribbed", "file", "knobby"])
+def test_analyze_two_rotated_prints_per_sheet(sheet_factory, dpi, tread):
+    # Figure 3-2 style sheet: drum print above plate print, a label, a ruler, halo
+    # spots (7.1.1) and specks; rotated 25 degrees on the sheet
+    path, truths = sheet_factory(
+        f"{tread}_{dpi}.png",
+        tire_radius=12.0,
+        load=400.0,
+        pressure=0.5,
+        dpi=dpi,
+        tread=tread,
+        seed=dpi,
+        label="Test 5 bar 400 N",
+        angle=25.0,
+        halo_spots=8,
+    )
+    result = ip.analyze_scan(ip.read_scan(path), sensitivity=False)
+    check(result, truths, dpi)
+    assert [p.index for p in result.prints] == [0, 1]
+    assert result.prints[0].metrics.centroid[1] > result.prints[1].metrics.centroid[1]  # top first
+    assert len(result.rejected) >= 2  # the label and the ruler are not prints
+
+
+def test_analyze_jpeg_artefacts(sheet_factory):
+    path, truths = sheet_factory(
+        "j.jpg",
+        tire_radius=9.5,
+        load=304.0,
+        pressure=0.6895,
+        dpi=150,
+        tread="ribbed",
+        seed=7,
+        angle=-40.0,
+    )
+    check(ip.analyze_scan(ip.read_scan(path), sensitivity=False), truths, 150)
+
+
+def test_analyze_edge_spots_reported_both_ways():
+    # section 7.1.1: faint halo dots near the edge that a light threshold counts as
+    # ink touched the paper but bore no load
+    spec = one_print_sheet(dpi=300, halo_spots=12, ink=0.95, tread="slick", angle=10.0)
+    img, truths = render_sheet(spec)
+    scan = Scan(img.astype(np.float32) / 255, 25.4 / 300, "given")
+    r = ip.analyze_scan(scan, method="fixed", threshold=0.7, sensitivity=False)
+    p = r.prints[0]
+    assert p.n_edge_spots >= 1 and p.edge_spot_area > 0
+    assert p.metrics_all.hull_area > p.metrics.hull_area
+    assert_allclose(p.metrics.hull_area, truths[0].hull_area, rtol=0.02)
+    row = r.rows()[0]
+    assert row["all_ink_hull_area_mm2"] > row["hull_area_mm2"]
+
+
+def test_analyze_sensitivity_band_brackets_the_value(sheet_factory):
+    path, _ = sheet_factory(
+        "band.png", tire_radius=14.9, load=500.0, pressure=0.4, dpi=150, tread="file", seed=3
+    )
+    r = ip.analyze_scan(ip.read_scan(path))
+    row = r.rows()[0]
+    for key in ("length_mm", "width_mm", "hull_area_mm2", "area_mm2"):
+        assert row[f"{key}_lo"] <= row[key] <= row[f"{key}_hi"]
+    assert row["area_mm2_hi"] > row["area_mm2_lo"]  # a +-10 % threshold moves the ink area
+
+
+def test_analyze_methods_agree_on_a_clean_print():
+    img, truths = render_sheet(one_print_sheet(dpi=300, angle=0.0))
+    scan = Scan(img.astype(np.float32) / 255, 25.4 / 300, "given")
+    lengths = [
+        ip.analyze_scan(scan, method=m, threshold=0.5, sensitivity=False).prints[0].metrics.length
+        for m in ("otsu", "fixed", "sauvola")
+    ]
+    assert_allclose(lengths, truths[0].length, rtol=0.01)
+    assert ip.analyze_scan(scan, method="fixed", threshold=0.5).threshold == 0.5
+
+
+def test_analyze_blank_and_black_pages():
+    blank = Scan(np.full((300, 200), 0.97, np.float32), 0.1, "given")
+    with pytest.raises(ip.NoInk, match="blank"):
+        ip.analyze_scan(blank)
+    black = Scan(np.full((300, 200), 0.02, np.float32), 0.1, "given")
+    with pytest.raises(ip.NoInk):
+        ip.analyze_scan(black)  # uniform dark page: nothing to tell apart
+    mostly = Scan(
+        np.where(np.arange(200) < 180, 0.05, 0.95).astype(np.float32)[None, :].repeat(300, 0),
+        0.1,
+        "given",
+    )
+    with pytest.raises(ip.AllInk, match="no paper"):
+        ip.analyze_scan(mostly)
+    with pytest.raises(ip.InvalidInput, match="method"):
+        ip.analyze_scan(Scan(np.ones((10, 10), np.float32), 0.1, "given"), method="magic")
+
+
+def test_contact_pressure_worked_example_section_4_1_1():
+    # section 4.1.1: 15479 px^2 at 0.1726 mm/px is 461.7 mm^2; under 304 N that is
+    # 0.6587 N/mm^2 = 95.5 % of 100 psi (the printed numbers round the scale)
+    from contactpatch import PatchMetrics
+    from inkprint.coords import area_mm2
+
+    a = area_mm2(15479, 0.1726)
+    assert_allclose(a, 461.7, rtol=2e-3)
+    m = PatchMetrics(a, a, 1.0, 0, (0, 0), 0, 1, 1, 1, np.zeros(1), np.zeros(1), 1, None, None)
+    cp = ip.contact_pressure(m, 304.0, 100 * 0.00689475728)
+    assert_allclose(cp["load_per_hull_area_N_mm2"], 0.6587, rtol=2e-3)
+    assert_allclose(cp["load_per_hull_area_pct"], 95.5, atol=0.2)
+
+
+def test_pixel_to_mm_conversion_is_consistent():
+    from inkprint.coords import mm_to_px, px_to_mm
+
+    x, y = px_to_mm(np.array([0.0, 10.5]), np.array([0.0, 20.25]), n_rows=100, mm_per_px=0.2)
+    r, c = mm_to_px(x, y, n_rows=100, mm_per_px=0.2)
+    assert_allclose([r, c], [[0.0, 10.5], [0.0, 20.25]])
+    assert_allclose(y, [20.0, 17.9])  # y up from the bottom edge
+
+
+def test_superellipse_area_matches_polygon():
+    import shapely
+
+    from inkprint.synth import PrintSpec, _outline
+
+    p = PrintSpec(70.0, 8.0, (0, 0))
+    assert_allclose(
+        shapely.Polygon(_outline(p, 20000)).area, superellipse_area(70.0, 8.0), rtol=1e-5
+    )
+
+
+def test_synthetic_render_is_unbiased():
+    # coverage of a rendered slick print equals its true area (no rasterization bias)
+    spec = SheetSpec(
+        one_print_sheet(dpi=300, unevenness=0.0).prints, dpi=300, grain=0.0, gradient=0.0, specks=0
+    )
+    img, truths = render_sheet(spec)
+    paper = np.median(img)
+    dark = 1.0 - img.astype(float) / paper
+    assert_allclose(dark.sum() / 0.85 * (25.4 / 300) ** 2, truths[0].net_area, rtol=3e-3)

@@ -1,0 +1,114 @@
+"""Reading scans (issue 4 item 1): formats, DPI, bad files."""
+
+import struct
+import zlib
+
+import numpy as np
+import pytest
+from numpy.testing import assert_allclose
+from PIL import Image
+
+import inkprint as ip
+
+
+def _sheet(mode="L"):
+    a = np.full((60, 80), 240, np.uint8)
+    a[20:40, 30:50] = 20
+    return a
+
+
+@pytest.mark.parametrize(
+    ("mode", "suffix"),
+    [
+        ("L", ".png"),
+        ("RGB", ".png"),
+        ("P", ".png"),
+        ("L", ".jpg"),
+        ("RGB", ".tif"),
+        ("I;16", ".tif"),
+        ("L", ".pdf"),
+    ],
+)
+def test_read_scan_formats_and_dpi(tmp_path, mode, suffix):
+    a = _sheet()
+    im = Image.fromarray(a)
+    if mode == "RGB":
+        im = im.convert("RGB")
+    elif mode == "P":
+        im = im.convert("P")
+    elif mode == "I;16":
+        im = Image.fromarray(a.astype(np.uint16) * 257)
+    path = tmp_path / f"s{suffix}"
+    if suffix == ".pdf":
+        im.save(path, resolution=200.0)
+    else:
+        im.save(path, dpi=(200, 200))
+    scan = ip.read_scan(path, dpi=200 if suffix == ".pdf" else None)
+    assert scan.grey.dtype == np.float32 and 0 <= scan.grey.min() and scan.grey.max() <= 1
+    assert_allclose(scan.mm_per_px, 25.4 / 200, rtol=1e-5)  # PNG stores pixels per metre
+    assert abs(scan.grey.shape[0] - 60) <= 1 and scan.grey.shape[1] == 80  # PDF pages round up
+    assert scan.grey[30, 40] < 0.2 < 0.8 < scan.grey[5, 5]
+
+
+def test_read_scan_pdf_without_dpi_uses_page_size(tmp_path):
+    Image.fromarray(_sheet()).save(tmp_path / "s.pdf", resolution=100.0)
+    scan = ip.read_scan(tmp_path / "s.pdf")
+    assert scan.scale_source == "pdf"
+    assert abs(scan.grey.shape[0] - 180) <= 1 and scan.grey.shape[1] == 240  # rendered at 300 dpi
+    assert_allclose(scan.mm_per_px, 25.4 / 300)
+
+
+def test_read_scan_rgba_transparent_black_is_paper(tmp_path):
+    # field notes: RGBA whose transparent pixels are black must not turn all black
+    rgba = np.zeros((60, 80, 4), np.uint8)
+    rgba[20:40, 30:50] = (10, 10, 10, 255)
+    Image.fromarray(rgba, "RGBA").save(tmp_path / "a.png", dpi=(150, 150))
+    scan = ip.read_scan(tmp_path / "a.png")
+    assert scan.grey[0, 0] == pytest.approx(1.0) and scan.grey[30, 40] < 0.1
+
+
+def test_read_scan_scale_given_or_missing(tmp_path):
+    Image.fromarray(_sheet()).save(tmp_path / "n.png")
+    with pytest.raises(ip.ScaleMissing, match="--dpi"):
+        ip.read_scan(tmp_path / "n.png")
+    assert ip.read_scan(tmp_path / "n.png", allow_pixels=True).unit == "px"
+    assert ip.read_scan(tmp_path / "n.png", mm_per_px=0.1726).mm_per_px == 0.1726
+    with pytest.raises(ip.InvalidInput, match="dpi"):
+        ip.read_scan(tmp_path / "n.png", dpi=-3)
+    with pytest.raises(ip.InvalidInput, match="dpi/mm_per_px"):
+        ip.read_scan(tmp_path / "n.png", dpi=150, mm_per_px=0.2)
+
+
+def test_read_scan_bad_files(tmp_path, monkeypatch):
+    (tmp_path / "empty.png").write_bytes(b"")
+    with pytest.raises(ip.ScanReadError, match="empty"):
+        ip.read_scan(tmp_path / "empty.png", dpi=150)
+    (tmp_path / "text.png").write_text("not an image at all")
+    with pytest.raises(ip.ScanReadError, match="not an image"):
+        ip.read_scan(tmp_path / "text.png", dpi=150)
+    Image.fromarray(_sheet()).save(tmp_path / "ok.png")
+    data = (tmp_path / "ok.png").read_bytes()
+    (tmp_path / "trunc.png").write_bytes(data[: len(data) // 2])
+    with pytest.raises(ip.ScanReadError):
+        ip.read_scan(tmp_path / "trunc.png", dpi=150)
+    with pytest.raises(ip.ScanReadError, match="no such file"):
+        ip.read_scan(tmp_path / "missing.png", dpi=150)
+    (tmp_path / "bad.pdf").write_bytes(b"%PDF-1.4 garbage")
+    with pytest.raises(ip.ScanReadError, match="PDF"):
+        ip.read_scan(tmp_path / "bad.pdf", dpi=150)
+
+
+def test_read_scan_huge_dimensions_is_refused_before_decoding(tmp_path):
+    # a PNG whose header claims 100000 x 100000 pixels (a decompression bomb)
+    def chunk(kind, body):
+        return (
+            struct.pack(">I", len(body)) + kind + body + struct.pack(">I", zlib.crc32(kind + body))
+        )
+
+    png = b"\x89PNG\r\n\x1a\n" + chunk(
+        b"IHDR", struct.pack(">IIBBBBB", 100000, 100000, 8, 0, 0, 0, 0)
+    )
+    png += chunk(b"IDAT", zlib.compress(b"\x00" * 1000)) + chunk(b"IEND", b"")
+    (tmp_path / "bomb.png").write_bytes(png)
+    with pytest.raises(ip.ImageTooLarge, match="exceeds"):
+        ip.read_scan(tmp_path / "bomb.png", dpi=150)
