@@ -11,11 +11,16 @@ Ellipses  : fit_ellipse_direct, fit_ellipse_lsq, ellipse_from_moments, ellipse_f
             EllipseFit
 From mesh : patch_from_mesh, contact_faces
 Model     : patch_polygon, appendix_points, appendix_ellipse
+Compare   : pair_prints (compare.py), trend_table / sign_agreement / drum_plate_ratios (trends.py),
+            build_report (report.py)
 Errors    : ContactPatchError, InvalidInput, NoPatch
 Tolerances: tol
 """
 
+__version__ = "0.1.0"
+
 from ._tol import tol
+from .compare import pair_prints
 from .ellipse import (
     EllipseFit,
     ellipse_from_mask,
@@ -43,6 +48,7 @@ __all__ = [
     "fit_ellipse_direct",
     "fit_ellipse_lsq",
     "measure",
+    "pair_prints",
     "patch_from_mesh",
     "patch_polygon",
     "tol",

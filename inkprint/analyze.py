@@ -107,6 +107,11 @@ class SheetResult:
                 unit = f"_{u}2" if "area" in key else f"_{u}"
                 row[f"{key}{unit}_lo"], row[f"{key}{unit}_hi"] = lo, hi
             row.update(contact_pressure(p.metrics, load, pressure))
+            x, y = px_to_mm(
+                p.hull_px[:, 0], p.hull_px[:, 1], n_rows=self.shape[0], mm_per_px=self.mm_per_px
+            )
+            ring = [*zip(x, y, strict=True), (x[0], y[0])]
+            row["hull_wkt"] = "POLYGON ((" + ", ".join(f"{a:.4f} {b:.4f}" for a, b in ring) + "))"
             out.append(row)
         return out
 

@@ -363,13 +363,27 @@ def _execute(jobs: list[Job], options: Options, workers: int | None, scheduler: 
             yield process_file(j, options)
         return
     import multiprocessing as mp
+    import warnings
     from concurrent.futures import ProcessPoolExecutor, as_completed
+    from concurrent.futures.process import BrokenProcessPool
 
     ctx = mp.get_context("spawn" if os.name == "nt" else "forkserver")
-    with ProcessPoolExecutor(max_workers=min(n, len(jobs)), mp_context=ctx) as pool:
-        futures = [pool.submit(process_file, j, options) for j in jobs]
-        for fut in as_completed(futures):
-            yield fut.result()
+    pending = dict(enumerate(jobs))
+    try:
+        with ProcessPoolExecutor(max_workers=min(n, len(jobs)), mp_context=ctx) as pool:
+            futures = {pool.submit(process_file, j, options): i for i, j in pending.items()}
+            for fut in as_completed(futures):
+                rows = fut.result()
+                del pending[futures[fut]]
+                yield rows
+    except BrokenProcessPool:
+        # e.g. run from a notebook or stdin, whose __main__ worker processes cannot
+        # import: finish in this process rather than lose the batch
+        warnings.warn(
+            "worker processes failed to start; analysing the rest in this process", stacklevel=2
+        )
+        for i in sorted(pending):
+            yield process_file(pending[i], options)
 
 
 __all__ = [

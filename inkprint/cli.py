@@ -127,6 +127,13 @@ def _cmd_batch(a) -> int:
     )
     for path in res.outputs:
         print(f"wrote {path}")
+    if a.report:
+        from contactpatch.report import build_report
+
+        index = build_report(
+            res.rows, a.report, renders=not a.no_renders, source=str(res.outputs[0])
+        )
+        print(f"wrote the report: {index}")
     return 0
 
 
@@ -170,6 +177,8 @@ def build_parser() -> argparse.ArgumentParser:
         "--retry-errors", action="store_true", help="analyse files that failed before again"
     )
     p.add_argument("--quiet", action="store_true", help="no progress bar")
+    p.add_argument("--report", metavar="DIR", help="also write the model-vs-print report to DIR")
+    p.add_argument("--no-renders", action="store_true", help="report without the 3D renders")
     _scale_options(p)
     p.set_defaults(func=_cmd_batch)
 
