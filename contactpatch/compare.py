@@ -19,6 +19,7 @@ from __future__ import annotations
 
 import math
 
+from ._util import number as _num
 from .errors import InvalidInput
 
 DRUM_DIAMETER_MM = 2500.0  # TU Delft (section 3.4)
@@ -43,16 +44,6 @@ RATIO_KEYS = (
     "ratio_ellipse_width",
     "ratio_ellipse_area",
 )
-
-
-def _num(v):
-    if v is None or v == "":
-        return None
-    try:
-        x = float(v)
-    except (TypeError, ValueError):
-        return None
-    return x if math.isfinite(x) else None
 
 
 def tire_of(row):

@@ -13,15 +13,9 @@ from pathlib import Path
 
 import numpy as np
 
+from ._util import number_or_nan as _f
+
 MARKERS = "osD^v<>ph*"
-
-
-def _f(v):
-    try:
-        x = float(v)
-    except (TypeError, ValueError):
-        return math.nan
-    return x if math.isfinite(x) else math.nan
 
 
 def _plt():

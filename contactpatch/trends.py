@@ -17,6 +17,7 @@ from collections import defaultdict
 
 import numpy as np
 
+from ._util import number_or_nan as _f
 from .errors import InvalidInput
 
 QUANTITIES = {
@@ -24,14 +25,6 @@ QUANTITIES = {
     "width": ("width_mm", "model_width_mm"),
     "area": ("hull_area_mm2", "model_area_mm2"),
 }
-
-
-def _f(v):
-    try:
-        x = float(v)
-    except (TypeError, ValueError):
-        return math.nan
-    return x if math.isfinite(x) else math.nan
 
 
 def power_law_fit(x_pressure, x_load, y) -> dict:

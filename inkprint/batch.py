@@ -23,11 +23,12 @@ import csv
 import glob
 import hashlib
 import json
-import math
 import os
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
+
+from contactpatch._util import number as _num
 
 from .errors import InkPrintError, InvalidInput
 
@@ -71,16 +72,6 @@ def file_hash(path) -> str:
         for chunk in iter(lambda: fh.read(1 << 20), b""):
             h.update(chunk)
     return h.hexdigest()
-
-
-def _num(v):
-    if v is None or v == "":
-        return None
-    try:
-        x = float(v)
-    except (TypeError, ValueError):
-        return None
-    return x if math.isfinite(x) else None
 
 
 def read_manifest(path) -> list[Job]:

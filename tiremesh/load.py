@@ -281,6 +281,13 @@ def max_load(
     return float(_max_load(cs, tol.search_sections)[0][0, 0])
 
 
+def _one_of(load, deflection) -> None:
+    if (load is None) == (deflection is None):
+        from .errors import InvalidParameter
+
+        raise InvalidParameter("load/deflection", (load, deflection), "exactly one of the two")
+
+
 def solve(
     tire: TireGeometry,
     *,
@@ -298,10 +305,7 @@ def solve(
     Exactly one of ``load`` and ``deflection`` must be given. See
     :func:`tiremesh.solve_patch` for the other parameters.
     """
-    if (load is None) == (deflection is None):
-        from .errors import InvalidParameter
-
-        raise InvalidParameter("load/deflection", (load, deflection), "exactly one of the two")
+    _one_of(load, deflection)
     if deflection is None:
         n = v.integer("n_sections", n_sections, 9, 20001)
         cs = _single_cases(tire, pressure, camber, slip, lateral, surface)
@@ -349,10 +353,7 @@ def solve_many(
         ``deflection, length, width, area, vertical_force, lateral_force,
         net_force_orientation, sinkage``.
     """
-    if (load is None) == (deflection is None):
-        from .errors import InvalidParameter
-
-        raise InvalidParameter("load/deflection", (load, deflection), "exactly one of the two")
+    _one_of(load, deflection)
     n = v.integer("n_sections", n_sections, 9, 20001)
     cs = _cases(
         tire_radius,
