@@ -121,12 +121,17 @@ def _cmd_solve(a: argparse.Namespace) -> int:
 
     patch = solve_from_args(a)
     summary = patch.summary()
+    if a.relaxation is not None or math.isfinite(a.friction):
+        summary.update(_lateral_summary(a))
     if a.json:
         print(json.dumps(summary, indent=2))
     elif a.csv:
         print(_csv([summary]), end="")
     else:
         print(_human(patch))
+        extra = {k: v for k, v in summary.items() if k not in patch.summary()}
+        for k, v in extra.items():
+            print(f"{k}: {v:.6g}" if isinstance(v, float) else f"{k}: {v}")
     if a.sections_csv:
         rows = [
             {
@@ -244,6 +249,43 @@ def _cmd_section(a: argparse.Namespace) -> int:
     return 0
 
 
+def _cmd_sweep(a: argparse.Namespace) -> int:
+    from .sweep import parse_grid, read_cases, run_sweep, sweep_plots, write_rows
+
+    if (a.grid is None) == (a.cases is None):
+        raise SystemExit("error: give exactly one of --grid and --cases")
+    cases = parse_grid(a.grid) if a.grid else read_cases(a.cases)
+    rows = run_sweep(cases, workers=a.workers, scheduler=a.scheduler)
+    write_rows(rows, a.output)
+    n_err = sum(r.get("status") != "ok" for r in rows)
+    print(f"{len(rows)} cases, {n_err} errors; wrote {a.output}")
+    if a.plots:
+        for path in sweep_plots(rows, a.plots):
+            print(f"wrote {path}")
+    return 0
+
+
+def _lateral_summary(a) -> dict:
+    from .lateral import Relaxation, solve_lateral, stiffnesses
+
+    patch = solve_from_args(a)
+    r = solve_lateral(
+        patch.tire, pressure=patch.pressure, deflection=patch.deflection, camber=patch.camber, slip=patch.slip,
+        lateral=patch.lateral, surface=patch.surface, friction=a.friction,
+        relaxation=Relaxation.uniform(a.relaxation or 0.0), n_sections=a.sections,
+    )  # fmt: skip
+    out = {
+        "lateral_force_with_beyond_N": r.lateral_force, "patch_lateral_force_N": r.patch_lateral_force,
+        "beyond_patch_lateral_force_N": r.beyond_lateral_force,
+        "net_force_orientation_with_beyond_deg": math.degrees(r.net_force_orientation),
+        "pneumatic_trail_mm": r.pneumatic_trail, "aligning_moment_Nmm": r.aligning_moment,
+        "sliding_sections": int(r.sliding.sum()), "friction_iterations": r.iterations,
+        "relaxation_length_lead_mm": r.relaxation_length[1],
+    }  # fmt: skip
+    out.update(stiffnesses(r))
+    return out
+
+
 def build_parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(
         prog="tiremesh",
@@ -257,7 +299,25 @@ def build_parser() -> argparse.ArgumentParser:
     out.add_argument("--csv", action="store_true", help="print the summary as one CSV row")
     p.add_argument("--sections-csv", metavar="FILE", help="write per-section arrays to FILE")
     p.add_argument("--outline-csv", metavar="FILE", help="write the patch outline polygon to FILE")
+    lat = p.add_argument_group("lateral mechanics (sections 5.6 to 5.8)")
+    lat.add_argument(
+        "--relaxation", type=float, help="relaxation rate beyond the patch [1/mm], e.g. 0.993"
+    )
+    lat.add_argument(
+        "--friction", type=float, default=math.inf, help="friction coefficient (default inf)"
+    )
     p.set_defaults(func=_cmd_solve)
+
+    p = sub.add_parser("sweep", help="solve a grid or a CSV of cases into one table")
+    p.add_argument(
+        "--grid", help='e.g. "tire=5,8 pressure_bar=2:11:10 load_N=304,500 camber_deg=10"'
+    )
+    p.add_argument("--cases", help="CSV of cases (columns as the --grid keys)")
+    p.add_argument("-o", "--output", required=True, help="sweep.csv")
+    p.add_argument("--plots", metavar="DIR", help="stiffness and tangent-rule plots to DIR")
+    p.add_argument("--workers", type=int, help="local processes for non-vectorizable cases")
+    p.add_argument("--scheduler", help="dask.distributed scheduler address")
+    p.set_defaults(func=_cmd_sweep)
 
     p = sub.add_parser("mesh", help="build the deformed tire mesh and export it")
     add_tire_options(p)

@@ -184,6 +184,7 @@ def build_mesh(
     bulge_points: int = 32,
     contact_points: int = 12,
     close_rim: bool = False,
+    centreline=None,
 ) -> TireMesh:
     """Build the deformed tire as a triangle mesh.
 
@@ -202,6 +203,11 @@ def build_mesh(
         Segments across the flat contact segment (>= 2).
     close_rim : bool
         Close the bead lines with a rim band (watertight mesh enclosing the air).
+    centreline : (s, dh) arrays [mm], optional
+        Lateral displacement of the tread centre line beyond the patch along the
+        wheel (e.g. ``LateralResult.s, LateralResult.dh``, section 5.8): the free
+        sections are shifted sideways by it, so meshes and renders show the
+        deformation that decays away from the patch.
 
     Returns
     -------
@@ -235,6 +241,16 @@ def build_mesh(
     xc, zc, sc, kcon = _contact_rings(sol_c, K, kc)
     xt, zt, st, tcon = _tip_rings(ends, K)
     xf, zf, sf, fcon = _free_rings(n_free, K, r0, s0, theta0, gam)
+    if centreline is not None:
+        cs_, cdh = (np.asarray(a, float) for a in centreline)
+        R = tire.wheel_radius
+        # free sections run forward from the front end; beyond half a turn, backward from the rear
+        ahead = phi_f - front < np.pi
+        s_pos = np.where(
+            ahead, patch.x[-1] + R * (phi_f - front), patch.x[0] - R * (rear + 2 * np.pi - phi_f)
+        )
+        shift = np.interp(s_pos, cs_, cdh, left=0.0, right=0.0)
+        xf = xf + shift[:, None]
 
     nc = len(phi_c)
     # vertex blocks: [rear tip | contact sections | front tip | free sections]

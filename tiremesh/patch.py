@@ -349,6 +349,7 @@ def _evaluate(cs: _Cases, dw, n: int, *, full: bool = True, ends=None):
     sol, (dv, ddv, dh, _, x, dx) = _sections_at(phi, dw, cs, offset, broadcast=True)
     width = np.maximum(sol.width, 0.0)
     area = half[:, 0] * (wts * width * area_jacobian(sol, dv, ddv, phi, cs)).sum(-1)
+    x_weights = half * wts * dx  # integral f dx = sum(x_weights * f)
     lat = cs.pressure[:, 0] * half[:, 0] * (wts * (sol.radius1 - sol.radius2) * dx).sum(-1)
     out = {
         "phi": phi,
@@ -360,6 +361,7 @@ def _evaluate(cs: _Cases, dw, n: int, *, full: bool = True, ends=None):
         "vertical_force": cs.pressure[:, 0] * area,
         "offset": offset[:, 0],
         "ends": (rear, front),
+        "x_weights": x_weights,
     }
     if not full:
         return out
@@ -423,6 +425,9 @@ class ContactPatch:
     flatness : float [mm]
         Largest height of a patch edge above/below the central contact line
         (Figure 5-9: the 3D Rotta patch of a cambered tire is not exactly flat).
+    x_weights : (n,) float [mm]
+        Quadrature weights along the patch: ``integral f dx = sum(x_weights * f)``
+        (Clenshaw-Curtis between the exact ends).
     """
 
     tire: TireGeometry
@@ -446,6 +451,7 @@ class ContactPatch:
     flatness: float
     surface_z: float = 0.0
     phi_ends: tuple[float, float] = (0.0, 0.0)
+    x_weights: np.ndarray = field(default=None, repr=False)
 
     @property
     def net_force_orientation(self) -> float:
@@ -630,6 +636,7 @@ def _build(
         flatness=float(max(np.abs(z1).max(), np.abs(z2).max())),
         surface_z=float(out["surface_z"][0]),
         phi_ends=(float(out["ends"][0][0, 0]), float(out["ends"][1][0, 0])),
+        x_weights=sq(out["x_weights"]),
     )
 
 
