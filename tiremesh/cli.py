@@ -132,6 +132,12 @@ def _cmd_solve(a: argparse.Namespace) -> int:
         extra = {k: v for k, v in summary.items() if k not in patch.summary()}
         for k, v in extra.items():
             print(f"{k}: {v:.6g}" if isinstance(v, float) else f"{k}: {v}")
+        if patch.slip and not extra:
+            print(
+                "note: a slip angle only turns the patch centre line here (Appendix C), which carries no "
+                "net force; add --relaxation 0.993 (and --friction) for the tread anchored at the leading "
+                "edge and the cornering force"
+            )
     if a.sections_csv:
         rows = [
             {

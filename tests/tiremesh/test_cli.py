@@ -85,3 +85,24 @@ def test_cli_solve_errors_are_clear(args, match):
     proc = run("solve", *args, check=False)
     assert proc.returncode == 2
     assert match in proc.stderr and "Traceback" not in proc.stderr
+
+
+def test_cli_solve_slip_points_to_lateral_mechanics():
+    out = run("solve", "--tire", "5", "--pressure", "4bar", "--load", "400", "--slip", "1").stdout
+    assert "note: a slip angle" in out
+    lat = run(
+        "solve",
+        "--tire",
+        "5",
+        "--pressure",
+        "4bar",
+        "--load",
+        "400",
+        "--slip",
+        "1",
+        "--relaxation",
+        "0.993",
+        "--json",
+    ).stdout
+    data = json.loads(lat)
+    assert data["norm_cornering_stiffness_1_deg"] > 0 and data["pneumatic_trail_mm"] > 0
