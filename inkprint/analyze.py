@@ -218,14 +218,15 @@ def measure_mask(mask, r0: int, c0: int, *, n_rows: int, mm_per_px: float, field
 
 
 def _band_values(m) -> dict:
-    return {
-        "length": m.length,
-        "width": m.width,
-        "hull_area": m.hull_area,
-        "area": m.area,
-        "ellipse_length": m.ellipse_direct.length,
-        "ellipse_width": m.ellipse_direct.width,
-    }
+    values = (
+        m.length,
+        m.width,
+        m.hull_area,
+        m.area,
+        m.ellipse_direct.length,
+        m.ellipse_direct.width,
+    )
+    return dict(zip(BAND_KEYS, values, strict=True))
 
 
 def _sensitivity(scan: Scan, b, g: Group, base: dict) -> dict:

@@ -111,6 +111,8 @@ def binarize(
     ------
     NoInk, AllInk
     """
+    if not (np.isfinite(window_mm) and window_mm > 0):
+        raise InvalidInput("window_mm", window_mm, "> 0 mm (the Sauvola window)")
     level = threshold_level(
         grey, method=method, threshold=threshold, window_px=round(window_mm / mm_per_px), k=k
     )

@@ -24,10 +24,20 @@ from tiremesh.sweep import grid, run_sweep
 def main() -> None:
     rng = np.random.default_rng(0)
     cases = [
-        {"tire_radius_mm": float(r), "rim_width_mm": float(w), "pressure_bar": float(p), "load_N": float(f)}
-        for r, w, p, f in zip(rng.uniform(10, 23, 10_000), rng.uniform(13.4, 18.7, 10_000),
-                              rng.uniform(2, 11, 10_000), rng.uniform(304, 731, 10_000), strict=True)
-    ]  # fmt: skip
+        {
+            "tire_radius_mm": float(r),
+            "rim_width_mm": float(w),
+            "pressure_bar": float(p),
+            "load_N": float(f),
+        }
+        for r, w, p, f in zip(
+            rng.uniform(10, 23, 10_000),
+            rng.uniform(13.4, 18.7, 10_000),
+            rng.uniform(2, 11, 10_000),
+            rng.uniform(304, 731, 10_000),
+            strict=True,
+        )
+    ]
     t0 = time.perf_counter()
     rows = run_sweep(cases)
     dt = time.perf_counter() - t0
@@ -35,14 +45,22 @@ def main() -> None:
     print(
         f"flat sweep: {len(cases):,} load-searched cases ({ok:,} solved) in {dt:.2f} s -> {len(cases) / dt:,.0f} cases/s"
     )
-    lat = grid(tire=list(range(1, 15)), pressure_bar=[3.0, 5.0, 7.0, 9.0], load_N=[304.0, 500.0], camber_deg=[10.0, 30.0],
-               friction=[1.0], relaxation=[0.993])  # fmt: skip
+    lat = grid(
+        tire=list(range(1, 15)),
+        pressure_bar=[3.0, 5.0, 7.0, 9.0],
+        load_N=[304.0, 500.0],
+        camber_deg=[10.0, 30.0],
+        friction=[1.0],
+        relaxation=[0.993],
+    )
     for workers in (1, 2):
         t0 = time.perf_counter()
         run_sweep(lat, workers=workers)
         dt = time.perf_counter() - t0
-        print(f"cambered sweep with friction + relaxation: {len(lat)} cases, {workers} worker(s): "
-              f"{dt:.2f} s -> {len(lat) / dt:,.0f} cases/s")  # fmt: skip
+        print(
+            f"cambered sweep with friction + relaxation: {len(lat)} cases, {workers} worker(s): "
+            f"{dt:.2f} s -> {len(lat) / dt:,.0f} cases/s"
+        )
 
 
 if __name__ == "__main__":

@@ -46,6 +46,10 @@ class Tolerances:
     series_below : float [rad]
         Below this bulge angle, ``theta - sin(theta)`` is evaluated by its Taylor
         series (no cancellation).
+    friction_rtol : float [-]
+        Convergence of the total lateral force in the friction iteration (5.6).
+    zero_force_xtol : float [mm]
+        Root of a section's zero-lateral-force displacement (friction sliding).
     rim_clearance : float [-]
         Largest usable wheel deflection as a fraction of the deflection at which a
         bead reaches the ground (where Rotta's bulge radius becomes infinite).
@@ -61,6 +65,8 @@ class Tolerances:
     end_width_atol: float = 1e-9
     bulge_fast_step: float = 1e-11
     series_below: float = 0.3
+    friction_rtol: float = 1e-9
+    zero_force_xtol: float = 1e-10
     rim_clearance: float = 0.995
 
 

@@ -190,8 +190,11 @@ def beam_rotta(
     E = float(v.positive("modulus", modulus, unit="N/mm^2"))
     th = float(v.in_range("thickness", thickness, 0.0, t.tire_radius, unit="mm"))
     EI = float(E * bending_inertia(t.tire_radius, th))
-    T = float(tension_area(patch.pressure, t.tire_radius) if tension == "area"
-              else tension_hoop(patch.pressure, t.wheel_radius, t.tire_radius))  # fmt: skip
+    T = float(
+        tension_area(patch.pressure, t.tire_radius)
+        if tension == "area"
+        else tension_hoop(patch.pressure, t.wheel_radius, t.tire_radius)
+    )
     L = (
         0.5 * math.pi * t.wheel_radius
         if half_length is None

@@ -276,18 +276,28 @@ def _lateral_summary(a) -> dict:
 
     patch = solve_from_args(a)
     r = solve_lateral(
-        patch.tire, pressure=patch.pressure, deflection=patch.deflection, camber=patch.camber, slip=patch.slip,
-        lateral=patch.lateral, surface=patch.surface, friction=a.friction,
-        relaxation=Relaxation.uniform(a.relaxation or 0.0), n_sections=a.sections,
-    )  # fmt: skip
+        patch.tire,
+        pressure=patch.pressure,
+        deflection=patch.deflection,
+        camber=patch.camber,
+        slip=patch.slip,
+        lateral=patch.lateral,
+        surface=patch.surface,
+        friction=a.friction,
+        relaxation=Relaxation.uniform(a.relaxation or 0.0),
+        n_sections=a.sections,
+    )
     out = {
-        "lateral_force_with_beyond_N": r.lateral_force, "patch_lateral_force_N": r.patch_lateral_force,
+        "lateral_force_with_beyond_N": r.lateral_force,
+        "patch_lateral_force_N": r.patch_lateral_force,
         "beyond_patch_lateral_force_N": r.beyond_lateral_force,
         "net_force_orientation_with_beyond_deg": math.degrees(r.net_force_orientation),
-        "pneumatic_trail_mm": r.pneumatic_trail, "aligning_moment_Nmm": r.aligning_moment,
-        "sliding_sections": int(r.sliding.sum()), "friction_iterations": r.iterations,
+        "pneumatic_trail_mm": r.pneumatic_trail,
+        "aligning_moment_Nmm": r.aligning_moment,
+        "sliding_sections": int(r.sliding.sum()),
+        "friction_iterations": r.iterations,
         "relaxation_length_lead_mm": r.relaxation_length[1],
-    }  # fmt: skip
+    }
     out.update(stiffnesses(r))
     return out
 

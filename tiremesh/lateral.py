@@ -160,8 +160,9 @@ class LateralResult:
 def _section_forces(patch: ContactPatch, dv, dh):
     """dS, dN per length [N/mm] and width of sections at (dv, dh)."""
     t = patch.tire
-    sol, bad_h, bad_c = _solve_sections(t.tire_radius, t.rim_width, dv, dh, patch.camber,
-                                        t.tire_radius * patch.camber)  # fmt: skip
+    sol, bad_h, bad_c = _solve_sections(
+        t.tire_radius, t.rim_width, dv, dh, patch.camber, t.tire_radius * patch.camber
+    )
     if np.any(bad_h) or np.any(bad_c):
         raise InvalidParameter(
             "lateral", patch.lateral, "a displacement within Rotta's construction"
@@ -185,8 +186,14 @@ def zero_force_displacement(patch: ContactPatch, dv) -> np.ndarray:
         return f, (fp - f) / h
 
     span = 0.5 * r0
-    return newton_bracketed(fun, np.zeros_like(dv), np.full_like(dv, -span), np.full_like(dv, span),
-                            xtol=1e-10, what="zero-force section displacement")  # fmt: skip
+    return newton_bracketed(
+        fun,
+        np.zeros_like(dv),
+        np.full_like(dv, -span),
+        np.full_like(dv, span),
+        xtol=tol.zero_force_xtol,
+        what="zero-force section displacement",
+    )
 
 
 def _beyond(patch: ContactPatch, dv_end, dh_end, rate, n):
@@ -248,8 +255,15 @@ def solve_lateral(
     nb = v.integer("n_beyond", n_beyond, 9, 20001)
     if slip_anchor not in ("leading", "centre"):
         raise InvalidParameter("slip_anchor", slip_anchor, "'leading' or 'centre'")
-    kw = dict(pressure=pressure, load=load, deflection=deflection, camber=camber, slip=slip,
-              surface=surface, n_sections=n_sections)  # fmt: skip
+    kw = dict(
+        pressure=pressure,
+        load=load,
+        deflection=deflection,
+        camber=camber,
+        slip=slip,
+        surface=surface,
+        n_sections=n_sections,
+    )
     offset = 0.0
     for _ in range(tol.max_iter):
         patch = solve(tire, lateral=lateral + offset, **kw)
@@ -286,6 +300,7 @@ def solve_lateral(
     sliding = np.zeros_like(front)
     iterations = 0
     ratio = 1.0
+    beyond = None
     if math.isfinite(mu):
         history = []
         while iterations < tol.max_iter:
@@ -305,20 +320,28 @@ def solve_lateral(
             dh = dh_free + u_new
             dS, dN = _section_forces(patch, dv, dh)
             f_patch = float(np.sum(w_patch * dS))
-            f_beyond = sum(float(np.sum(b[5] * b[3])) for b in beyond_forces(dh))
+            beyond = beyond_forces(dh)
+            f_beyond = sum(float(np.sum(b[5] * b[3])) for b in beyond)
             total = f_patch + f_beyond
             history.append(total)
-            if len(history) >= 2 and abs(history[-1] - history[-2]) <= 1e-9 * (1.0 + abs(total)):
+            if len(history) >= 2 and abs(history[-1] - history[-2]) <= tol.friction_rtol * (
+                1.0 + abs(total)
+            ):
                 break
             if len(history) >= 3 and (history[-1] - history[-2]) * (history[-2] - history[-3]) < 0:
                 total = 0.5 * (history[-1] + history[-2])  # oscillating: damp by averaging
             ratio = total / f_patch if f_patch else 1.0
             dS, dN = _section_forces(patch, dv, dh_imp)  # friction demand from the imposed state
-        if len(history) < 2 or abs(history[-1] - history[-2]) > 1e-9 * (1.0 + abs(history[-1])):
-            raise NotConverged("friction iteration (section 5.6)",
-                               {"iterations": tol.max_iter, "last_totals_N": history[-3:]})  # fmt: skip
-        dS, dN = _section_forces(patch, dv, dh)
-    beyond = beyond_forces(dh)
+        if len(history) < 2 or abs(history[-1] - history[-2]) > tol.friction_rtol * (
+            1.0 + abs(history[-1])
+        ):
+            raise NotConverged(
+                "friction iteration (section 5.6)",
+                {"iterations": tol.max_iter, "last_totals_N": history[-3:]},
+            )
+        # on convergence dS, dN and beyond are those of the final displacement dh
+    else:
+        beyond = beyond_forces(dh)
     (s_t, dv_t, dh_t, dS_t, dN_t, w_t), (s_l, dv_l, dh_l, dS_l, dN_l, w_l) = beyond
     x_rear, x_front = x[0], x[-1]
     s_all = np.concatenate([x_rear - s_t[::-1], x, x_front + s_l])
@@ -340,13 +363,25 @@ def solve_lateral(
         else:
             lengths.append(math.nan)
     return LateralResult(
-        patch=patch, s=s_all, in_patch=cat(np.zeros_like(s_t, bool), np.ones_like(x, bool), np.zeros_like(s_l, bool)),
-        sliding=cat(np.zeros_like(s_t, bool), sliding, np.zeros_like(s_l, bool)), dv=cat(dv_t, dv, dv_l),
-        dh=cat(dh_t, dh, dh_l), dS=cat(dS_t, dS, dS_l), dN=cat(dN_t, dN, dN_l), weights=cat(w_t, w_patch, w_l),
-        lateral_force=f_patch + f_beyond, patch_lateral_force=f_patch, beyond_lateral_force=f_beyond,
-        vertical_force=patch.vertical_force, aligning_moment=moment, relaxation_length=tuple(lengths),
-        iterations=iterations, imposed_lateral=float(lateral), friction_share=float(ratio),
-    )  # fmt: skip
+        patch=patch,
+        s=s_all,
+        in_patch=cat(np.zeros_like(s_t, bool), np.ones_like(x, bool), np.zeros_like(s_l, bool)),
+        sliding=cat(np.zeros_like(s_t, bool), sliding, np.zeros_like(s_l, bool)),
+        dv=cat(dv_t, dv, dv_l),
+        dh=cat(dh_t, dh, dh_l),
+        dS=cat(dS_t, dS, dS_l),
+        dN=cat(dN_t, dN, dN_l),
+        weights=cat(w_t, w_patch, w_l),
+        lateral_force=f_patch + f_beyond,
+        patch_lateral_force=f_patch,
+        beyond_lateral_force=f_beyond,
+        vertical_force=patch.vertical_force,
+        aligning_moment=moment,
+        relaxation_length=tuple(lengths),
+        iterations=iterations,
+        imposed_lateral=float(lateral),
+        friction_share=float(ratio),
+    )
 
 
 def tangent_rule(camber_deg):

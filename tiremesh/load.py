@@ -39,14 +39,21 @@ from .surface import Flat, Surface
 _DIFF_STEP = 1e-7
 
 
+def _dw_sensitivities(phi, cs: _Cases):
+    """d dv / d dw and d dh / d dw of each section (Eq. 5-17, 5-13 and the slip term,
+    ``x = (R - dv) sin phi``; the disk offset held fixed)."""
+    cg = np.cos(cs.gamma)
+    ddv_ddw = cg / np.cos(phi)
+    return ddv_ddw, np.tan(cs.gamma) * ddv_ddw - np.tan(cs.slip) * cg * np.tan(phi)
+
+
 def _djac_ddw(sol, dv, ddv_dphi, phi, cs: _Cases, jac, dw):
     """d(area Jacobian)/d(wheel deflection): a directional difference along the exact
     d dv/d dw = cos(camber)/cos(phi) (Eq. 5-17), moving the section midpoints by
     their analytic sensitivities."""
     h = _DIFF_STEP * dw
     cg, cp = np.cos(cs.gamma), np.cos(phi)
-    ddv_ddw = cg / cp
-    ddh_ddw = np.tan(cs.gamma) * ddv_ddw - np.tan(cs.slip) * cg * np.tan(phi)
+    ddv_ddw, ddh_ddw = _dw_sensitivities(phi, cs)
     xm = 0.5 * (sol.edge1 + sol.edge2) + h * (sol.dmid_ddv * ddv_ddw + sol.dmid_ddh * ddh_ddw)
     dv2 = dv + h * ddv_ddw
     ddv2 = ddv_dphi + h * cg * np.sin(phi) / (cp * cp)
@@ -65,21 +72,14 @@ def _area_and_slope(cs: _Cases, dw, n: int, guess=None):
     t, wts = clenshaw_curtis(n)
     half = 0.5 * (front - rear)
     phi = 0.5 * (front + rear) + half * t
-    sol, (dv, ddv_dphi, _, _, _, dx) = _sections_at(phi, dwe, cs, offset)
+    sol, (dv, ddv_dphi, _, _, _, _) = _sections_at(phi, dwe, cs, offset)
     jac = area_jacobian(sol, dv, ddv_dphi, phi, cs)
-    cg, tg, ta = np.cos(cs.gamma), np.tan(cs.gamma), np.tan(cs.slip)
-    cp, tp = np.cos(phi), np.tan(phi)
-    ddv = cg / cp  # d dv / d dw
-    ddh = tg * ddv - ta * cg * tp  # d dh / d dw (disk offset held fixed)
+    ddv, ddh = _dw_sensitivities(phi, cs)
     width = np.maximum(sol.width, 0.0)
     area = half * (wts * width * jac).sum(-1, keepdims=True)
-    # d jac / d dw ~ (jac / dx) d dx / d dw (exact without camber)
+    djac = _djac_ddw(sol, dv, ddv_dphi, phi, cs, jac, dwe)
     slope = half * (
-        wts
-        * (
-            (sol.dwidth_ddv * ddv + sol.dwidth_ddh * ddh) * jac
-            - width * (jac / dx) * cg / (cp * cp)
-        )
+        wts * ((sol.dwidth_ddv * ddv + sol.dwidth_ddh * ddh) * jac + width * djac)
     ).sum(-1, keepdims=True)
     area = np.where(touching, area, 0.0)
     slope = np.where(touching, slope, 0.0)
@@ -110,7 +110,6 @@ def _joint_newton(cs: _Cases, load, n: int):
     )
     phi_f = np.arccos((cs.R - dw) / cs.R)
     phi_r = -phi_f
-    cg, tg, ta = np.cos(cs.gamma), np.tan(cs.gamma), np.tan(cs.slip)
     target = np.log(load)
     at_limit = 0
     for _ in range(tol.max_iter):
@@ -122,9 +121,7 @@ def _joint_newton(cs: _Cases, load, n: int):
             return None
         jac = area_jacobian(sol, dv, ddv, phi, cs)
         width = sol.width
-        cp = np.cos(phi)
-        dv_dw = cg / cp
-        dh_dw = tg * dv_dw - ta * cg * np.tan(phi)
+        dv_dw, dh_dw = _dw_sensitivities(phi, cs)
         dwid_dw = sol.dwidth_ddv * dv_dw + sol.dwidth_ddh * dh_dw
         dwid_dphi = sol.dwidth_ddv * ddv + sol.dwidth_ddh * ddh
         area = half * (wts * width * jac).sum(-1, keepdims=True)

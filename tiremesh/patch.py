@@ -97,8 +97,7 @@ class _Cases:
         from .section import bead_positions
 
         cg, sg = np.cos(self.gamma), np.sin(self.gamma)
-        _, zb1, xb2, zb2 = bead_positions(self.r0, self.w, self.gamma)
-        xb1 = bead_positions(self.r0, self.w, self.gamma)[0]
+        xb1, zb1, xb2, zb2 = bead_positions(self.r0, self.w, self.gamma)
         limit = (np.minimum(zb1, zb2) + self.r0) / cg
         half_s0 = self.r0 * (np.pi - np.arcsin(0.5 * self.w / self.r0))
         delta = self.r0 * self.gamma
@@ -336,7 +335,7 @@ def _refined_extreme(phi, f, sign):
     return sign * np.maximum(np.where(ok, yv, -np.inf), np.max(g, axis=-1))
 
 
-def _evaluate(cs: _Cases, dw, n: int, *, full: bool = True, ends=None):
+def _evaluate(cs: _Cases, dw, n: int, *, ends=None):
     """Everything about m patches at wheel deflections ``dw`` (m, 1); ``ends`` are
     already-converged patch-end angles (rear, front) when the caller has them."""
     offset, disk_ends = _disk_offset(dw, cs)
@@ -363,8 +362,6 @@ def _evaluate(cs: _Cases, dw, n: int, *, full: bool = True, ends=None):
         "ends": (rear, front),
         "x_weights": x_weights,
     }
-    if not full:
-        return out
     # ground height: central section's contact line (exactly flat across the section)
     dv0 = np.cos(cs.gamma) * dw - curvature_drop(np.zeros_like(dw), cs.R, cs.k_drum)[0]
     ground_z = (-cs.r0 + dv0) - np.cos(cs.gamma) * (cs.R - cs.r0)

@@ -24,8 +24,14 @@ import numpy as np
 
 from .errors import InvalidParameter, TireModelError
 
-DEFAULTS = {"camber_deg": 0.0, "slip_deg": 0.0, "lateral_mm": 0.0, "surface": "flat", "friction": math.inf,
-            "relaxation": 0.0}  # fmt: skip
+DEFAULTS = {
+    "camber_deg": 0.0,
+    "slip_deg": 0.0,
+    "lateral_mm": 0.0,
+    "surface": "flat",
+    "friction": math.inf,
+    "relaxation": 0.0,
+}
 
 
 def grid(**axes) -> list[dict]:
@@ -88,21 +94,37 @@ def solve_case(case: dict) -> dict:
     try:
         tire = _tire(c)
         r = solve_lateral(
-            tire, pressure=0.1 * float(c["pressure_bar"]), load=float(c["load_N"]),
-            camber=math.radians(float(c["camber_deg"])), slip=math.radians(float(c["slip_deg"])),
-            lateral=float(c["lateral_mm"]), surface=parse_surface(str(c["surface"])),
-            relaxation=Relaxation.uniform(float(c["relaxation"])), friction=float(c["friction"]),
-        )  # fmt: skip
+            tire,
+            pressure=0.1 * float(c["pressure_bar"]),
+            load=float(c["load_N"]),
+            camber=math.radians(float(c["camber_deg"])),
+            slip=math.radians(float(c["slip_deg"])),
+            lateral=float(c["lateral_mm"]),
+            surface=parse_surface(str(c["surface"])),
+            relaxation=Relaxation.uniform(float(c["relaxation"])),
+            friction=float(c["friction"]),
+        )
         p = r.patch
-        row.update({
-            "status": "ok", "error": "", "tire_radius": tire.tire_radius, "rim_width": tire.rim_width,
-            "deflection_mm": p.deflection, "sinkage_pct": 100 * p.sinkage, "length_mm": p.length,
-            "width_mm": p.width, "area_mm2": p.area, "vertical_force_N": r.vertical_force,
-            "lateral_force_N": r.lateral_force, "patch_lateral_force_N": r.patch_lateral_force,
-            "net_force_orientation_deg": math.degrees(r.net_force_orientation),
-            "pneumatic_trail_mm": r.pneumatic_trail, "aligning_moment_Nmm": r.aligning_moment,
-            "relaxation_length_mm": r.relaxation_length[1],
-        })  # fmt: skip
+        row.update(
+            {
+                "status": "ok",
+                "error": "",
+                "tire_radius": tire.tire_radius,
+                "rim_width": tire.rim_width,
+                "deflection_mm": p.deflection,
+                "sinkage_pct": 100 * p.sinkage,
+                "length_mm": p.length,
+                "width_mm": p.width,
+                "area_mm2": p.area,
+                "vertical_force_N": r.vertical_force,
+                "lateral_force_N": r.lateral_force,
+                "patch_lateral_force_N": r.patch_lateral_force,
+                "net_force_orientation_deg": math.degrees(r.net_force_orientation),
+                "pneumatic_trail_mm": r.pneumatic_trail,
+                "aligning_moment_Nmm": r.aligning_moment,
+                "relaxation_length_mm": r.relaxation_length[1],
+            }
+        )
         row.update(stiffnesses(r))
     except (TireModelError, ValueError) as exc:
         row.update(status="error", error=f"{type(exc).__name__}: {exc}")
@@ -125,23 +147,38 @@ def _vector_rows(cases: list[dict]) -> list[dict]:
     cam = np.radians([float(x["camber_deg"]) for x in c])
     side = [s.center_side(g) if s.kind == "disk" else 1.0 for s, g in zip(surf, cam, strict=True)]
     out = solve_many(
-        tire_radius=[t.tire_radius for t in tires], rim_width=[t.rim_width for t in tires],
+        tire_radius=[t.tire_radius for t in tires],
+        rim_width=[t.rim_width for t in tires],
         bead_seat_diameter=[t.bead_seat_diameter for t in tires],
-        pressure=[0.1 * float(x["pressure_bar"]) for x in c], load=[float(x["load_N"]) for x in c],
-        camber=cam, slip=np.radians([float(x["slip_deg"]) for x in c]),
-        lateral=[float(x["lateral_mm"]) for x in c], drum_diameter=drum, disk_diameter=disk, disk_side=side,
+        pressure=[0.1 * float(x["pressure_bar"]) for x in c],
+        load=[float(x["load_N"]) for x in c],
+        camber=cam,
+        slip=np.radians([float(x["slip_deg"]) for x in c]),
+        lateral=[float(x["lateral_mm"]) for x in c],
+        drum_diameter=drum,
+        disk_diameter=disk,
+        disk_side=side,
         n_sections=65,
-    )  # fmt: skip
+    )
     for i, case in enumerate(cases):
         fy, fz = float(out["lateral_force"][i]), float(out["vertical_force"][i])
         row = dict(case)
-        row.update({
-            "status": "ok", "error": "", "tire_radius": tires[i].tire_radius, "rim_width": tires[i].rim_width,
-            "deflection_mm": float(out["deflection"][i]), "sinkage_pct": 100 * float(out["sinkage"][i]),
-            "length_mm": float(out["length"][i]), "width_mm": float(out["width"][i]),
-            "area_mm2": float(out["area"][i]), "vertical_force_N": fz, "lateral_force_N": fy,
-            "net_force_orientation_deg": math.degrees(float(out["net_force_orientation"][i])),
-        })  # fmt: skip
+        row.update(
+            {
+                "status": "ok",
+                "error": "",
+                "tire_radius": tires[i].tire_radius,
+                "rim_width": tires[i].rim_width,
+                "deflection_mm": float(out["deflection"][i]),
+                "sinkage_pct": 100 * float(out["sinkage"][i]),
+                "length_mm": float(out["length"][i]),
+                "width_mm": float(out["width"][i]),
+                "area_mm2": float(out["area"][i]),
+                "vertical_force_N": fz,
+                "lateral_force_N": fy,
+                "net_force_orientation_deg": math.degrees(float(out["net_force_orientation"][i])),
+            }
+        )
         deg = float(c[i]["camber_deg"])
         if deg:
             row["norm_camber_stiffness_1_deg"] = fy / fz / deg
@@ -155,12 +192,21 @@ def _vector_rows(cases: list[dict]) -> list[dict]:
     return rows
 
 
-def run_sweep(cases: list[dict], *, workers: int | None = None, scheduler: str | None = None,
-              progress: bool = False) -> list[dict]:  # fmt: skip
+def run_sweep(
+    cases: list[dict],
+    *,
+    workers: int | None = None,
+    scheduler: str | None = None,
+    progress: bool = False,
+) -> list[dict]:
     """Solve every case; rows in the order of ``cases``."""
-    plain = [i for i, c in enumerate(cases)
-             if float(c.get("friction", math.inf)) == math.inf and not float(c.get("relaxation", 0.0))
-             and not float(c.get("slip_deg", 0.0))]  # fmt: skip
+    plain = [
+        i
+        for i, c in enumerate(cases)
+        if float(c.get("friction", math.inf)) == math.inf
+        and not float(c.get("relaxation", 0.0))
+        and not float(c.get("slip_deg", 0.0))
+    ]
     rows: list = [None] * len(cases)
     if plain:
         try:
@@ -220,9 +266,11 @@ def sweep_plots(rows: list[dict], out_dir) -> list[Path]:
     out.mkdir(parents=True, exist_ok=True)
     ok = [r for r in rows if r.get("status") == "ok"]
     written = []
-    for key, label in (("norm_lateral_stiffness_1_mm", "normalized lateral stiffness [1/mm]"),
-                       ("norm_camber_stiffness_1_deg", "normalized camber stiffness [1/deg]"),
-                       ("norm_cornering_stiffness_1_deg", "normalized cornering stiffness [1/deg]")):  # fmt: skip
+    for key, label in (
+        ("norm_lateral_stiffness_1_mm", "normalized lateral stiffness [1/mm]"),
+        ("norm_camber_stiffness_1_deg", "normalized camber stiffness [1/deg]"),
+        ("norm_cornering_stiffness_1_deg", "normalized cornering stiffness [1/deg]"),
+    ):
         rs = [r for r in ok if key in r]
         if not rs:
             continue
@@ -251,8 +299,12 @@ def sweep_plots(rows: list[dict], out_dir) -> list[Path]:
     rs = [r for r in ok if "tangent_rule_agreement" in r]
     if rs:
         fig, ax = plt.subplots(figsize=(6, 4))
-        sc = ax.scatter([r["tire_radius"] / r["rim_width"] for r in rs],
-                        [100 * r["tangent_rule_agreement"] for r in rs], c=[r["sinkage_pct"] for r in rs], s=12)  # fmt: skip
+        sc = ax.scatter(
+            [r["tire_radius"] / r["rim_width"] for r in rs],
+            [100 * r["tangent_rule_agreement"] for r in rs],
+            c=[r["sinkage_pct"] for r in rs],
+            s=12,
+        )
         fig.colorbar(sc, label="sinkage [%]")
         ax.axhline(100, color="k", lw=0.8)
         ax.set_xlabel("tire radius / rim width")

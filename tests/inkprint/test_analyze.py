@@ -113,6 +113,10 @@ def test_analyze_blank_and_black_pages():
     )
     with pytest.raises(ip.AllInk, match="no paper"):
         ip.analyze_scan(mostly)
+    with pytest.raises(ip.InvalidInput, match="window_mm"):
+        ip.analyze_scan(
+            Scan(np.ones((10, 10), np.float32), 0.1, "given"), method="sauvola", window_mm=-1.0
+        )
     with pytest.raises(ip.InvalidInput, match="method"):
         ip.analyze_scan(Scan(np.ones((10, 10), np.float32), 0.1, "given"), method="magic")
 
