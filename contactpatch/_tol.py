@@ -1,4 +1,10 @@
-"""Numerical tolerances of :mod:`contactpatch`, in one documented place."""
+"""Numerical tolerances of :mod:`contactpatch`, in one documented place.
+
+Only numerical epsilons live here (thresholds that guard floating-point arithmetic).
+Judgement thresholds with a physical meaning are keyword options of the functions
+that use them: ``atol`` of :func:`contactpatch.contact_faces` (when a mesh vertex is
+on the support surface, mm) and ``boundary_samples`` of :func:`contactpatch.measure`.
+"""
 
 from __future__ import annotations
 
@@ -7,28 +13,28 @@ from dataclasses import dataclass
 
 @dataclass
 class Tolerances:
-    """Attributes
+    """Numerical epsilons (mutable on purpose, like ``tiremesh.tol``).
+
+    Attributes
     ----------
-    min_fit_points : int
-        An ellipse has 5 degrees of freedom: fewer points is a failed fit.
     conic_rcond : float [-]
         Relative singularity threshold of the normalized scatter matrices; below it
         the points are (nearly) collinear or coincident: a failed fit.
     ellipse_discriminant : float [-]
         ``4AC - B^2`` of the normalized conic must exceed this (scale-free: the
         conic is normalized to unit coefficient norm) or the fit is not an ellipse.
-    surface_atol : float [mm]
-        A mesh vertex within this distance of the support surface is on it.
-    boundary_samples : int
-        Points per hull boundary for the direct ellipse fit (uniform in arc length,
-        so the fit does not depend on how the outline happens to be sampled).
+    eigen_imag_rtol : float [-]
+        An eigenvalue of the direct fit is real when its imaginary part is below
+        this fraction of the largest eigenvalue's magnitude.
+    area_rtol : float [-]
+        Relative slack allowed when a given net area exceeds the hull area
+        (round-off of the two area computations).
     """
 
-    min_fit_points: int = 5
     conic_rcond: float = 1e-12
     ellipse_discriminant: float = 1e-12
-    surface_atol: float = 1e-6
-    boundary_samples: int = 360
+    eigen_imag_rtol: float = 1e-8
+    area_rtol: float = 1e-9
 
 
 tol = Tolerances()

@@ -10,7 +10,17 @@ class ContactPatchError(Exception):
 
 
 class InvalidInput(ContactPatchError, ValueError):
-    """An input is outside what the function accepts (names the parameter)."""
+    """An input is outside what the function accepts (names the parameter).
+
+    Parameters
+    ----------
+    name : str
+        The parameter (or table column) at fault.
+    value : object
+        What was given.
+    allowed : str
+        What would be accepted, for the message.
+    """
 
     def __init__(self, name: str, value: Any, allowed: str) -> None:
         self.name, self.value, self.allowed = name, value, allowed

@@ -29,6 +29,47 @@ def _scale_options(p: argparse.ArgumentParser) -> None:
     t.add_argument("--threshold", type=float, help="grey level in (0, 1) for --method fixed")
     t.add_argument("--no-band", action="store_true", help="skip the threshold sensitivity band")
     p.add_argument("--overlay", metavar="DIR", help="write QA overlay PNGs to DIR")
+    _threshold_options(p)
+
+
+# judgement thresholds on the command line: (flag, AnalysisOptions field, metavar, help)
+THRESHOLDS = (
+    ("--group-distance", "group_distance_mm", "MM", "blobs closer than this form one print"),
+    ("--min-patch-area", "min_patch_area_mm2", "MM2", "less ink than this is not a print"),
+    ("--min-patch-width", "min_patch_width_mm", "MM", "narrower than this is a line, not a print"),
+    ("--speck-area", "speck_area_mm2", "MM2", "smaller ink blobs are specks (removed)"),
+    ("--edge-spot-area", "edge_spot_area_mm2", "MM2", "blobs this large form the print's core"),
+    (
+        "--edge-spot-distance",
+        "edge_spot_distance_mm",
+        "MM",
+        "small blobs farther than this from the core bore no load",
+    ),
+    ("--band", "sensitivity", "FRACTION", "relative threshold change of the band (0.1 = +-10 %%)"),
+)
+
+
+def _threshold_options(p: argparse.ArgumentParser) -> None:
+    from .options import AnalysisOptions
+
+    defaults = AnalysisOptions()
+    g = p.add_argument_group("judgement thresholds (inkprint.AnalysisOptions)")
+    for flag, name, metavar, text in THRESHOLDS:
+        g.add_argument(
+            flag,
+            dest=name,
+            type=float,
+            metavar=metavar,
+            help=f"{text} (default {getattr(defaults, name):g})",
+        )
+
+
+def _analysis_options(a):
+    """AnalysisOptions from the threshold flags given (the rest at their defaults)."""
+    from .options import AnalysisOptions
+
+    given = {name: getattr(a, name) for _, name, _, _ in THRESHOLDS}
+    return AnalysisOptions(**{k: v for k, v in given.items() if v is not None})
 
 
 def _options(a):
@@ -42,6 +83,7 @@ def _options(a):
         threshold=a.threshold,
         sensitivity=not a.no_band,
         overlay_dir=a.overlay,
+        analysis=_analysis_options(a),
     )
 
 
@@ -64,7 +106,8 @@ SUMMARY = [
 
 
 def _cmd_analyze(a) -> int:
-    from contactpatch._io import parse_force, parse_pressure
+    from tiremesh.io import table_columns
+    from tiremesh.units import MPA_PER_BAR, parse_force, parse_pressure
 
     from .batch import Job, process_file
 
@@ -72,18 +115,19 @@ def _cmd_analyze(a) -> int:
     if a.load is not None:
         meta["load_N"] = parse_force(a.load, name="--load")
     if a.pressure is not None:
-        meta["pressure_bar"] = parse_pressure(a.pressure, name="--pressure") / 0.1
+        meta["pressure_bar"] = parse_pressure(a.pressure, name="--pressure") / MPA_PER_BAR
     opts = _options(a)
     if opts.overlay_dir:
         Path(opts.overlay_dir).mkdir(parents=True, exist_ok=True)
     rows = []
     for f in a.scans:
-        rows.extend(process_file(Job(f, {-1: {"file": f, **meta}} if meta else {}), opts))
+        job = Job(f, {-1: {"file": f, **meta}} if meta else {})
+        rows.extend(process_file(job, options=opts))
     if a.json:
         print(json.dumps(rows, indent=1, default=str))
     elif a.csv:
         buf = io.StringIO()
-        cols = list(dict.fromkeys(k for r in rows for k in r))
+        cols = table_columns(rows)
         w = csv.DictWriter(buf, fieldnames=cols, lineterminator="\n")
         w.writeheader()
         w.writerows(rows)
@@ -146,6 +190,12 @@ def _cmd_synth(a) -> int:
 
 
 def build_parser() -> argparse.ArgumentParser:
+    """The ``inkprint`` argument parser (subcommands analyze, batch, synth).
+
+    Returns
+    -------
+    argparse.ArgumentParser
+    """
     parser = argparse.ArgumentParser(
         prog="inkprint", description="Ink prints of tire contact patches (Dressel 2013, 4.1.1)."
     )
@@ -190,6 +240,19 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 def main(argv: Sequence[str] | None = None) -> int:
+    """Run the ``inkprint`` command line.
+
+    Parameters
+    ----------
+    argv : sequence of str, optional
+        Arguments without the program name (default: ``sys.argv[1:]``).
+
+    Returns
+    -------
+    int
+        Exit status: 0 on success, 2 on an error (or a file that failed in
+        ``analyze``).
+    """
     a = build_parser().parse_args(argv)
     try:
         return a.func(a)

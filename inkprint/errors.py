@@ -1,5 +1,8 @@
-"""Exception hierarchy of :mod:`inkprint`. In a batch every one of these becomes an
-error row for its file; the batch goes on."""
+"""Exception hierarchy of :mod:`inkprint`.
+
+A single call raises; in a batch every one of these becomes an error row for its
+file and the batch goes on.
+"""
 
 from __future__ import annotations
 
@@ -23,7 +26,7 @@ class ScanReadError(InkPrintError):
 
 
 class ImageTooLarge(ScanReadError):
-    """The image is larger than ``tol.max_pixels`` (decompression-bomb guard)."""
+    """The image is larger than ``AnalysisOptions.max_pixels`` (decompression-bomb guard)."""
 
 
 class ScaleMissing(InkPrintError):

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .analyze import SheetResult
+from .analyze import PrintResult, SheetResult
 from .coords import mm_to_px
 from .read import Scan
 
@@ -12,73 +12,101 @@ _SHIFT = 4  # fractional bits for cv2 drawing
 HULL = (0, 160, 0)
 ELLIPSE = (220, 40, 40)
 AXES = (30, 90, 230)
+TEXT = (0, 90, 0)
+
+
+class _Canvas:
+    """An RGB image of a scan drawn at ``f`` times its size; draws in continuous
+    (row, col) pixels of the scan and in sheet mm."""
+
+    def __init__(self, scan: Scan, max_side: int) -> None:
+        import cv2
+
+        grey = (np.clip(scan.grey, 0, 1) * 255).astype(np.uint8)
+        self.f = min(1.0, max_side / max(grey.shape))
+        if self.f < 1.0:
+            grey = cv2.resize(grey, None, fx=self.f, fy=self.f, interpolation=cv2.INTER_AREA)
+        self.rgb = cv2.cvtColor(grey, cv2.COLOR_GRAY2RGB)
+        self.n_rows, self.mm_per_px = scan.grey.shape[0], scan.mm_per_px
+        self.thick = max(1, round(2 * self.f * max(scan.grey.shape) / 2400))
+
+    def _pts(self, rows, cols) -> np.ndarray:
+        """Continuous (row, col) -> cv2 fixed-point (x, y) on the canvas."""
+        return (np.column_stack([cols, rows]) * self.f * (1 << _SHIFT)).round().astype(np.int32)
+
+    def line_px(self, rows, cols, color, *, closed: bool) -> None:
+        import cv2
+
+        pts = self._pts(rows, cols)
+        cv2.polylines(self.rgb, [pts], closed, color, self.thick, cv2.LINE_AA, _SHIFT)
+
+    def line_mm(self, x, y, color, *, closed: bool) -> None:
+        r, c = mm_to_px(x, y, n_rows=self.n_rows, mm_per_px=self.mm_per_px)
+        self.line_px(r, c, color, closed=closed)
+
+    def label(self, text: str, row: int, col: int) -> None:
+        """White-outlined text just above scan pixel (row, col)."""
+        import cv2
+
+        t = self.thick
+        org = (int(col * self.f), max(int(row * self.f) - 6 * t, 12 * t))
+        font = cv2.FONT_HERSHEY_SIMPLEX
+        cv2.putText(self.rgb, text, org, font, 0.45 * t, (255, 255, 255), 3 * t, cv2.LINE_AA)
+        cv2.putText(self.rgb, text, org, font, 0.45 * t, TEXT, t, cv2.LINE_AA)
+
+
+def _draw_print(canvas: _Canvas, p: PrintResult, unit: str) -> None:
+    canvas.line_px(p.hull_px[:, 0], p.hull_px[:, 1], HULL, closed=True)
+    e = p.metrics.ellipse_direct
+    if e:
+        b = e.boundary(180)
+        canvas.line_mm(b[:, 0], b[:, 1], ELLIPSE, closed=True)
+    m = p.metrics
+    cx, cy = m.centroid
+    for half, ang in ((0.5 * m.length, m.orientation), (0.5 * m.width, m.orientation + np.pi / 2)):
+        dx, dy = half * np.cos(ang), half * np.sin(ang)
+        canvas.line_mm(
+            np.array([cx - dx, cx + dx]), np.array([cy - dy, cy + dy]), AXES, closed=False
+        )
+    r0, c0, _, _ = p.bbox
+    u = unit
+    canvas.label(
+        f"#{p.index}  L {m.length:.1f}  W {m.width:.2f} {u}  A {m.hull_area:.0f} {u}2", r0, c0
+    )
 
 
 def draw_overlay(
     scan: Scan, result: SheetResult, path=None, *, max_side: int = 2400
 ) -> np.ndarray:
-    """RGB image of the scan with every print's hull (green), direct-fit ellipse
-    (red) and length / width axes (blue), labelled with its number and size.
-    Written to ``path`` (PNG, atomically) when given. Large scans are scaled down to
-    ``max_side`` pixels."""
-    import cv2
+    """QA image: the scan with every print's outline, ellipse and axes, labelled.
 
-    grey = (np.clip(scan.grey, 0, 1) * 255).astype(np.uint8)
-    f = min(1.0, max_side / max(grey.shape))
-    if f < 1.0:
-        grey = cv2.resize(grey, None, fx=f, fy=f, interpolation=cv2.INTER_AREA)
-    rgb = cv2.cvtColor(grey, cv2.COLOR_GRAY2RGB)
-    n_rows, s = scan.grey.shape[0], scan.mm_per_px
-    thick = max(1, round(2 * f * max(scan.grey.shape) / 2400))
-    u = result.unit
+    The hull is green, the direct-fit ellipse red and the length / width axes blue;
+    each print is labelled with its number and size.
 
-    def pts(rows, cols):  # continuous (row, col) -> cv2 fixed point (x, y)
-        return (np.column_stack([cols, rows]) * f * (1 << _SHIFT)).round().astype(np.int32)
+    Parameters
+    ----------
+    scan : Scan
+        The scan the result was measured on.
+    result : SheetResult
+        From :func:`inkprint.analyze_scan`.
+    path : str or PathLike, optional
+        Write the image here (PNG, atomically).
+    max_side : int [px]
+        Larger scans are scaled down to this many pixels on their long side.
 
+    Returns
+    -------
+    (h, w, 3) uint8
+        The RGB image.
+    """
+    canvas = _Canvas(scan, max_side)
     for p in result.prints:
-        cv2.polylines(
-            rgb, [pts(p.hull_px[:, 0], p.hull_px[:, 1])], True, HULL, thick, cv2.LINE_AA, _SHIFT
-        )
-        e = p.metrics.ellipse_direct
-        if e:
-            b = e.boundary(180)
-            r, c = mm_to_px(b[:, 0], b[:, 1], n_rows=n_rows, mm_per_px=s)
-            cv2.polylines(rgb, [pts(r, c)], True, ELLIPSE, thick, cv2.LINE_AA, _SHIFT)
-        m = p.metrics
-        cx, cy = m.centroid
-        for half, ang in (
-            (0.5 * m.length, m.orientation),
-            (0.5 * m.width, m.orientation + np.pi / 2),
-        ):
-            dx, dy = half * np.cos(ang), half * np.sin(ang)
-            r, c = mm_to_px(
-                np.array([cx - dx, cx + dx]),
-                np.array([cy - dy, cy + dy]),
-                n_rows=n_rows,
-                mm_per_px=s,
-            )
-            cv2.polylines(rgb, [pts(r, c)], False, AXES, thick, cv2.LINE_AA, _SHIFT)
-        r0, c0, _, _ = p.bbox
-        text = f"#{p.index}  L {m.length:.1f}  W {m.width:.2f} {u}  A {m.hull_area:.0f} {u}2"
-        org = (int(c0 * f), max(int(r0 * f) - 6 * thick, 12 * thick))
-        cv2.putText(
-            rgb,
-            text,
-            org,
-            cv2.FONT_HERSHEY_SIMPLEX,
-            0.45 * thick,
-            (255, 255, 255),
-            3 * thick,
-            cv2.LINE_AA,
-        )
-        cv2.putText(
-            rgb, text, org, cv2.FONT_HERSHEY_SIMPLEX, 0.45 * thick, (0, 90, 0), thick, cv2.LINE_AA
-        )
+        _draw_print(canvas, p, result.unit)
     if path is not None:
         from PIL import Image
 
-        from contactpatch._io import atomic_path
+        from tiremesh.io import atomic_path
 
         with atomic_path(path) as tmp:
-            Image.fromarray(rgb).save(tmp, format="PNG")
-    return rgb
+            Image.fromarray(canvas.rgb).save(tmp, format="PNG")
+    return canvas.rgb

@@ -16,10 +16,10 @@ from pathlib import Path
 
 import numpy as np
 
-from ._tol import tol
+from .coords import dots_per_cm_to_dpi, dpi_to_mm_per_px, mm_per_px_to_dpi, pdf_px_per_pt
 from .errors import ImageTooLarge, InvalidInput, ScaleMissing, ScanReadError
+from .options import AnalysisOptions, resolve_options
 
-MM_PER_INCH = 25.4
 RASTER = {".png", ".jpg", ".jpeg", ".tif", ".tiff", ".bmp"}
 
 
@@ -31,12 +31,14 @@ class Scan:
     ----------
     grey : (rows, cols) float32 in [0, 1]
         1 = white paper, 0 = black ink.
-    mm_per_px : float
+    mm_per_px : float [mm / px]
         Scale (1.0 with ``scale_source == 'pixels'``: units are pixels).
     scale_source : str
         'given', 'metadata', 'pdf' or 'pixels'.
     path : str
+        File the scan was read from ('' when made in memory).
     page : int
+        Page of a PDF (0-based).
     """
 
     grey: np.ndarray
@@ -47,24 +49,27 @@ class Scan:
 
     @property
     def dpi(self) -> float:
-        return MM_PER_INCH / self.mm_per_px
+        """Resolution [dots per inch]."""
+        return mm_per_px_to_dpi(self.mm_per_px)
 
     @property
     def unit(self) -> str:
+        """Unit of lengths measured on this scan: 'mm', or 'px' without a scale."""
         return "px" if self.scale_source == "pixels" else "mm"
 
 
-def _check_scale(dpi, mm_per_px):
+def _check_scale(dpi, mm_per_px, opts: AnalysisOptions) -> float | None:
+    """The scale given by the caller [mm / px], or None."""
     if dpi is not None and mm_per_px is not None:
         raise InvalidInput("dpi/mm_per_px", (dpi, mm_per_px), "at most one of the two")
     if dpi is not None:
         dpi = float(dpi)
-        if not (np.isfinite(dpi) and tol.min_dpi <= dpi <= tol.max_dpi):
-            raise InvalidInput("dpi", dpi, f"[{tol.min_dpi:g}, {tol.max_dpi:g}]")
-        return MM_PER_INCH / dpi
+        if not (np.isfinite(dpi) and opts.min_dpi <= dpi <= opts.max_dpi):
+            raise InvalidInput("dpi", dpi, f"[{opts.min_dpi:g}, {opts.max_dpi:g}]")
+        return dpi_to_mm_per_px(dpi)
     if mm_per_px is not None:
         s = float(mm_per_px)
-        lo, hi = MM_PER_INCH / tol.max_dpi, MM_PER_INCH / tol.min_dpi
+        lo, hi = dpi_to_mm_per_px(opts.max_dpi), dpi_to_mm_per_px(opts.min_dpi)
         if not (np.isfinite(s) and lo <= s <= hi):
             raise InvalidInput("mm_per_px", s, f"[{lo:.4g}, {hi:.4g}] mm per pixel")
         return s
@@ -102,20 +107,23 @@ def _to_grey(im) -> np.ndarray:
     return (np.asarray(im.convert("L"), dtype=np.float32) / 255.0).astype(np.float32)
 
 
-def _metadata_mm_per_px(im) -> float | None:
+def _metadata_mm_per_px(im, opts: AnalysisOptions) -> float | None:
+    """Scale from the image's DPI metadata [mm / px], or None if absent or implausible."""
     dpi = im.info.get("dpi")
     if dpi is None and "jfif_density" in im.info and im.info.get("jfif_unit") in (1, 2):
         d = im.info["jfif_density"]
-        dpi = (d[0] * 2.54, d[1] * 2.54) if im.info["jfif_unit"] == 2 else d
+        if im.info["jfif_unit"] == 2:
+            d = (dots_per_cm_to_dpi(d[0]), dots_per_cm_to_dpi(d[1]))
+        dpi = d
     if dpi is None:
         return None
     try:
         dx, dy = (float(v) for v in (dpi if isinstance(dpi, tuple | list) else (dpi, dpi)))
     except (TypeError, ValueError):
         return None
-    if not (tol.min_dpi <= dx <= tol.max_dpi) or abs(dx - dy) > 1e-3 * dx:
+    if not (opts.min_dpi <= dx <= opts.max_dpi) or abs(dx - dy) > 1e-3 * dx:
         return None  # implausible or anisotropic: do not guess
-    return MM_PER_INCH / dx
+    return dpi_to_mm_per_px(dx)
 
 
 def read_scan(
@@ -125,25 +133,38 @@ def read_scan(
     mm_per_px: float | None = None,
     allow_pixels: bool = False,
     page: int = 0,
+    options: AnalysisOptions | None = None,
 ) -> Scan:
     """Read a scan and its scale.
 
     Parameters
     ----------
-    path : str or Path
-    dpi, mm_per_px : float, optional
-        Scale given explicitly (overrides the file's metadata); at most one.
+    path : str or PathLike
+        PNG, JPEG, TIFF, BMP or PDF file.
+    dpi : float, optional [dots per inch]
+        Scale given explicitly (overrides the file's metadata).
+    mm_per_px : float, optional [mm / px]
+        Scale given explicitly; at most one of ``dpi`` and ``mm_per_px``.
     allow_pixels : bool
         Without any scale, measure in pixels instead of raising ScaleMissing.
     page : int
         Page of a PDF (0-based).
+    options : AnalysisOptions, optional
+        Uses ``max_pixels``, ``min_dpi``, ``max_dpi`` and ``pdf_dpi`` (defaults when
+        None).
+
+    Returns
+    -------
+    Scan
+        ``grey`` is (rows, cols) float32 in [0, 1]; ``mm_per_px`` [mm / px].
 
     Raises
     ------
     ScanReadError, ImageTooLarge, ScaleMissing, InvalidInput
     """
+    opts = resolve_options(options)
     p = Path(path)
-    given = _check_scale(dpi, mm_per_px)
+    given = _check_scale(dpi, mm_per_px, opts)
     if not p.is_file():
         raise ScanReadError(f"{p}: no such file")
     if p.stat().st_size == 0:
@@ -151,25 +172,26 @@ def read_scan(
     with p.open("rb") as fh:
         head = fh.read(8)
     if head.startswith(b"%PDF"):
-        return _read_pdf(p, given, page)
-    return _read_raster(p, given, allow_pixels)
+        return _read_pdf(p, given, page=page, opts=opts)
+    return _read_raster(p, given, allow_pixels=allow_pixels, opts=opts)
 
 
-def _read_raster(p: Path, given, allow_pixels) -> Scan:
+def _read_raster(p: Path, given, *, allow_pixels: bool, opts: AnalysisOptions) -> Scan:
+    """A raster image (Pillow) with the given, metadata or no scale."""
     from PIL import Image, UnidentifiedImageError
 
     try:
         with warnings.catch_warnings():
             warnings.simplefilter("error", Image.DecompressionBombWarning)
             old = Image.MAX_IMAGE_PIXELS
-            Image.MAX_IMAGE_PIXELS = tol.max_pixels
+            Image.MAX_IMAGE_PIXELS = opts.max_pixels
             try:
                 with Image.open(p) as im:
                     w, h = im.size
-                    if w * h > tol.max_pixels:
-                        raise ImageTooLarge(f"{p}: {w} x {h} px exceeds {tol.max_pixels:,} px")
+                    if w * h > opts.max_pixels:
+                        raise ImageTooLarge(f"{p}: {w} x {h} px exceeds {opts.max_pixels:,} px")
                     im.load()
-                    meta = _metadata_mm_per_px(im)
+                    meta = _metadata_mm_per_px(im, opts)
                     grey = _to_grey(im)
             finally:
                 Image.MAX_IMAGE_PIXELS = old
@@ -190,7 +212,8 @@ def _read_raster(p: Path, given, allow_pixels) -> Scan:
     raise ScaleMissing(f"{p}: no DPI in the file; give --dpi or --mm-per-px (or --pixels)")
 
 
-def _read_pdf(p: Path, given, page: int) -> Scan:
+def _read_pdf(p: Path, given, *, page: int, opts: AnalysisOptions) -> Scan:
+    """One PDF page rendered at the given scale, else at ``opts.pdf_dpi``."""
     import pypdfium2 as pdfium
 
     try:
@@ -202,11 +225,11 @@ def _read_pdf(p: Path, given, page: int) -> Scan:
             raise InvalidInput("page", page, f"0 .. {len(doc) - 1}")
         pg = doc[page]
         w_pt, h_pt = pg.get_size()
-        mm = given if given is not None else MM_PER_INCH / tol.pdf_dpi
-        scale = MM_PER_INCH / mm / 72.0  # pixels per point
-        if w_pt * h_pt * scale * scale > tol.max_pixels:
+        mm = given if given is not None else dpi_to_mm_per_px(opts.pdf_dpi)
+        scale = pdf_px_per_pt(mm)
+        if w_pt * h_pt * scale * scale > opts.max_pixels:
             raise ImageTooLarge(
-                f"{p}: page {page} at {MM_PER_INCH / mm:.0f} dpi exceeds {tol.max_pixels:,} px"
+                f"{p}: page {page} at {mm_per_px_to_dpi(mm):.0f} dpi exceeds {opts.max_pixels:,} px"
             )
         im = pg.render(scale=scale, grayscale=True).to_pil()
         grey = _to_grey(im)

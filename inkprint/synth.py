@@ -29,6 +29,9 @@ from pathlib import Path
 
 import numpy as np
 
+from tiremesh.units import MPA_PER_BAR
+
+from .coords import dpi_to_mm_per_px, mm_to_px, mm_to_px_length, px_to_mm_length
 from .errors import InvalidInput
 
 TREADS = ("slick", "ribbed", "file", "knobby")
@@ -39,7 +42,19 @@ DRUM_LENGTH, DRUM_WIDTH = 0.92, 1.12  # Table 4-1 means, drum / plate
 
 
 def superellipse_area(length: float, width: float, n: float = SUPERELLIPSE_N) -> float:
-    """Area of ``|2u/L|^n + |2v/W|^n <= 1`` [mm^2]."""
+    """Area of the superellipse ``|2u/L|^n + |2v/W|^n <= 1``.
+
+    Parameters
+    ----------
+    length, width : float [mm]
+        Extents ``L`` and ``W``.
+    n : float
+        Exponent (2 = ellipse).
+
+    Returns
+    -------
+    float [mm^2]
+    """
     return length * width * math.gamma(1 + 1 / n) ** 2 / math.gamma(1 + 2 / n)
 
 
@@ -51,9 +66,22 @@ def outline_law(
     surface: str = "plate",
     kappa: float = KAPPA,
 ) -> tuple[float, float]:
-    """(length, width) [mm] of a print from the module's outline law.
+    """Length and width of a print from the module's outline law.
 
-    ``load`` [N], ``pressure`` [N/mm^2], ``tire_radius`` [mm], ``surface`` plate|drum.
+    Parameters
+    ----------
+    load : float [N]
+    pressure : float [N/mm^2]
+        Inflation pressure.
+    tire_radius : float [mm]
+        Cross-section radius of the tire.
+    surface : {'plate', 'drum'}
+    kappa : float
+        Contact pressure over inflation pressure (area = load / (kappa pressure)).
+
+    Returns
+    -------
+    length, width : float [mm]
     """
     for name, val in (("load", load), ("pressure", pressure), ("tire_radius", tire_radius)):
         if not (np.isfinite(val) and val > 0):
@@ -74,10 +102,26 @@ def outline_law(
 
 @dataclass(frozen=True)
 class PrintSpec:
-    """One print on a sheet (mm, degrees).
+    """One print on a sheet.
 
-    ``center`` is on the sheet (x right, y up from the bottom-left corner);
-    ``angle`` turns the rolling direction from +x.
+    Attributes
+    ----------
+    length, width : float [mm]
+        Extents of the superellipse outline.
+    center : (x, y) float [mm]
+        On the sheet (x right, y up from the bottom-left corner).
+    angle : float [deg]
+        Turns the rolling direction from +x (counter-clockwise).
+    tread : {'slick', 'ribbed', 'file', 'knobby'}
+    ink : float in (0, 1]
+        Mean darkness of the ink.
+    unevenness : float
+        Relative spread of the ink's darkness (smooth noise).
+    halo_spots : int
+        Faint dots just outside the outline that bore no load (section 7.1.1; not
+        in the truth).
+    exponent : float
+        Superellipse exponent.
     """
 
     length: float
@@ -93,6 +137,29 @@ class PrintSpec:
 
 @dataclass(frozen=True)
 class SheetSpec:
+    """A sheet of prints to render.
+
+    Attributes
+    ----------
+    prints : tuple of PrintSpec
+    dpi : float [dots per inch]
+        In [50, 1200].
+    size : (width, height) float [mm]
+        Default: US letter.
+    grain : float
+        Paper grain (standard deviation of the grey level).
+    gradient : float
+        Background darkening from the top-left to the bottom-right corner.
+    specks : int
+        Single-pixel dust specks.
+    label : str, optional
+        A pen label at the top left.
+    ruler : bool
+        A ruler along the right edge.
+    seed : int
+        Random seed (same seed, same image).
+    """
+
     prints: tuple[PrintSpec, ...]
     dpi: float = 150.0
     size: tuple[float, float] = LETTER
@@ -106,7 +173,21 @@ class SheetSpec:
 
 @dataclass(frozen=True)
 class PrintTruth:
-    """Exact ground truth of one print (mm): load-bearing ink only."""
+    """Exact ground truth of one print: load-bearing ink only.
+
+    Attributes
+    ----------
+    ink : shapely geometry [mm]
+        The ink, in sheet coordinates.
+    length, width : float [mm]
+        Extents of the ink's convex hull along and across ``angle``.
+    hull_area : float [mm^2]
+        Area of the convex hull (gross).
+    net_area : float [mm^2]
+        Area of the ink.
+    angle : float [deg]
+        Rolling direction from +x.
+    """
 
     ink: object = field(repr=False)  # shapely geometry
     length: float
@@ -163,7 +244,18 @@ def _place(geom, spec: PrintSpec):
 
 
 def truth_of(ink, angle_deg: float) -> PrintTruth:
-    """Ground truth of an ink geometry: hull extents along / across ``angle``."""
+    """Ground truth of an ink geometry.
+
+    Parameters
+    ----------
+    ink : shapely geometry [mm]
+    angle_deg : float [deg]
+        Rolling direction from +x: the hull's extents are measured along and across.
+
+    Returns
+    -------
+    PrintTruth
+    """
     from shapely import affinity
 
     hull = ink.convex_hull
@@ -209,88 +301,167 @@ def _smooth_noise(shape, scale_px: float, rng) -> np.ndarray:
     return big / (big.std() or 1.0)
 
 
-def render_sheet(spec: SheetSpec) -> tuple[np.ndarray, list[PrintTruth]]:
-    """Render a sheet: (rows, cols) uint8 grey image and the truth of each print
-    (ordered as the prints are found: top to bottom)."""
-    import cv2
+@dataclass(frozen=True)
+class _Raster:
+    """Pixel grid of a sheet: scale [mm / px], size [px] and supersampling factor."""
+
+    mm_per_px: float
+    rows: int
+    cols: int
+    ss: int
+
+    def to_px(self, x, y):
+        """Sheet (x, y) [mm] -> continuous (row, col) [px]."""
+        return mm_to_px(x, y, n_rows=self.rows, mm_per_px=self.mm_per_px)
+
+    def px(self, length_mm):
+        """A length [mm] -> [px]."""
+        return mm_to_px_length(length_mm, self.mm_per_px)
+
+
+def _paper(spec: SheetSpec, grid: _Raster, rng) -> np.ndarray:
+    """Paper grey with a gradient and grain, (rows, cols) float32."""
+    yy = np.linspace(0, 1, grid.rows, dtype=np.float32)[:, None]
+    xx = np.linspace(0, 1, grid.cols, dtype=np.float32)[None, :]
+    paper = 0.96 - spec.gradient * (0.6 * yy + 0.4 * xx)
+    return paper + spec.grain * rng.standard_normal((grid.rows, grid.cols)).astype(np.float32)
+
+
+def _halo(p: PrintSpec, rng) -> list:
+    """Faint dots just outside the print's outline (7.1.1), in sheet mm."""
     import shapely
 
+    halo = []
+    ring = shapely.Polygon(_outline(p)).exterior
+    for _ in range(p.halo_spots):
+        q = ring.interpolate(rng.uniform(0, 1), normalized=True)
+        normal = np.array([q.x / (0.5 * p.length) ** 2, q.y / (0.5 * p.width) ** 2])
+        u, v = np.array([q.x, q.y]) + normal / np.hypot(*normal) * rng.uniform(0.6, 2.5)
+        halo.append(shapely.Point(u, v).buffer(rng.uniform(0.2, 0.45), quad_segs=6))
+    return [_place(h, p) for h in halo]
+
+
+def _coverage(geom, grid: _Raster, box: tuple[int, int, int, int]) -> np.ndarray:
+    """Anti-aliased coverage in [0, 1] of ``geom`` over the pixel box (r0, c0, r1, c1)."""
+    import cv2
+
+    r0, c0, r1, c1 = box
+    h, w, ss = r1 - r0, c1 - c0, grid.ss
+
+    def to_px(xy):  # sheet mm -> supersampled (x, y) canvas pixels, centres at integers
+        r, c = grid.to_px(xy[:, 0], xy[:, 1])
+        return np.column_stack([(c - c0) * ss, (r - r0) * ss]) - 0.5
+
+    canvas = np.zeros((h * ss, w * ss), np.uint8)
+    _fill(canvas, geom, to_px, 255, shrink=px_to_mm_length(0.5, grid.mm_per_px) / ss)
+    return cv2.resize(canvas, (w, h), interpolation=cv2.INTER_AREA).astype(np.float32) / 255.0
+
+
+def _draw_print(dark, ink, halo: list, p: PrintSpec, grid: _Raster, rng) -> None:
+    """Darken ``dark`` with the print's ink (uneven) and its halo spots."""
+    import shapely
+
+    x0, y0, x1, y1 = ink.buffer(4.0).bounds
+    top, left = grid.to_px(x0, y1)
+    bottom, right = grid.to_px(x1, y0)
+    c0, c1 = max(int(left), 0), min(int(np.ceil(right)), grid.cols)
+    r0, r1 = max(int(top), 0), min(int(np.ceil(bottom)), grid.rows)
+    box = (r0, c0, r1, c1)
+    cover = _coverage(ink, grid, box)
+    level = p.ink * (1.0 + p.unevenness * _smooth_noise(cover.shape, grid.px(5.0), rng))
+    dark[r0:r1, c0:c1] = np.maximum(dark[r0:r1, c0:c1], cover * np.clip(level, 0.35, 1.0))
+    if halo:
+        hc = _coverage(shapely.union_all(halo), grid, box)
+        dark[r0:r1, c0:c1] = np.maximum(dark[r0:r1, c0:c1], hc * 0.45 * p.ink)
+
+
+def _add_specks(dark, n: int, rng) -> None:
+    """Dust and paper specks, single pixels (below the speck size)."""
+    rows, cols = dark.shape
+    for _ in range(n):
+        r, c = rng.integers(0, rows), rng.integers(0, cols)
+        dark[r, c] = max(dark[r, c], rng.uniform(0.3, 0.8))
+
+
+def _draw_label(out, text: str, grid: _Raster) -> None:
+    """A pen label, top left."""
+    import cv2
+
+    org = (int(grid.px(12)), int(grid.px(14)))
+    thick = max(1, int(grid.px(0.35)))
+    cv2.putText(out, text, org, cv2.FONT_HERSHEY_SIMPLEX, grid.px(0.12), 40, thick, cv2.LINE_AA)
+
+
+def _draw_ruler(out, grid: _Raster) -> None:
+    """A ruler along the right edge, ticks every 10 mm."""
+    import cv2
+
+    x = int(grid.cols - grid.px(12))
+    cv2.line(out, (x, int(grid.px(20))), (x, int(grid.px(170))), 30, max(1, int(grid.px(0.4))))
+    for k in range(16):
+        y = int(grid.px(20 + 10 * k))
+        cv2.line(out, (x, y), (int(x - grid.px(3)), y), 30, max(1, int(grid.px(0.3))))
+
+
+def render_sheet(spec: SheetSpec) -> tuple[np.ndarray, list[PrintTruth]]:
+    """Render a sheet and the exact truth of its prints.
+
+    Parameters
+    ----------
+    spec : SheetSpec
+
+    Returns
+    -------
+    image : (rows, cols) uint8
+        The grey scan (255 = white), ``spec.dpi`` dots per inch.
+    truths : list of PrintTruth
+        One per print, ordered as the prints are found: top to bottom.
+    """
     if not 50 <= spec.dpi <= 1200:
         raise InvalidInput("dpi", spec.dpi, "[50, 1200]")
     rng = np.random.default_rng(spec.seed)
-    mm = 25.4 / spec.dpi
-    rows, cols = round(spec.size[1] / mm), round(spec.size[0] / mm)
-    yy = np.linspace(0, 1, rows, dtype=np.float32)[:, None]
-    xx = np.linspace(0, 1, cols, dtype=np.float32)[None, :]
-    paper = 0.96 - spec.gradient * (0.6 * yy + 0.4 * xx)
-    paper = paper + spec.grain * rng.standard_normal((rows, cols)).astype(np.float32)
+    mm = dpi_to_mm_per_px(spec.dpi)
+    rows, cols = round(mm_to_px_length(spec.size[1], mm)), round(mm_to_px_length(spec.size[0], mm))
+    grid = _Raster(mm, rows, cols, 3 if spec.dpi <= 300 else 2)  # supersampling for anti-aliasing
+    paper = _paper(spec, grid, rng)
     dark = np.zeros((rows, cols), np.float32)
     truths = []
-    ss = 3 if spec.dpi <= 300 else 2  # supersampling for anti-aliased edges
     for p in spec.prints:
         ink = _place(_tread(p, rng), p)
         truths.append(truth_of(ink, p.angle))
-        halo = []
-        ring = shapely.Polygon(_outline(p)).exterior
-        for _ in range(p.halo_spots):  # faint dots just outside the outline (7.1.1)
-            q = ring.interpolate(rng.uniform(0, 1), normalized=True)
-            normal = np.array([q.x / (0.5 * p.length) ** 2, q.y / (0.5 * p.width) ** 2])
-            u, v = np.array([q.x, q.y]) + normal / np.hypot(*normal) * rng.uniform(0.6, 2.5)
-            halo.append(shapely.Point(u, v).buffer(rng.uniform(0.2, 0.45), quad_segs=6))
-        halo = [_place(h, p) for h in halo]
-        x0, y0, x1, y1 = ink.buffer(4.0).bounds
-        c0, c1 = max(int(x0 / mm), 0), min(int(np.ceil(x1 / mm)), cols)
-        r0, r1 = max(int(rows - y1 / mm), 0), min(int(np.ceil(rows - y0 / mm)), rows)
-        h, w = r1 - r0, c1 - c0
-
-        def to_px(xy, r0=r0, c0=c0):
-            return (
-                np.column_stack([(xy[:, 0] / mm - c0) * ss, (rows - xy[:, 1] / mm - r0) * ss])
-                - 0.5
-            )
-
-        cov = np.zeros((h * ss, w * ss), np.uint8)
-        _fill(cov, ink, to_px, 255, shrink=0.5 * mm / ss)
-        cover = cv2.resize(cov, (w, h), interpolation=cv2.INTER_AREA).astype(np.float32) / 255.0
-        level = p.ink * (1.0 + p.unevenness * _smooth_noise((h, w), 5.0 / mm, rng))
-        dark[r0:r1, c0:c1] = np.maximum(dark[r0:r1, c0:c1], cover * np.clip(level, 0.35, 1.0))
-        if halo:
-            hcov = np.zeros((h * ss, w * ss), np.uint8)
-            _fill(hcov, shapely.union_all(halo), to_px, 255, shrink=0.5 * mm / ss)
-            hc = cv2.resize(hcov, (w, h), interpolation=cv2.INTER_AREA).astype(np.float32) / 255.0
-            dark[r0:r1, c0:c1] = np.maximum(dark[r0:r1, c0:c1], hc * 0.45 * p.ink)
-    for _ in range(spec.specks):  # dust and paper specks, below the speck size
-        r, c = rng.integers(0, rows), rng.integers(0, cols)
-        dark[r, c] = max(dark[r, c], rng.uniform(0.3, 0.8))
+        _draw_print(dark, ink, _halo(p, rng), p, grid, rng)
+    _add_specks(dark, spec.specks, rng)
     img = np.clip(paper * (1.0 - dark), 0, 1)
     out = (img * 255).astype(np.uint8)
-    if spec.label:  # a pen label, top left
-        scale = 0.12 / mm
-        cv2.putText(
-            out,
-            spec.label,
-            (int(12 / mm), int(14 / mm)),
-            cv2.FONT_HERSHEY_SIMPLEX,
-            scale,
-            40,
-            max(1, int(0.35 / mm)),
-            cv2.LINE_AA,
-        )
-    if spec.ruler:  # a ruler along the right edge, ticks every 10 mm
-        x = int(cols - 12 / mm)
-        cv2.line(out, (x, int(20 / mm)), (x, int(170 / mm)), 30, max(1, int(0.4 / mm)))
-        for k in range(16):
-            y = int((20 + 10 * k) / mm)
-            cv2.line(out, (x, y), (int(x - 3 / mm), y), 30, max(1, int(0.3 / mm)))
+    if spec.label:
+        _draw_label(out, spec.label, grid)
+    if spec.ruler:
+        _draw_ruler(out, grid)
     order = np.argsort([-t.ink.centroid.y for t in truths])
     return out, [truths[i] for i in order]
 
 
 def save_scan(image: np.ndarray, path, *, dpi: float, jpeg_quality: int | None = None) -> Path:
-    """Write a grey scan with its DPI (PNG, JPEG, TIFF or PDF from the suffix), atomically."""
+    """Write a grey scan with its DPI, atomically.
+
+    Parameters
+    ----------
+    image : (rows, cols) uint8
+        Grey scan (255 = white).
+    path : str or PathLike
+        .png, .jpg / .jpeg, .tif / .tiff or .pdf: the suffix sets the format.
+    dpi : float [dots per inch]
+        Stored in the file (PDF: the page size).
+    jpeg_quality : int, optional
+        JPEG quality (default 90).
+
+    Returns
+    -------
+    Path
+    """
     from PIL import Image
 
-    from contactpatch._io import atomic_path
+    from tiremesh.io import atomic_path
 
     path = Path(path)
     suffix = path.suffix.lower()
@@ -321,7 +492,32 @@ def drum_and_plate_sheet(
     angle: float = 0.0,
     halo_spots: int = 6,
 ) -> SheetSpec:
-    """A sheet like Figure 3-2: the drum print on top, the plate print below."""
+    """A sheet like Figure 3-2: the drum print on top, the plate print below.
+
+    The prints follow :func:`outline_law` (``kappa`` within -2 %/+3 % of ``KAPPA``),
+    are centred near x = 105 mm (drum at y = 190 mm, plate at 95 mm), turned by
+    ``angle`` +- 3 degrees and inked at 0.75 to 0.9; the sheet has a ruler.
+
+    Parameters
+    ----------
+    tire_radius : float [mm]
+    load : float [N]
+    pressure : float [N/mm^2]
+    dpi : float [dots per inch]
+    tread : {'slick', 'ribbed', 'file', 'knobby'}
+    seed : int
+        Random seed of the layout and of the rendering.
+    label : str, optional
+        Pen label.
+    angle : float [deg]
+        Rolling direction of both prints from +x.
+    halo_spots : int
+        Halo spots per print (section 7.1.1).
+
+    Returns
+    -------
+    SheetSpec
+    """
     rng = np.random.default_rng(seed)
     specs = []
     for surface, y in (("drum", 190.0), ("plate", 95.0)):
@@ -352,61 +548,119 @@ SAMPLE_PRESSURES_BAR = (4.0, 6.9)
 SAMPLE_LOADS_N = (304.0, 500.0)
 
 
+@dataclass(frozen=True)
+class _Sample:
+    """One sheet of the sample set: a tire at a pressure and load."""
+
+    tire_id: int
+    tire_name: str
+    radius: float
+    rim: float
+    tread: str
+    p_bar: float
+    load: float
+    seed: int
+
+    @property
+    def name(self) -> str:
+        return f"tire{self.tire_id:02d}_{self.p_bar:g}bar_{self.load:.0f}N.jpg"
+
+    def sheet(self, dpi: float) -> SheetSpec:
+        return drum_and_plate_sheet(
+            tire_radius=self.radius,
+            load=self.load,
+            pressure=self.p_bar * MPA_PER_BAR,
+            dpi=dpi,
+            tread=self.tread,
+            seed=self.seed,
+            label=f"{self.tire_name} {self.p_bar:g} bar {self.load:.0f} N",
+        )
+
+
+def _samples() -> list[_Sample]:
+    cases = [
+        (tire, p_bar, load)
+        for tire in SAMPLE_TIRES
+        for p_bar in SAMPLE_PRESSURES_BAR
+        for load in SAMPLE_LOADS_N
+    ]
+    return [_Sample(*tire, p_bar, load, 100 + k) for k, (tire, p_bar, load) in enumerate(cases)]
+
+
+def _manifest_rows(sample: _Sample, dpi: float) -> list[dict]:
+    return [
+        {
+            "file": sample.name,
+            "print": i,
+            "tire": sample.tire_name,
+            "tire_id": sample.tire_id,
+            "rim_width_mm": sample.rim,
+            "pressure_bar": sample.p_bar,
+            "load_N": sample.load,
+            "surface": surface,
+            "drum_diameter_mm": 2500 if surface == "drum" else "",
+            "dpi": dpi,
+        }
+        for i, surface in enumerate(("drum", "plate"))
+    ]
+
+
+def _truth_rows(sample: _Sample, truths: list[PrintTruth]) -> list[dict]:
+    return [
+        {
+            "file": sample.name,
+            "print": i,
+            "length_mm": t.length,
+            "width_mm": t.width,
+            "hull_area_mm2": t.hull_area,
+            "net_area_mm2": t.net_area,
+            "angle_deg": t.angle,
+        }
+        for i, t in enumerate(truths)
+    ]
+
+
 def make_sample_set(out_dir, *, dpi: float = 150.0, jpeg_quality: int = 88) -> Path:
-    """Write the bundled sample scans, ``manifest.csv`` (one row per print: file,
-    print, tire, pressure, load, surface, dpi) and ``truth.csv`` (exact outlines)."""
+    """Write the bundled sample set: 12 sheets of two prints (drum and plate).
+
+    Three tires of Table 3-2 at two pressures and two loads, JPEG scans, plus
+    ``manifest.csv`` (one row per print: file, print, tire, pressure, load, surface,
+    dpi) and ``truth.csv`` (the exact outlines' length, width and areas).
+
+    Parameters
+    ----------
+    out_dir : str or PathLike
+        Created if missing.
+    dpi : float [dots per inch]
+    jpeg_quality : int
+
+    Returns
+    -------
+    Path
+        The manifest.
+    """
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
     manifest, truth = [], []
-    k = 0
-    for tire_id, tire_name, radius, rim, tread in SAMPLE_TIRES:
-        for p_bar in SAMPLE_PRESSURES_BAR:
-            for load in SAMPLE_LOADS_N:
-                name = f"tire{tire_id:02d}_{p_bar:g}bar_{load:.0f}N.jpg"
-                spec = drum_and_plate_sheet(
-                    tire_radius=radius,
-                    load=load,
-                    pressure=0.1 * p_bar,
-                    dpi=dpi,
-                    tread=tread,
-                    seed=100 + k,
-                    label=f"{tire_name} {p_bar:g} bar {load:.0f} N",
-                )
-                img, truths = render_sheet(spec)
-                save_scan(img, out / name, dpi=dpi, jpeg_quality=jpeg_quality)
-                for i, (surface, t) in enumerate(zip(("drum", "plate"), truths, strict=True)):
-                    manifest.append(
-                        {
-                            "file": name,
-                            "print": i,
-                            "tire": tire_name,
-                            "tire_id": tire_id,
-                            "rim_width_mm": rim,
-                            "pressure_bar": p_bar,
-                            "load_N": load,
-                            "surface": surface,
-                            "drum_diameter_mm": 2500 if surface == "drum" else "",
-                            "dpi": dpi,
-                        }
-                    )
-                    truth.append(
-                        {
-                            "file": name,
-                            "print": i,
-                            "length_mm": t.length,
-                            "width_mm": t.width,
-                            "hull_area_mm2": t.hull_area,
-                            "net_area_mm2": t.net_area,
-                            "angle_deg": t.angle,
-                        }
-                    )
-                k += 1
-    for fname, rows in (("manifest.csv", manifest), ("truth.csv", truth)):
-        with (out / fname).open("w", newline="") as fh:
-            w = csv.DictWriter(fh, fieldnames=list(rows[0]))
-            w.writeheader()
-            w.writerows(rows)
-    return out / "manifest.csv"
+    for sample in _samples():
+        img, truths = render_sheet(sample.sheet(dpi))
+        save_scan(img, out / sample.name, dpi=dpi, jpeg_quality=jpeg_quality)
+        manifest.extend(_manifest_rows(sample, dpi))
+        truth.extend(_truth_rows(sample, truths))
+    _write_csv(truth, out / "truth.csv")
+    return _write_csv(manifest, out / "manifest.csv")
+
+
+def _write_csv(rows: list[dict], path: Path) -> Path:
+    """CSV with the csv module's CRLF line ends, as the bundled ``assets/prints`` have
+    (a regenerated sample set is byte-identical), atomically."""
+    from tiremesh.io import atomic_path
+
+    with atomic_path(path) as tmp, tmp.open("w", newline="") as fh:
+        w = csv.DictWriter(fh, fieldnames=list(rows[0]))
+        w.writeheader()
+        w.writerows(rows)
+    return path
 
 
 __all__ = [

@@ -34,12 +34,12 @@ def best(fn, repeat=7):
 
 
 def main() -> None:
-    tire = tm.get_tire(8)
-    for label, kw in (
-        ("flat", {}),
-        ("drum, 30 deg camber", dict(surface=tm.Drum(2500), camber=np.radians(30))),
+    base = tm.LoadCase(tm.get_tire(8), pressure=0.4, load=400.0)
+    for label, case in (
+        ("flat", base),
+        ("drum, 30 deg camber", base.replace(surface=tm.Drum(2500), camber=np.radians(30))),
     ):
-        t_solve, patch = best(lambda kw=kw: tm.solve(tire, load=400.0, pressure=0.4, **kw))
+        t_solve, patch = best(lambda case=case: tm.solve(case))
         build_mesh(patch)  # warm imports
         t_build, mesh = best(lambda patch=patch: build_mesh(patch))
         t_cut, geom = best(lambda mesh=mesh: cp.patch_from_mesh(mesh))

@@ -19,8 +19,8 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
 
-import contactpatch.report as report  # noqa: E402
-from contactpatch.compare import pair_prints  # noqa: E402
+from contactpatch import build_report, pair_prints  # noqa: E402
+from contactpatch.study.report import render_tires  # noqa: E402
 from inkprint.batch import Options, run_batch  # noqa: E402
 
 ASSETS = ROOT / "assets" / "prints"
@@ -41,9 +41,9 @@ def main() -> None:
         t1 = time.perf_counter()
         paired = pair_prints(res.rows)
         t2 = time.perf_counter()
-        report.build_report(res.rows, out, renders=False)
+        build_report(res.rows, out, renders=False)
         t3 = time.perf_counter()
-        report._renders(paired, out / "figures")
+        render_tires(paired, out / "figures")
         t4 = time.perf_counter()
         print(f"{len({r['file'] for r in res.rows})} scans, {len(res.rows)} prints")
         print(f"  batch analysis (2 workers)           : {t1 - t0:6.2f} s")

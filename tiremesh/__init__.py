@@ -5,35 +5,51 @@ Tires* (2013), chapter 5 and Appendix C. Units everywhere: mm, N, N/mm^2, rad.
 
 Public API
 ----------
+Load case     : LoadCase, CaseTable, Relaxation
 Geometry      : TireGeometry, get_tire, find_tire, load_catalog
+Surfaces      : Surface, SurfaceBase, Flat, Drum, Disk, parse_surface, register_surface
 Cross section : solve_sections, SectionSolution
 Whole tire    : solve, solve_patch, find_sinkage, max_load, solve_many, ContactPatch
-Surfaces      : Flat, Drum, Disk, parse_surface
+Lateral       : solve_lateral, LateralResult, stiffnesses
 Errors        : TireModelError, InvalidParameter, LoadTooHigh, NoContact, NotConverged
-Tolerances    : tol
+Tolerances    : tol (numerical epsilons only)
+Shared tools  : tiremesh.io (atomic files, tables, figures), tiremesh.parallel,
+                tiremesh.units
+
+References
+----------
+A. E. Dressel, "Measuring and Modeling the Mechanical Properties of Bicycle Tires",
+PhD dissertation, University of Wisconsin-Milwaukee, 2013.
 """
 
 from ._tol import tol
+from .case import CaseTable, LoadCase, Relaxation
 from .catalog import find_tire, get_tire, load_catalog
 from .errors import InvalidParameter, LoadTooHigh, NoContact, NotConverged, TireModelError
 from .geometry import TireGeometry
-from .load import find_sinkage, max_load, solve, solve_many
-from .patch import ContactPatch, solve_patch
+from .lateral import LateralResult, solve_lateral, stiffnesses
 from .section import SectionSolution, solve_sections
-from .surface import Disk, Drum, Flat, parse_surface
+from .solver import ContactPatch, find_sinkage, max_load, solve, solve_many, solve_patch
+from .surface import Disk, Drum, Flat, Surface, SurfaceBase, parse_surface, register_surface
 
-__version__ = "0.1.0"
+__version__ = "0.2.0"
 
 __all__ = [
+    "CaseTable",
     "ContactPatch",
     "Disk",
     "Drum",
     "Flat",
     "InvalidParameter",
+    "LateralResult",
+    "LoadCase",
     "LoadTooHigh",
     "NoContact",
     "NotConverged",
+    "Relaxation",
     "SectionSolution",
+    "Surface",
+    "SurfaceBase",
     "TireGeometry",
     "TireModelError",
     "find_sinkage",
@@ -42,9 +58,12 @@ __all__ = [
     "load_catalog",
     "max_load",
     "parse_surface",
+    "register_surface",
     "solve",
+    "solve_lateral",
     "solve_many",
     "solve_patch",
     "solve_sections",
+    "stiffnesses",
     "tol",
 ]

@@ -1,7 +1,7 @@
 """Vectorized, bracketed Newton iteration (one root per array element).
 
 Used for every root of the model: side-bulge angles (section 5.1), patch ends
-(section 5.2), the rim angle of Eq. 5-6 and the load search. Each element keeps a
+(section 5.2), the rim angle of equation 5-6 and the load search. Each element keeps a
 bracket [lo, hi] with a sign change; a Newton step that leaves the bracket (or has
 a zero / non-finite derivative) is replaced by bisection, so convergence is
 guaranteed for continuous functions and quadratic near a simple root.

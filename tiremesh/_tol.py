@@ -31,7 +31,7 @@ class Tolerances:
         Iteration cap of every Newton / fixed-point loop. Exceeding it raises
         :class:`tiremesh.NotConverged` with the state reached.
     geometry_xtol : float [rad]
-        Convergence of the rim-angle root of Eq. 5-6 (arc length -> tire radius).
+        Convergence of the rim-angle root of equation 5-6 (arc length -> tire radius).
     search_sections : int
         Clenshaw-Curtis sections per patch used inside the load search. The patch
         integrals converge spectrally (the patch width is analytic between its
@@ -50,6 +50,9 @@ class Tolerances:
         Convergence of the total lateral force in the friction iteration (5.6).
     zero_force_xtol : float [mm]
         Root of a section's zero-lateral-force displacement (friction sliding).
+    force_rtol : float [-]
+        A lateral force below this fraction of the vertical force is zero (the
+        rounding level of the force integrals); the pneumatic trail is then NaN.
     rim_clearance : float [-]
         Largest usable wheel deflection as a fraction of the deflection at which a
         bead reaches the ground (where Rotta's bulge radius becomes infinite).
@@ -67,6 +70,7 @@ class Tolerances:
     series_below: float = 0.3
     friction_rtol: float = 1e-9
     zero_force_xtol: float = 1e-10
+    force_rtol: float = 1e-12
     rim_clearance: float = 0.995
 
 

@@ -1,8 +1,8 @@
-"""Taut beam on an elastic foundation (section 5.9, Eq. 5-30 to 5-33).
+"""Taut beam on an elastic foundation (section 5.9, equations 5-30, 5-31, 5-32 and 5-33).
 
 ``EI u'''' - T u'' + k(x) u = f(x)``: the tread centre line's lateral displacement
-``u`` along the wheel, with the carcass's bending stiffness ``EI`` (Eq. 5-31), the
-circumferential tension ``T`` from the inflation pressure (Eq. 5-32 or 5-33), and the
+``u`` along the wheel, with the carcass's bending stiffness ``EI`` (equation 5-31), the
+circumferential tension ``T`` from the inflation pressure (equation 5-32 or 5-33), and the
 Rotta sections as the foundation ``k`` [N/mm^2] and load ``f`` [N/mm].
 
 :func:`solve_beam` solves it by pentadiagonal finite differences (pinned ends far
@@ -35,24 +35,25 @@ from .errors import InvalidParameter, NotConverged
 
 
 def bending_inertia(tire_radius, thickness):
-    """``I = pi/4 (r^4 - (r - t)^4)`` [mm^4], Eq. 5-31 (half the section, far from the rim)."""
+    """``I = pi/4 (r^4 - (r - t)^4)`` [mm^4], equation 5-31 (half the section, far from the rim)."""
     r = np.asarray(tire_radius, float)
-    return np.pi / 4.0 * (r**4 - (r - np.asarray(thickness, float)) ** 4)
+    return np.pi / 4.0 * (r**4 - (r - np.asarray(thickness, float)) ** 4)  # Eq. 5-31
 
 
 def tension_area(pressure, tire_radius):
-    """``T = p pi r^2`` [N], Eq. 5-32 (pressure on the inner cross-section area)."""
-    return np.asarray(pressure) * np.pi * np.asarray(tire_radius) ** 2
+    """``T = p pi r^2`` [N], equation 5-32 (pressure on the inner cross-section area)."""
+    return np.asarray(pressure) * np.pi * np.asarray(tire_radius) ** 2  # Eq. 5-32
 
 
 def tension_hoop(pressure, wheel_radius, tire_radius):
-    """``T = p (R + 2 r)`` [N], Eq. 5-33 (radial pressure over the circumference);
-    about half Eq. 5-32 for a 28-622 tire (section 5.9.3.3)."""
-    return np.asarray(pressure) * (np.asarray(wheel_radius) + 2 * np.asarray(tire_radius))
+    """``T = p (R + 2 r)`` [N/mm as printed], equation 5-33 (radial pressure over the
+    circumference); about half of equation 5-32 for a 28-622 tire (section 5.9.3.3)."""
+    R, r = np.asarray(wheel_radius), np.asarray(tire_radius)
+    return np.asarray(pressure) * (R + 2 * r)  # Eq. 5-33
 
 
 def solve_beam(x, *, EI: float, T: float, k, f) -> np.ndarray:
-    """Finite-difference solution of Eq. 5-30 on a uniform grid, ends pinned
+    """Finite-difference solution of equation 5-30 on a uniform grid, ends pinned
     (``u = u'' = 0``).
 
     Parameters
@@ -78,7 +79,7 @@ def solve_beam(x, *, EI: float, T: float, k, f) -> np.ndarray:
     T = float(v.finite("T", T, unit="N"))
     k = np.broadcast_to(np.asarray(k, float), (n,))
     f = np.broadcast_to(np.asarray(f, float), (n,))
-    a, b = EI / h**4, T / h**2
+    a, b = EI / h**4, T / h**2  # Eq. 5-30
     ab = np.zeros((5, n))
     ab[0, 2:] = a  # u_{i+2}
     ab[1, 1:] = -4 * a - b  # u_{i+1}
@@ -169,9 +170,9 @@ def beam_rotta(
     method : {'consistent', 'dissertation'}
         Linearization (module docstring).
     modulus : float [N/mm^2], thickness : float [mm]
-        Carcass E and casing thickness (Eq. 5-31).
+        Carcass E and casing thickness (equation 5-31).
     tension : {'area', 'hoop'}
-        Eq. 5-32 or 5-33.
+        Equation 5-32 or 5-33.
     half_length : float [mm], optional
         Beam half-length (default a quarter of the tire circumference).
     rtol : float, optional
@@ -180,7 +181,7 @@ def beam_rotta(
         rule of the appendix's iterations (0.1 N or 10 %), with which it settles in
         a few steps near its start.
     """
-    from .lateral import _section_forces
+    from .lateral import section_forces
 
     if method not in ("consistent", "dissertation"):
         raise InvalidParameter("method", method, "'consistent' or 'dissertation'")
@@ -211,10 +212,10 @@ def beam_rotta(
     u = np.full_like(x, float(start))
     history = []
     for _ in range(max_iter):
-        dS, _ = _section_forces(patch, dv, dh0 + u)
-        dSp, _ = _section_forces(patch, dv, dh0 + u + h)
+        dS, _ = section_forces(patch, dv, dh0 + u)
+        dSp, _ = section_forces(patch, dv, dh0 + u + h)
         if method == "consistent":
-            f0, _ = _section_forces(patch, dv, dh0)
+            f0, _ = section_forces(patch, dv, dh0)
             k = np.maximum((dSp - dS) / h, 0.0)
             rhs = f0
         else:  # force rate and stiffness rate both at the current displacement
@@ -224,7 +225,7 @@ def beam_rotta(
             rhs = dS
         k = np.where(inside | (k > 0), k, np.max(k[inside]) if inside.any() else 0.0)
         u = solve_beam(x, EI=EI, T=T, k=k, f=rhs)
-        dS, _ = _section_forces(patch, dv, dh0 + u)
+        dS, _ = section_forces(patch, dv, dh0 + u)
         fy = float(np.trapezoid(dS, x))
         history.append(math.atan2(fy, fz))
         if len(history) >= 2 and abs(history[-1] - history[-2]) <= rtol * (1 + abs(history[-1])):

@@ -1,7 +1,7 @@
 """The 14 tires of Table 3-2 (Dressel 2013), shipped in ``assets/tires.csv``.
 
 Each entry's geometry is built from its measured carcass arc length and rim
-width (Eq. 5-6), as the dissertation does for its model runs.
+width (equation 5-6), as the dissertation does for its model runs.
 """
 
 from __future__ import annotations
@@ -111,5 +111,22 @@ def find_tire(key: int | str) -> CatalogTire:
 
 
 def get_tire(key: int | str, *, rim_width: float | None = None) -> TireGeometry:
-    """Geometry of a catalogue tire by id or name (see :func:`find_tire`)."""
-    return find_tire(key).geometry(rim_width=rim_width)
+    """Geometry of a catalogue tire by id or name (see :func:`find_tire`).
+
+    Parameters
+    ----------
+    key : int or str
+        Catalogue id (1-based) or a unique part of the name.
+    rim_width : float [mm], optional
+        Mount on another rim (the measured carcass arc length is kept, equation 5-6).
+
+    Returns
+    -------
+    TireGeometry
+    """
+    return _geometry(key, rim_width)
+
+
+@functools.lru_cache(maxsize=512)
+def _geometry(key, rim_width) -> TireGeometry:
+    return find_tire(key).geometry(rim_width=rim_width)  # frozen: safe to share

@@ -13,9 +13,13 @@ import json
 import math
 import sys
 from collections.abc import Sequence
+from pathlib import Path
 
+import numpy as np
+
+from .case import SLIP_KINEMATICS, LoadCase
 from .catalog import get_tire
-from .errors import TireModelError
+from .errors import InvalidParameter, TireModelError
 from .geometry import TireGeometry
 from .units import parse_force, parse_length, parse_pressure
 
@@ -46,6 +50,13 @@ def add_tire_options(p: argparse.ArgumentParser) -> None:
         help="flat | drum:DIAMETER_MM | disk:DIAMETER_MM[:toward|away] (default flat)",
     )
     c.add_argument(
+        "--slip-kinematics",
+        choices=SLIP_KINEMATICS,
+        default="leading",
+        help="how a slip angle displaces the tread: undisplaced at the leading edge "
+        "(default) or turned about the patch centre (Appendix C)",
+    )
+    c.add_argument(
         "--sections", type=int, default=201, help="sections along the patch (default 201)"
     )
 
@@ -71,23 +82,44 @@ def tire_from_args(a: argparse.Namespace) -> TireGeometry:
     )
 
 
-def solve_from_args(a: argparse.Namespace):
-    """Solve the load case the options describe; returns a ContactPatch."""
-    from .load import solve
-    from .surface import parse_surface
+def case_from_args(a: argparse.Namespace) -> LoadCase:
+    """The load case the options describe (units converted at this edge).
 
-    tire = tire_from_args(a)
-    kw = dict(
+    Parameters
+    ----------
+    a : argparse.Namespace
+        Parsed options of :func:`add_tire_options` (plus ``--relaxation`` and
+        ``--friction`` where the subcommand has them).
+
+    Returns
+    -------
+    LoadCase
+        Relaxation 0 (no deflection beyond the patch) unless ``--relaxation`` is given.
+    """
+    load = None if a.load is None else parse_force(a.load, name="--load")
+    deflection = None if a.deflection is None else parse_length(a.deflection, name="--deflection")
+    relaxation = getattr(a, "relaxation", None)
+    return LoadCase(
+        tire_from_args(a),
         pressure=parse_pressure(a.pressure, name="--pressure"),
+        load=load,
+        deflection=deflection,
         camber=math.radians(a.camber),
         slip=math.radians(a.slip),
         lateral=parse_length(a.lateral, name="--lateral"),
-        surface=parse_surface(a.surface),
+        surface=a.surface,
         n_sections=a.sections,
+        relaxation=relaxation or 0.0,
+        friction=getattr(a, "friction", math.inf),
+        slip_kinematics=a.slip_kinematics,
     )
-    if a.load is not None:
-        return solve(tire, load=parse_force(a.load, name="--load"), **kw)
-    return solve(tire, deflection=parse_length(a.deflection, name="--deflection"), **kw)
+
+
+def solve_from_args(a: argparse.Namespace):
+    """Solve the load case the options describe; returns a ContactPatch."""
+    from .solver import solve
+
+    return solve(case_from_args(a))
 
 
 def _human(patch) -> str:
@@ -116,64 +148,92 @@ def _csv(rows: list[dict]) -> str:
     return buf.getvalue()
 
 
-def _cmd_solve(a: argparse.Namespace) -> int:
-    from ._io import write_text_atomic
+def _section_rows(patch) -> list[dict]:
+    """Per-section arrays of a patch as table rows (unit-carrying names)."""
+    sec = patch.sections
+    cols = {
+        "phi_rad": patch.phi,
+        "x_mm": patch.x,
+        "edge1_mm": sec.edge1,
+        "edge2_mm": sec.edge2,
+        "width_mm": sec.edge2 - sec.edge1,
+        "radius1_mm": sec.radius1,
+        "radius2_mm": sec.radius2,
+        "dv_mm": sec.vert_deflection,
+        "dh_mm": sec.horz_deflection,
+        "dS_N_per_mm": patch.lateral_force_density,
+        "dN_N_per_mm": patch.vertical_force_density,
+    }
+    n = len(patch.phi)
+    return [{k: float(np.broadcast_to(v, (n,))[i]) for k, v in cols.items()} for i in range(n)]
 
-    patch = solve_from_args(a)
-    summary = patch.summary()
-    if a.relaxation is not None or math.isfinite(a.friction):
-        summary.update(_lateral_summary(a))
+
+def _slip_note(case: LoadCase) -> str:
+    if case.slip_kinematics == "centre":
+        return (
+            "note: a slip angle only turns the patch centre line here (Appendix C, "
+            "--slip-kinematics centre), which carries no net force; use --slip-kinematics "
+            "leading for the tread anchored at the leading edge and the cornering force"
+        )
+    return (
+        "note: a slip angle acts on the patch alone here (tread anchored at the leading "
+        "edge); add --relaxation 0.993 (and --friction) for the deflection beyond the patch, "
+        "the cornering stiffness and the pneumatic trail"
+    )
+
+
+def _print_summary(a: argparse.Namespace, patch, summary: dict, extra: dict) -> None:
     if a.json:
         print(json.dumps(summary, indent=2))
-    elif a.csv:
+        return
+    if a.csv:
         print(_csv([summary]), end="")
+        return
+    print(_human(patch))
+    for k, v in extra.items():
+        print(f"{k}: {v:.6g}" if isinstance(v, float) else f"{k}: {v}")
+    if patch.slip and not extra:
+        print(_slip_note(patch.case))
+
+
+def _cmd_solve(a: argparse.Namespace) -> int:
+    from .io import write_text_atomic
+    from .lateral import solve_lateral
+    from .solver import solve
+
+    case = case_from_args(a)
+    if a.relaxation is not None or math.isfinite(a.friction):
+        result = solve_lateral(case)
+        patch, extra = result.patch, _lateral_summary(result)
     else:
-        print(_human(patch))
-        extra = {k: v for k, v in summary.items() if k not in patch.summary()}
-        for k, v in extra.items():
-            print(f"{k}: {v:.6g}" if isinstance(v, float) else f"{k}: {v}")
-        if patch.slip and not extra:
-            print(
-                "note: a slip angle only turns the patch centre line here (Appendix C), which carries no "
-                "net force; add --relaxation 0.993 (and --friction) for the tread anchored at the leading "
-                "edge and the cornering force"
-            )
+        patch, extra = solve(case), {}
+    summary = {**patch.summary(), **extra}
+    _print_summary(a, patch, summary, extra)
     if a.sections_csv:
-        rows = [
-            {
-                "phi_rad": f,
-                "x_mm": x,
-                "edge1_mm": e1,
-                "edge2_mm": e2,
-                "width_mm": e2 - e1,
-                "radius1_mm": r1,
-                "radius2_mm": r2,
-                "dv_mm": dv,
-                "dh_mm": dh,
-                "dS_N_per_mm": ds,
-                "dN_N_per_mm": dn,
-            }
-            for f, x, e1, e2, r1, r2, dv, dh, ds, dn in zip(
-                patch.phi,
-                patch.x,
-                patch.sections.edge1,
-                patch.sections.edge2,
-                patch.sections.radius1,
-                patch.sections.radius2,
-                patch.sections.vert_deflection,
-                patch.sections.horz_deflection,
-                patch.lateral_force_density,
-                patch.vertical_force_density,
-                strict=True,
-            )
-        ]
-        write_text_atomic(
-            a.sections_csv, _csv([{k: float(v) for k, v in r.items()} for r in rows])
-        )
+        write_text_atomic(a.sections_csv, _csv(_section_rows(patch)))
     if a.outline_csv:
         rows = [{"x_mm": float(x), "y_mm": float(y)} for x, y in patch.outline]
         write_text_atomic(a.outline_csv, _csv(rows))
     return 0
+
+
+def _lateral_summary(r) -> dict:
+    """Results of :func:`solve_lateral` beyond the patch summary (unit-carrying names)."""
+    from .lateral import stiffnesses
+
+    out = {
+        "lateral_force_with_beyond_N": r.lateral_force,
+        "patch_lateral_force_N": r.patch_lateral_force,
+        "beyond_patch_lateral_force_N": r.beyond_lateral_force,
+        "net_force_orientation_with_beyond_deg": math.degrees(r.net_force_orientation),
+        "pneumatic_trail_mm": r.pneumatic_trail,
+        "aligning_moment_Nmm": r.aligning_moment,
+        "sliding_sections": int(r.sliding.sum()),
+        "friction_iterations": r.iterations,
+        "relaxation_length_lead_mm": r.relaxation_length[1],
+    }
+    out.update(stiffnesses(r))
+    return out
 
 
 def _mesh_options(p: argparse.ArgumentParser) -> None:
@@ -195,9 +255,8 @@ def _mesh_options(p: argparse.ArgumentParser) -> None:
 def _mesh_from_args(a: argparse.Namespace):
     from .mesh import build_mesh
 
-    patch = solve_from_args(a)
     return build_mesh(
-        patch,
+        case_from_args(a),
         n_around=a.around,
         n_patch=a.patch_sections,
         bulge_points=a.bulge_points,
@@ -217,8 +276,6 @@ def _cmd_mesh(a: argparse.Namespace) -> int:
 
 
 def _parse_size(text: str) -> tuple[int, int]:
-    from .errors import InvalidParameter
-
     try:
         w, h = (int(t) for t in text.lower().split("x"))
     except ValueError as exc:
@@ -231,11 +288,12 @@ def _parse_size(text: str) -> tuple[int, int]:
 def _cmd_render(a: argparse.Namespace) -> int:
     from .render import render
 
+    size = _parse_size(a.image_size)
     tire_mesh = _mesh_from_args(a)
     scalars = {"radial": "radial_deformation", "lateral": "lateral_displacement"}.get(
         a.scalars, a.scalars
     )
-    render(tire_mesh, a.output, view=a.view, scalars=scalars, size=_parse_size(a.image_size))
+    render(tire_mesh, a.output, view=a.view, scalars=scalars, size=size)
     print(f"wrote {a.output}")
     return 0
 
@@ -244,25 +302,33 @@ def _cmd_section(a: argparse.Namespace) -> int:
     import matplotlib
 
     matplotlib.use("Agg")
-    from ._io import atomic_path
+    from matplotlib.backend_bases import FigureCanvasBase
+
+    from .io import save_figure
     from .plot import plot_section
 
-    patch = solve_from_args(a)
-    ax = plot_section(patch, math.radians(a.phi))
-    with atomic_path(a.output) as tmp:
-        ax.figure.savefig(tmp, dpi=a.dpi, bbox_inches="tight", format=a.output.rsplit(".", 1)[-1])
+    suffix = Path(a.output).suffix.lower()
+    formats = FigureCanvasBase.get_supported_filetypes()
+    if suffix[1:] not in formats:
+        raise InvalidParameter("--output", a.output, "a figure file: ." + ", .".join(formats))
+    ax = plot_section(case_from_args(a), math.radians(a.phi))
+    ax.figure.tight_layout()
+    save_figure(ax.figure, a.output, formats=(suffix,), dpi=a.dpi)
     print(f"wrote {a.output}")
     return 0
 
 
 def _cmd_sweep(a: argparse.Namespace) -> int:
-    from .sweep import parse_grid, read_cases, run_sweep, sweep_plots, write_rows
+    from .io import TABLE_FORMATS, write_table
+    from .sweep import parse_grid, read_cases, run_sweep, sweep_plots
 
     if (a.grid is None) == (a.cases is None):
         raise SystemExit("error: give exactly one of --grid and --cases")
+    if Path(a.output).suffix.lower() not in TABLE_FORMATS:
+        raise InvalidParameter("--output", a.output, "a .csv or .json file")
     cases = parse_grid(a.grid) if a.grid else read_cases(a.cases)
-    rows = run_sweep(cases, workers=a.workers, scheduler=a.scheduler)
-    write_rows(rows, a.output)
+    rows = run_sweep(cases, workers=a.workers, scheduler=a.scheduler, progress=a.progress)
+    write_table(rows, a.output)
     n_err = sum(r.get("status") != "ok" for r in rows)
     print(f"{len(rows)} cases, {n_err} errors; wrote {a.output}")
     if a.plots:
@@ -271,43 +337,7 @@ def _cmd_sweep(a: argparse.Namespace) -> int:
     return 0
 
 
-def _lateral_summary(a) -> dict:
-    from .lateral import Relaxation, solve_lateral, stiffnesses
-
-    patch = solve_from_args(a)
-    r = solve_lateral(
-        patch.tire,
-        pressure=patch.pressure,
-        deflection=patch.deflection,
-        camber=patch.camber,
-        slip=patch.slip,
-        lateral=patch.lateral,
-        surface=patch.surface,
-        friction=a.friction,
-        relaxation=Relaxation.uniform(a.relaxation or 0.0),
-        n_sections=a.sections,
-    )
-    out = {
-        "lateral_force_with_beyond_N": r.lateral_force,
-        "patch_lateral_force_N": r.patch_lateral_force,
-        "beyond_patch_lateral_force_N": r.beyond_lateral_force,
-        "net_force_orientation_with_beyond_deg": math.degrees(r.net_force_orientation),
-        "pneumatic_trail_mm": r.pneumatic_trail,
-        "aligning_moment_Nmm": r.aligning_moment,
-        "sliding_sections": int(r.sliding.sum()),
-        "friction_iterations": r.iterations,
-        "relaxation_length_lead_mm": r.relaxation_length[1],
-    }
-    out.update(stiffnesses(r))
-    return out
-
-
-def build_parser() -> argparse.ArgumentParser:
-    parser = argparse.ArgumentParser(
-        prog="tiremesh",
-        description="Rotta model of a bicycle tire pressed on a surface (Dressel 2013, ch. 5).",
-    )
-    sub = parser.add_subparsers(dest="command", required=True)
+def _add_solve(sub) -> None:
     p = sub.add_parser("solve", help="solve one load case and print the contact patch and forces")
     add_tire_options(p)
     out = p.add_mutually_exclusive_group()
@@ -324,17 +354,22 @@ def build_parser() -> argparse.ArgumentParser:
     )
     p.set_defaults(func=_cmd_solve)
 
+
+def _add_sweep(sub) -> None:
     p = sub.add_parser("sweep", help="solve a grid or a CSV of cases into one table")
     p.add_argument(
         "--grid", help='e.g. "tire=5,8 pressure_bar=2:11:10 load_N=304,500 camber_deg=10"'
     )
     p.add_argument("--cases", help="CSV of cases (columns as the --grid keys)")
-    p.add_argument("-o", "--output", required=True, help="sweep.csv")
+    p.add_argument("-o", "--output", required=True, help="sweep.csv | sweep.json")
     p.add_argument("--plots", metavar="DIR", help="stiffness and tangent-rule plots to DIR")
     p.add_argument("--workers", type=int, help="local processes for non-vectorizable cases")
     p.add_argument("--scheduler", help="dask.distributed scheduler address")
+    p.add_argument("--progress", action="store_true", help="show a progress bar (stderr)")
     p.set_defaults(func=_cmd_sweep)
 
+
+def _add_mesh(sub) -> None:
     p = sub.add_parser("mesh", help="build the deformed tire mesh and export it")
     add_tire_options(p)
     _mesh_options(p)
@@ -343,6 +378,8 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--no-patch", action="store_true", help="do not write <stem>_patch.vtp")
     p.set_defaults(func=_cmd_mesh)
 
+
+def _add_render(sub) -> None:
     p = sub.add_parser("render", help="render the deformed tire to PNG (off-screen)")
     add_tire_options(p)
     _mesh_options(p)
@@ -352,6 +389,8 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--image-size", default="1200x900", help="WIDTHxHEIGHT [px] (default 1200x900)")
     p.set_defaults(func=_cmd_render)
 
+
+def _add_section(sub) -> None:
     p = sub.add_parser("section", help="plot one Rotta cross section (Figure 5-5)")
     add_tire_options(p)
     p.add_argument("-o", "--output", required=True, help="section.png | .svg | .pdf")
@@ -360,6 +399,17 @@ def build_parser() -> argparse.ArgumentParser:
     )
     p.add_argument("--dpi", type=int, default=150)
     p.set_defaults(func=_cmd_section)
+
+
+def build_parser() -> argparse.ArgumentParser:
+    """The ``tiremesh`` argument parser: subcommands solve, sweep, mesh, render, section."""
+    parser = argparse.ArgumentParser(
+        prog="tiremesh",
+        description="Rotta model of a bicycle tire pressed on a surface (Dressel 2013, ch. 5).",
+    )
+    sub = parser.add_subparsers(dest="command", required=True)
+    for add in (_add_solve, _add_sweep, _add_mesh, _add_render, _add_section):
+        add(sub)
     return parser
 
 

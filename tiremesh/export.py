@@ -10,9 +10,9 @@ from pathlib import Path
 
 import numpy as np
 
-from ._io import atomic_path
 from .errors import InvalidParameter
-from .mesh import TireMesh, surface_height
+from .io import atomic_path
+from .mesh import TireMesh
 
 FORMATS = (".vtp", ".ply", ".stl", ".obj", ".glb")
 
@@ -24,11 +24,9 @@ def patch_polydata(tire_mesh: TireMesh):
 
     p = tire_mesh.patch
     xy = p.outline[:-1]
-    x = xy[:, 0]
-    if p.surface.kind == "drum":  # the outline is unrolled: wrap it back onto the drum
-        rd = 0.5 * p.surface.diameter
-        x = rd * np.sin(xy[:, 0] / rd)
-    pts = np.column_stack([x, xy[:, 1], surface_height(p.surface, x)])
+    # the outline's x is arc length along the surface (unrolled): wrap it back on
+    x = p.surface.roll(xy[:, 0])
+    pts = np.column_stack([x, xy[:, 1], p.surface.height(x)])
     poly = pv.PolyData(pts, faces=np.concatenate([[len(pts)], np.arange(len(pts))]))
     poly.field_data["length_mm"] = [p.length]
     poly.field_data["width_mm"] = [p.width]

@@ -1,8 +1,17 @@
-"""Undeformed tire cross-section geometry (section 5.1, Eq. 5-1 to 5-6).
+"""Undeformed tire cross-section geometry (section 5.1, equations 5-1, 5-2, 5-3, 5-4,
+5-5 and 5-6).
 
 A bicycle tire's cross section is a circular arc of radius ``r0`` from bead to bead;
 the beads sit on a rim of inner width ``w``. Everything here is closed form except
-the rim angle from a measured arc length (Eq. 5-6), which is a root.
+the rim angle from a measured arc length (equation 5-6), which is a root.
+Equation 5-1, ``w = 2 r0 sin(theta0 / 2)``, defines the rim angle; it is used
+through its inversions, equation 5-2 (:func:`rim_angle`) and equation 5-5
+(:meth:`TireGeometry.from_arc_length`).
+
+References
+----------
+A. E. Dressel (2013), chapter 5, section 5.1; the index of equations is in
+``docs/model.md``.
 """
 
 from __future__ import annotations
@@ -23,7 +32,7 @@ DEFAULT_BEAD_SEAT_DIAMETER = 622.0  # 700C / 29er, ISO 622 [mm]
 def rim_angle(rim_width, tire_radius):
     """Angle swept by the missing part of the carcass circle between the beads.
 
-    Eq. 5-2: ``theta0 = 2 asin(w / (2 r0))``.
+    ``theta0 = 2 asin(w / (2 r0))``, equation 5-2.
 
     Parameters
     ----------
@@ -33,34 +42,46 @@ def rim_angle(rim_width, tire_radius):
     Returns
     -------
     theta0 : (...) float [rad]
+
+    Notes
+    -----
+    Dressel (2013), section 5.1, equation 5-2 (the inverse of equation 5-1).
     """
-    return 2.0 * np.arcsin(np.asarray(rim_width) / (2.0 * np.asarray(tire_radius)))
+    return 2.0 * np.arcsin(np.asarray(rim_width) / (2.0 * np.asarray(tire_radius)))  # Eq. 5-2
 
 
 def rim_height(tire_radius, rim_angle):
     """Height of the rim bead line above the lowest point of the tire.
 
-    Eq. 5-3: ``h = r0 (1 + cos(theta0 / 2))``.
+    ``h = r0 (1 + cos(theta0 / 2))``, equation 5-3.
 
     Returns
     -------
     h : (...) float [mm]
+
+    Notes
+    -----
+    Dressel (2013), section 5.1, equation 5-3.
     """
-    return np.asarray(tire_radius) * (1.0 + np.cos(0.5 * np.asarray(rim_angle)))
+    return np.asarray(tire_radius) * (1.0 + np.cos(0.5 * np.asarray(rim_angle)))  # Eq. 5-3
 
 
 def arc_length(tire_radius, rim_angle):
-    """Carcass arc length from bead to bead, ``s0 = r0 (2 pi - theta0)`` (Eq. 5-4).
+    """Carcass arc length from bead to bead, ``s0 = r0 (2 pi - theta0)``.
 
     Returns
     -------
     s0 : (...) float [mm]
+
+    Notes
+    -----
+    Dressel (2013), section 5.1, equation 5-4.
     """
-    return np.asarray(tire_radius) * (2.0 * np.pi - np.asarray(rim_angle))
+    return np.asarray(tire_radius) * (2.0 * np.pi - np.asarray(rim_angle))  # Eq. 5-4
 
 
 def rim_angle_from_arc_length(rim_width, arc_length):
-    """Solve Eq. 5-6, ``w / s0 = 2 sin(theta0 / 2) / (2 pi - theta0)``, for theta0.
+    """Solve ``w / s0 = 2 sin(theta0 / 2) / (2 pi - theta0)`` (equation 5-6) for theta0.
 
     The right-hand side increases monotonically from 0 to 2/pi on (0, pi], so the
     root is unique; it is found by a bracketed Newton iteration to machine
@@ -78,6 +99,11 @@ def rim_angle_from_arc_length(rim_width, arc_length):
     ------
     InvalidParameter
         If ``rim_width >= 2 arc_length / pi`` (the tire cannot sit on the rim).
+
+    Notes
+    -----
+    Dressel (2013), section 5.1, equation 5-6 (equations 5-4 and 5-5 with ``r0``
+    eliminated); Table 5-2 is the worked example.
     """
     w = v.positive("rim_width", rim_width, unit="mm")
     s0 = v.positive("arc_length", arc_length, unit="mm")
@@ -92,7 +118,7 @@ def rim_angle_from_arc_length(rim_width, arc_length):
 
     def fun(t):
         den = 2.0 * np.pi - t
-        f = 2.0 * np.sin(0.5 * t) / den - ratio
+        f = 2.0 * np.sin(0.5 * t) / den - ratio  # Eq. 5-6
         df = np.cos(0.5 * t) / den + 2.0 * np.sin(0.5 * t) / den**2
         return f, df
 
@@ -104,7 +130,7 @@ def rim_angle_from_arc_length(rim_width, arc_length):
         np.zeros_like(ratio),
         np.full_like(ratio, np.pi),
         xtol=tol.geometry_xtol,
-        what="rim angle from arc length (Eq. 5-6)",
+        what="rim angle from arc length (equation 5-6)",
     )
 
 
@@ -161,24 +187,28 @@ class TireGeometry:
         bead_seat_diameter: float = 622.0,
         name: str = "",
     ) -> TireGeometry:
-        """Tire from a measured bead-to-bead carcass arc length (Table 5-2, Eq. 5-6)."""
+        """Tire from a measured bead-to-bead carcass arc length (Table 5-2).
+
+        The rim angle solves equation 5-6; the radius is then ``r0 = w / (2 sin(theta0 /
+        2))``, equation 5-5 (Dressel 2013, section 5.1).
+        """
         theta0 = float(rim_angle_from_arc_length(rim_width, arc_length))
-        r0 = float(rim_width) / (2.0 * math.sin(0.5 * theta0))
+        r0 = float(rim_width) / (2.0 * math.sin(0.5 * theta0))  # Eq. 5-5
         return cls(r0, rim_width, bead_seat_diameter, name)
 
     @property
     def rim_angle(self) -> float:
-        """theta0 [rad], Eq. 5-2."""
+        """theta0 [rad], equation 5-2."""
         return float(rim_angle(self.rim_width, self.tire_radius))
 
     @property
     def rim_height(self) -> float:
-        """h [mm], Eq. 5-3."""
+        """h [mm], equation 5-3."""
         return float(rim_height(self.tire_radius, self.rim_angle))
 
     @property
     def arc_length(self) -> float:
-        """s0 [mm], bead to bead."""
+        """s0 [mm], bead to bead (equation 5-4)."""
         return float(arc_length(self.tire_radius, self.rim_angle))
 
     @property

@@ -1,7 +1,7 @@
 """Lateral mechanics: deflection beyond the patch, friction, stiffnesses
 (sections 2.4, 5.5 to 5.8, 6.1; Appendix C).
 
-Beyond the patch (5.7, 5.8, Eq. 5-28, 5-29): a section beyond a patch end keeps the
+Beyond the patch (5.7, 5.8, equations 5-28 and 5-29): a section beyond a patch end keeps the
 end section's vertical and lateral displacement decayed as ``exp((i - 1) s)``, with
 ``s`` the distance along the wheel [mm] and ``i`` the relaxation rate (0.9 .. 0.999
 per mm); it is solved as a Rotta section that no longer touches (zero contact
@@ -9,7 +9,7 @@ width, two distinct bulge radii, Figure 5-18) and carries ``dS = p (r1 - r2)`` b
 no vertical load. The decay length is ``1 / (1 - i)``. Leading and trailing sides
 have their own rates.
 
-Friction (5.6, Eq. 5-27): a patch section whose lateral force (plus its share of
+Friction (5.6, equation 5-27): a patch section whose lateral force (plus its share of
 the force from beyond the patch, shared in proportion to its own) exceeds
 ``mu dN`` slides toward the position where it carries no lateral force, following
 its gripping neighbour nearer the patch centre at the sliding relaxation rate
@@ -18,19 +18,19 @@ force depends on the result, so the whole is iterated to a converged total
 lateral force (the dissertation needs 3 to 4 iterations); oscillation is detected
 and damped by averaging.
 
-Slip (Appendix C turns the patch centre line about the patch centre, so a pure slip
-angle gives antisymmetric displacements and no net force; the appendix then guesses
-a lateral displacement). Here, by default (``slip_anchor='leading'``), the tread
-enters the patch at the leading edge undisplaced and the rim moves sideways at
-``tan(slip)`` per mm rolled (the brush model's kinematics): ``dh = lateral + (x -
-x_lead) tan(slip)``, found by a fixed point on the leading-edge position. That
-gives the cornering force and a positive pneumatic trail. ``slip_anchor='centre'``
-keeps the appendix's form.
+Slip: the kinematics are the load case's ``slip_kinematics`` (see
+:mod:`tiremesh.case`), applied by :func:`tiremesh.solve` exactly as here.
 
 Departures: the appendix slides toward ``dh = 0``; here toward each section's
 zero-force displacement, so that zero friction gives zero lateral force also with
 camber. It scales the beyond-patch share as ``dy * F / F_cp`` (a dimensional slip);
 here ``dS * F / F_cp``.
+
+References
+----------
+A. E. Dressel (2013), sections 5.5, 5.6, 5.7 and 5.8 (equations 5-25, 5-26, 5-27,
+5-28 and 5-29) and 2.4 (equation 2-5). The index of equations is in
+``docs/model.md``.
 """
 
 from __future__ import annotations
@@ -40,52 +40,14 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from . import _validate as v
 from ._roots import newton_bracketed
 from ._tol import tol
+from .case import LoadCase, Relaxation
 from .errors import InvalidParameter, NotConverged
 from .geometry import TireGeometry
-from .load import solve
-from .patch import ContactPatch, clenshaw_curtis
-from .section import _solve_sections
-from .surface import Flat, Surface
-
-
-@dataclass(frozen=True)
-class Relaxation:
-    """Relaxation rates of Appendix C, per mm along the wheel (Eq. 5-28).
-
-    Attributes
-    ----------
-    lead_out : float
-        Beyond the leading patch end (before the tread touches the ground).
-    trail_out : float
-        Beyond the trailing end (after it leaves the ground).
-    lead_in, trail_in : float
-        Sliding inside the front / rear half of the patch.
-    """
-
-    lead_out: float = 0.993
-    trail_out: float = 0.993
-    lead_in: float = 0.993
-    trail_in: float = 0.993
-
-    def __post_init__(self) -> None:
-        for name in ("lead_out", "trail_out", "lead_in", "trail_in"):
-            val = getattr(self, name)
-            if not (isinstance(val, int | float) and 0.0 <= val < 1.0):
-                raise InvalidParameter(
-                    f"relaxation.{name}", val, "[0, 1) per mm (0.9 .. 0.999 typical)"
-                )
-
-    @staticmethod
-    def decay_length(rate: float) -> float:
-        """``1 / (1 - i)`` [mm] (Eq. 5-28, 5-29)."""
-        return 1.0 / (1.0 - rate)
-
-    @classmethod
-    def uniform(cls, rate: float) -> Relaxation:
-        return cls(rate, rate, rate, rate)
+from .section import section_arrays
+from .solver import ContactPatch, clenshaw_curtis, solve
+from .solver.api import as_case
 
 
 @dataclass(frozen=True)
@@ -103,7 +65,7 @@ class LateralResult:
     in_patch, sliding : (n,) bool
     dv, dh : (n,) float [mm]
     dS, dN : (n,) float [N/mm]
-        Lateral and vertical force per length (Eq. 5-25, 5-26).
+        Lateral and vertical force per length (equations 5-25 and 5-26).
     weights : (n,) float [mm]
         Quadrature weights along the wheel.
     lateral_force, patch_lateral_force, beyond_lateral_force : float [N]
@@ -113,7 +75,7 @@ class LateralResult:
         seen from above); ``pneumatic_trail = -aligning_moment / patch_lateral_force``.
     relaxation_length : (float, float) [mm]
         Trailing and leading distance over which the lateral displacement beyond the
-        patch falls to 1/e (Eq. 5-29).
+        patch falls to 1/e (equation 5-29).
     iterations : int
         Friction iterations used.
     friction_share : float
@@ -137,8 +99,17 @@ class LateralResult:
     aligning_moment: float
     relaxation_length: tuple[float, float]
     iterations: int
-    imposed_lateral: float = 0.0
     friction_share: float = 1.0
+
+    @property
+    def case(self) -> LoadCase:
+        """The load case solved."""
+        return self.patch.case
+
+    @property
+    def imposed_lateral(self) -> float:
+        """The case's imposed lateral displacement [mm]."""
+        return self.patch.case.lateral
 
     @property
     def net_force_orientation(self) -> float:
@@ -146,21 +117,28 @@ class LateralResult:
 
     @property
     def pneumatic_trail(self) -> float:
-        """``-aligning_moment / patch_lateral_force`` [mm] (positive: force behind the centre)."""
+        """``-aligning_moment / patch_lateral_force`` [mm] (positive: force behind the centre).
+
+        NaN when the patch carries no net lateral force (below ``tol.force_rtol`` of
+        the vertical force): a trail is undefined there, not infinite."""
         f = self.patch_lateral_force
-        return float(-self.aligning_moment / f) if f else math.nan
+        if abs(f) <= tol.force_rtol * abs(self.vertical_force):
+            return math.nan
+        return float(-self.aligning_moment / f)
 
     @property
     def friction_used(self) -> np.ndarray:
-        """``|dS| / dN`` per patch section (Eq. 5-27); NaN beyond the patch."""
+        """``|dS| / dN`` per patch section, the minimum friction coefficient of
+        equation 5-27; NaN beyond the patch."""
         with np.errstate(divide="ignore", invalid="ignore"):
             return np.where(self.in_patch & (self.dN > 0), np.abs(self.dS) / self.dN, np.nan)
 
 
-def _section_forces(patch: ContactPatch, dv, dh):
-    """dS, dN per length [N/mm] and width of sections at (dv, dh)."""
+def section_forces(patch: ContactPatch, dv, dh):
+    """Lateral and vertical force per length, ``dS = p (r1 - r2)`` (equation 5-25) and
+    ``dN = p max(e2 - e1, 0)`` (equation 5-26), of sections at (dv, dh) [mm] [N/mm]."""
     t = patch.tire
-    sol, bad_h, bad_c = _solve_sections(
+    sol, bad_h, bad_c = section_arrays(
         t.tire_radius, t.rim_width, dv, dh, patch.camber, t.tire_radius * patch.camber
     )
     if np.any(bad_h) or np.any(bad_c):
@@ -181,8 +159,8 @@ def zero_force_displacement(patch: ContactPatch, dv) -> np.ndarray:
     h = 1e-6 * r0
 
     def fun(dh):
-        f, _ = _section_forces(patch, dv, dh)
-        fp, _ = _section_forces(patch, dv, dh + h)
+        f, _ = section_forces(patch, dv, dh)
+        fp, _ = section_forces(patch, dv, dh + h)
         return f, (fp - f) / h
 
     span = 0.5 * r0
@@ -196,191 +174,191 @@ def zero_force_displacement(patch: ContactPatch, dv) -> np.ndarray:
     )
 
 
-def _beyond(patch: ContactPatch, dv_end, dh_end, rate, n):
-    """Sections beyond one patch end: s [mm] from the end, dv, dh, weights."""
+@dataclass(frozen=True)
+class BeyondSide:
+    """Sections beyond one patch end (equation 5-28): distance from the end, displacements,
+    lateral force per length and quadrature weights, each (k,)."""
+
+    s: np.ndarray
+    dv: np.ndarray
+    dh: np.ndarray
+    dS: np.ndarray
+    weights: np.ndarray
+
+    @property
+    def force(self) -> float:
+        """Lateral force beyond this end [N]."""
+        return float(np.sum(self.weights * self.dS))
+
+
+def beyond_side(patch: ContactPatch, dv_end, dh_end, rate, n) -> BeyondSide:
+    """Sections beyond one patch end, displaced as the end section decayed by
+    ``exp((i - 1) s) = exp(-lambda s)``, ``lambda = 1 - i`` (equation 5-28), over 8 decay
+    lengths (equation 5-29; at most a quarter wheel)."""
     ell = Relaxation.decay_length(rate) if rate > 0 else 0.0
     span = min(8.0 * ell, 0.5 * math.pi * patch.tire.wheel_radius) if ell > 0 else 0.0
     if span <= 0:
         z = np.zeros(1)
-        return z, z, z, z
+        return BeyondSide(z, z, z, z, z)
     t, w = clenshaw_curtis(n)
     s = 0.5 * span * (t + 1.0)
-    e = np.exp((rate - 1.0) * s)
-    return s, dv_end * e, dh_end * e, 0.5 * span * w
+    e = np.exp((rate - 1.0) * s)  # Eq. 5-28
+    dv, dh = dv_end * e, dh_end * e
+    dS, _ = section_forces(patch, dv, dh)
+    return BeyondSide(s, dv, dh, dS, 0.5 * span * w)
 
 
-def solve_lateral(
-    tire: TireGeometry,
-    *,
-    pressure: float,
-    load: float | None = None,
-    deflection: float | None = None,
-    camber: float = 0.0,
-    slip: float = 0.0,
-    lateral: float = 0.0,
-    surface: Surface = Flat(),
-    relaxation: Relaxation | float = Relaxation(),
-    friction: float = math.inf,
-    slip_anchor: str = "leading",
-    n_sections: int = 201,
-    n_beyond: int = 129,
-) -> LateralResult:
-    """Lateral forces of the tire with deflection beyond the patch and friction.
+def beyond_both(patch: ContactPatch, dv, dh, relax: Relaxation, n: int):
+    """(trailing, leading) :class:`BeyondSide` for patch displacements ``dh``."""
+    return (
+        beyond_side(patch, dv[0], dh[0], relax.trail_out, n),
+        beyond_side(patch, dv[-1], dh[-1], relax.lead_out, n),
+    )
+
+
+def slide(u, sliding, x, relax: Relaxation) -> np.ndarray:
+    """Sliding step of section 5.6: a sliding section follows its nearest gripping
+    neighbour toward the patch centre, decayed at the inner relaxation rate
+    (Appendix C limits a section's slide by its neighbour's)."""
+    front = x >= 0.0
+    u_new = u.copy()
+    orders = (np.nonzero(front)[0], np.nonzero(~front)[0][::-1])  # centre -> out
+    for order, rate in zip(orders, (relax.lead_in, relax.trail_in), strict=True):
+        grip = ~sliding[order]
+        pos = np.where(grip, np.arange(order.size), -1)
+        anchor = np.maximum.accumulate(pos)  # nearest gripping section toward the centre
+        has = anchor >= 0
+        a_idx = order[np.where(has, anchor, 0)]
+        decay = np.exp((rate - 1.0) * np.abs(x[order] - x[a_idx]))  # as equation 5-28
+        u_new[order] = np.where(grip, u[order], np.where(has, u[a_idx] * decay, 0.0))
+    return u_new
+
+
+@dataclass(frozen=True)
+class FrictionState:
+    """State of the patch after the friction iteration (section 5.6).
+
+    Attributes
+    ----------
+    dh, dS, dN : (n,) float [mm, N/mm, N/mm]
+    sliding : (n,) bool
+    beyond : (BeyondSide, BeyondSide)
+        Trailing and leading side.
+    iterations : int
+    share : float
+        Total over patch lateral force of the final friction check.
+    """
+
+    dh: np.ndarray
+    dS: np.ndarray
+    dN: np.ndarray
+    sliding: np.ndarray
+    beyond: tuple
+    iterations: int
+    share: float
+
+
+def friction_iteration(patch: ContactPatch, case: LoadCase) -> FrictionState:
+    """Slide the patch sections whose lateral force (plus their share of the force
+    beyond the patch) exceeds ``mu dN`` (equation 5-27), until the total lateral force
+    converges (section 5.6); oscillation is damped by averaging."""
+    relax, mu, nb = case.relaxation, case.friction, case.n_beyond
+    x, dv = patch.x, patch.sections.vert_deflection
+    dh_imp, w_patch = patch.sections.horz_deflection, patch.x_weights
+    dh_free = zero_force_displacement(patch, dv)
+    dS, dN = section_forces(patch, dv, dh_imp)
+    ratio, history = 1.0, []
+    for it in range(1, tol.max_iter + 1):
+        demand = np.abs(dS * ratio)
+        sliding = demand > mu * dN + 1e-12 * (1.0 + demand)  # Eq. 5-27
+        dh = dh_free + slide(dh_imp - dh_free, sliding, x, relax)
+        dS, dN = section_forces(patch, dv, dh)
+        f_patch = float(np.sum(w_patch * dS))
+        beyond = beyond_both(patch, dv, dh, relax, nb)
+        total = f_patch + sum(b.force for b in beyond)
+        history.append(total)
+        if len(history) >= 2 and abs(history[-1] - history[-2]) <= tol.friction_rtol * (
+            1.0 + abs(total)
+        ):
+            return FrictionState(dh, dS, dN, sliding, beyond, it, float(ratio))
+        if len(history) >= 3 and (history[-1] - history[-2]) * (history[-2] - history[-3]) < 0:
+            total = 0.5 * (history[-1] + history[-2])  # oscillating: damp by averaging
+        ratio = total / f_patch if f_patch else 1.0
+        dS, dN = section_forces(patch, dv, dh_imp)  # friction demand from the imposed state
+    raise NotConverged(
+        "friction iteration (section 5.6)",
+        {"iterations": tol.max_iter, "last_totals_N": history[-3:]},
+    )
+
+
+def relaxation_length(side: BeyondSide) -> float:
+    """Distance [mm] over which the lateral displacement beyond an end falls to 1/e
+    of its value at the end (the decay length of equation 5-29, measured),
+    interpolated in log; NaN if it never does."""
+    s_b, dh_b = side.s, side.dh
+    if not (abs(dh_b[0]) > 0 and np.any(np.abs(dh_b) <= abs(dh_b[0]) / math.e)):
+        return math.nan
+    k = int(np.argmax(np.abs(dh_b) <= abs(dh_b[0]) / math.e))
+    a, b = np.log(abs(dh_b[k - 1])), np.log(abs(dh_b[k]))
+    return float(s_b[k - 1] + (a - (np.log(abs(dh_b[0])) - 1.0)) / (a - b) * (s_b[k] - s_b[k - 1]))
+
+
+def solve_lateral(case: LoadCase | TireGeometry, /, **fields) -> LateralResult:
+    """Lateral forces of the tire with deflection beyond the patch and friction
+    (sections 5.5 to 5.8).
 
     Parameters
     ----------
-    tire, pressure, load, deflection, camber, slip, lateral, surface
-        As :func:`tiremesh.solve`.
-    relaxation : Relaxation or float
-        Relaxation rates [1/mm]; a float sets all four. 0 switches the beyond-patch
-        deflection off.
-    friction : float
-        Friction coefficient (``inf``: no sliding).
-    slip_anchor : {'leading', 'centre'}
-        Where the slipping tread is undisplaced: the leading edge (brush model,
-        default) or the patch centre (Appendix C).
-    n_sections, n_beyond : int
-        Sections in the patch and beyond each end.
+    case : LoadCase or TireGeometry
+        The load case (its ``relaxation``, ``friction``, ``slip_kinematics`` and
+        ``n_beyond`` apply here); or a tire with the fields as keywords.
+    **fields
+        Load-case fields, as for :func:`tiremesh.solve`.
 
     Returns
     -------
     LateralResult
     """
-    relax = Relaxation.uniform(relaxation) if isinstance(relaxation, int | float) else relaxation
-    if not isinstance(relax, Relaxation):
-        raise InvalidParameter("relaxation", relaxation, "a Relaxation or a rate in [0, 1)")
-    mu = float(friction)
-    if math.isnan(mu) or mu < 0:
-        raise InvalidParameter("friction", friction, ">= 0 (inf for no sliding)")
-    nb = v.integer("n_beyond", n_beyond, 9, 20001)
-    if slip_anchor not in ("leading", "centre"):
-        raise InvalidParameter("slip_anchor", slip_anchor, "'leading' or 'centre'")
-    kw = dict(
-        pressure=pressure,
-        load=load,
-        deflection=deflection,
-        camber=camber,
-        slip=slip,
-        surface=surface,
-        n_sections=n_sections,
-    )
-    offset = 0.0
-    for _ in range(tol.max_iter):
-        patch = solve(tire, lateral=lateral + offset, **kw)
-        if slip == 0 or slip_anchor == "centre":
-            break
-        new = -patch.x[-1] * math.tan(slip)  # dh = lateral at the leading edge
-        if abs(new - offset) <= tol.disk_offset_atol:
-            break
-        offset = new
+    case = as_case(case, fields)
+    patch = solve(case)
+    x, dv = patch.x, patch.sections.vert_deflection
+    if math.isfinite(case.friction):
+        st = friction_iteration(patch, case)
     else:
-        raise NotConverged("leading-edge slip anchor", {"offset_mm": offset})
-    x = patch.x
-    dv = patch.sections.vert_deflection
-    dh_imp = patch.sections.horz_deflection
-    w_patch = patch.x_weights
-    dh_free = zero_force_displacement(patch, dv) if math.isfinite(mu) else np.zeros_like(dv)
-    front = x >= 0.0
-    order_f = np.nonzero(front)[0]  # centre -> front
-    order_r = np.nonzero(~front)[0][::-1]  # centre -> rear
+        dh = patch.sections.horz_deflection
+        dS, dN = section_forces(patch, dv, dh)
+        beyond = beyond_both(patch, dv, dh, case.relaxation, case.n_beyond)
+        st = FrictionState(dh, dS, dN, np.zeros(x.shape, bool), beyond, 0, 1.0)
+    return _assemble(patch, st)
 
-    def beyond_forces(dh_patch):
-        out = []
-        for end, rate in ((0, relax.trail_out), (-1, relax.lead_out)):
-            s, bdv, bdh, bw = _beyond(patch, dv[end], dh_patch[end], rate, nb)
-            if bw.sum() == 0:
-                out.append((s, bdv, bdh, np.zeros_like(s), np.zeros_like(s), bw))
-                continue
-            dS, _ = _section_forces(patch, bdv, bdh)
-            out.append((s, bdv, bdh, dS, np.zeros_like(s), bw))
-        return out
 
-    dS, dN = _section_forces(patch, dv, dh_imp)
-    dh = dh_imp
-    sliding = np.zeros_like(front)
-    iterations = 0
-    ratio = 1.0
-    beyond = None
-    if math.isfinite(mu):
-        history = []
-        while iterations < tol.max_iter:
-            iterations += 1
-            demand = np.abs(dS * ratio)
-            sliding = demand > mu * dN + 1e-12 * (1.0 + demand)
-            u = dh_imp - dh_free
-            u_new = u.copy()
-            for order, rate in ((order_f, relax.lead_in), (order_r, relax.trail_in)):
-                grip = ~sliding[order]
-                pos = np.where(grip, np.arange(order.size), -1)
-                anchor = np.maximum.accumulate(pos)  # nearest gripping section toward the centre
-                has = anchor >= 0
-                a_idx = order[np.where(has, anchor, 0)]
-                decay = np.exp((rate - 1.0) * np.abs(x[order] - x[a_idx]))
-                u_new[order] = np.where(grip, u[order], np.where(has, u[a_idx] * decay, 0.0))
-            dh = dh_free + u_new
-            dS, dN = _section_forces(patch, dv, dh)
-            f_patch = float(np.sum(w_patch * dS))
-            beyond = beyond_forces(dh)
-            f_beyond = sum(float(np.sum(b[5] * b[3])) for b in beyond)
-            total = f_patch + f_beyond
-            history.append(total)
-            if len(history) >= 2 and abs(history[-1] - history[-2]) <= tol.friction_rtol * (
-                1.0 + abs(total)
-            ):
-                break
-            if len(history) >= 3 and (history[-1] - history[-2]) * (history[-2] - history[-3]) < 0:
-                total = 0.5 * (history[-1] + history[-2])  # oscillating: damp by averaging
-            ratio = total / f_patch if f_patch else 1.0
-            dS, dN = _section_forces(patch, dv, dh_imp)  # friction demand from the imposed state
-        if len(history) < 2 or abs(history[-1] - history[-2]) > tol.friction_rtol * (
-            1.0 + abs(history[-1])
-        ):
-            raise NotConverged(
-                "friction iteration (section 5.6)",
-                {"iterations": tol.max_iter, "last_totals_N": history[-3:]},
-            )
-        # on convergence dS, dN and beyond are those of the final displacement dh
-    else:
-        beyond = beyond_forces(dh)
-    (s_t, dv_t, dh_t, dS_t, dN_t, w_t), (s_l, dv_l, dh_l, dS_l, dN_l, w_l) = beyond
-    x_rear, x_front = x[0], x[-1]
-    s_all = np.concatenate([x_rear - s_t[::-1], x, x_front + s_l])
+def _assemble(patch: ContactPatch, st: FrictionState) -> LateralResult:
+    """Concatenate trailing side, patch and leading side into one LateralResult."""
+    x, dv = patch.x, patch.sections.vert_deflection
+    trail, lead = st.beyond
     cat = lambda a, b, c: np.concatenate([a[::-1], b, c])
-    f_patch = float(np.sum(w_patch * dS))
-    f_beyond = float(np.sum(w_t * dS_t) + np.sum(w_l * dS_l))
-    moment = float(np.sum(w_patch * dS * x))
-    lengths = []
-    for s_b, dh_b in ((s_t, dh_t), (s_l, dh_l)):
-        if abs(dh_b[0]) > 0 and np.any(np.abs(dh_b) <= abs(dh_b[0]) / math.e):
-            k = int(np.argmax(np.abs(dh_b) <= abs(dh_b[0]) / math.e))
-            a, b = np.log(abs(dh_b[k - 1])), np.log(abs(dh_b[k]))
-            lengths.append(
-                float(
-                    s_b[k - 1]
-                    + (a - (np.log(abs(dh_b[0])) - 1.0)) / (a - b) * (s_b[k] - s_b[k - 1])
-                )
-            )
-        else:
-            lengths.append(math.nan)
+    no = lambda side: np.zeros(side.s.shape, bool)
+    w_patch = patch.x_weights
+    f_patch = float(np.sum(w_patch * st.dS))
+    f_beyond = trail.force + lead.force
     return LateralResult(
         patch=patch,
-        s=s_all,
-        in_patch=cat(np.zeros_like(s_t, bool), np.ones_like(x, bool), np.zeros_like(s_l, bool)),
-        sliding=cat(np.zeros_like(s_t, bool), sliding, np.zeros_like(s_l, bool)),
-        dv=cat(dv_t, dv, dv_l),
-        dh=cat(dh_t, dh, dh_l),
-        dS=cat(dS_t, dS, dS_l),
-        dN=cat(dN_t, dN, dN_l),
-        weights=cat(w_t, w_patch, w_l),
+        s=np.concatenate([x[0] - trail.s[::-1], x, x[-1] + lead.s]),
+        in_patch=cat(no(trail), np.ones(x.shape, bool), no(lead)),
+        sliding=cat(no(trail), st.sliding, no(lead)),
+        dv=cat(trail.dv, dv, lead.dv),
+        dh=cat(trail.dh, st.dh, lead.dh),
+        dS=cat(trail.dS, st.dS, lead.dS),
+        dN=cat(np.zeros_like(trail.s), st.dN, np.zeros_like(lead.s)),
+        weights=cat(trail.weights, w_patch, lead.weights),
         lateral_force=f_patch + f_beyond,
         patch_lateral_force=f_patch,
         beyond_lateral_force=f_beyond,
         vertical_force=patch.vertical_force,
-        aligning_moment=moment,
-        relaxation_length=tuple(lengths),
-        iterations=iterations,
-        imposed_lateral=float(lateral),
-        friction_share=float(ratio),
+        aligning_moment=float(np.sum(w_patch * st.dS * x)),
+        relaxation_length=(relaxation_length(trail), relaxation_length(lead)),
+        iterations=st.iterations,
+        friction_share=st.share,
     )
 
 
@@ -407,7 +385,7 @@ def stiffnesses(result) -> dict:
     p = result.patch if isinstance(result, LateralResult) else result
     fy, fz = result.lateral_force, result.vertical_force
     out = {}
-    lateral = getattr(result, "imposed_lateral", p.lateral)
+    lateral = p.lateral
     if lateral:
         out["lateral_stiffness_N_mm"] = fy / lateral
         out["norm_lateral_stiffness_1_mm"] = fy / fz / lateral

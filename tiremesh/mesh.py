@@ -11,6 +11,16 @@ section in contact is translated vertically onto it and its contact vertices are
 snapped to it (a move of at most the patch's ``flatness``, the small non-flatness of
 the 3D Rotta patch of a cambered tire, Figure 5-9).
 
+The support surface enters only through its :class:`~tiremesh.surface.Surface`
+methods (``height``, ``gap``, ``roll``), so any surface, including one defined
+outside the package, meshes the same way.
+
+:func:`build_mesh` runs in named steps, each with a small frozen result:
+:func:`mesh_resolution` (:class:`MeshResolution`), :func:`plan_sections`
+(:class:`SectionPlan`), :func:`section_rings` (:class:`SectionRings` of
+:class:`RingBlock`), :func:`place_vertices` (:class:`PlacedVertices`),
+:func:`tire_faces` and :func:`close_beads`.
+
 Topology (vertex ring of one section, from bead 1 to bead 2)::
 
     contact section : bulge1[0..K] | contact[1..kc-1] | bulge2[0..K]   (2K + kc + 1)
@@ -29,8 +39,9 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from . import _validate as v
-from .patch import ContactPatch
-from .surface import Drum
+from .case import LoadCase
+from .errors import InvalidParameter, TireModelError
+from .solver import ContactPatch
 
 
 @dataclass(frozen=True)
@@ -70,32 +81,14 @@ class TireMesh:
         return len(self.mesh.faces)
 
     def surface_gap(self, points=None) -> np.ndarray:
-        """Height of points (default: the vertices) above the support surface [mm]."""
+        """Height of points (default: the vertices) above the support surface [mm]
+        (``surface.gap``)."""
         pts = self.mesh.vertices if points is None else np.asarray(points, float)
-        return surface_gap(self.patch.surface, pts)
+        return self.patch.surface.gap(pts)
 
     def section_arc_lengths(self) -> np.ndarray:
         """Bead-to-bead polyline length of every section along the mesh [mm]."""
         return _ring_lengths(self)
-
-
-def surface_gap(surface, points) -> np.ndarray:
-    """Distance of ``points`` (n, 3) [mm] above the support surface (flat, disk: the
-    plane z = 0; drum: the cylinder of the drum radius whose top line is x = z = 0)."""
-    p = np.asarray(points, float)
-    if isinstance(surface, Drum):
-        rd = 0.5 * surface.diameter
-        return np.hypot(p[:, 0], p[:, 2] + rd) - rd
-    return p[:, 2].copy()
-
-
-def surface_height(surface, x) -> np.ndarray:
-    """Height z of the support surface at forward position ``x`` [mm]."""
-    x = np.asarray(x, float)
-    if isinstance(surface, Drum):
-        rd = 0.5 * surface.diameter
-        return -(x * x) / (rd + np.sqrt(np.maximum(rd * rd - x * x, 0.0)))
-    return np.zeros_like(x)
 
 
 def _undeformed(s, r0, s0, camber):
@@ -176,8 +169,269 @@ def _transition(contact_ring, tip_ring, K: int, kc: int, tip_after: bool):
     return f if tip_after else f[:, ::-1]
 
 
+def as_patch(source) -> ContactPatch:
+    """The :class:`ContactPatch` to mesh: ``source`` itself, or the solution of a
+    :class:`LoadCase`."""
+    if isinstance(source, ContactPatch):
+        return source
+    if isinstance(source, LoadCase):
+        from .solver import solve
+
+        return solve(source)
+    raise InvalidParameter(
+        "patch", type(source).__name__, "a tiremesh.ContactPatch or a tiremesh.LoadCase"
+    )
+
+
+@dataclass(frozen=True)
+class MeshResolution:
+    """Validated mesh resolution (see :func:`build_mesh`).
+
+    Attributes
+    ----------
+    n_around : int
+        Sections around the whole wheel.
+    n_patch : int
+        Of which between (and including) the patch ends.
+    bulge_points : int
+        Segments along each side bulge (``K``).
+    contact_points : int
+        Segments across the contact segment (``kc``).
+    """
+
+    n_around: int
+    n_patch: int
+    bulge_points: int
+    contact_points: int
+
+
+def mesh_resolution(n_around=720, n_patch=None, bulge_points=32, contact_points=12):
+    """Check the resolution arguments of :func:`build_mesh`; returns a
+    :class:`MeshResolution` (``n_patch`` defaults to ``n_around // 3``)."""
+    n_around = v.integer("n_around", n_around, 16, 100_000)
+    n_patch = v.integer("n_patch", n_around // 3 if n_patch is None else n_patch, 3, n_around - 8)
+    return MeshResolution(
+        n_around,
+        n_patch,
+        v.integer("bulge_points", bulge_points, 4, 10_000),
+        v.integer("contact_points", contact_points, 2, 10_000),
+    )
+
+
+@dataclass(frozen=True)
+class SectionPlan:
+    """Section angles around the wheel [rad], in mesh order: the rear patch end,
+    the contact sections between the ends, the front end, then the free tire
+    (forward from the front end round to the rear end)."""
+
+    rear: float
+    contact: np.ndarray = field(repr=False)
+    front: float
+    free: np.ndarray = field(repr=False)
+
+
+def plan_sections(patch: ContactPatch, res: MeshResolution) -> SectionPlan:
+    """Place ``res.n_patch`` sections uniformly between the exact patch ends and the
+    others uniformly around the rest of the wheel."""
+    rear, front = patch.phi_ends
+    contact = np.linspace(rear, front, res.n_patch)[1:-1]
+    n_free = res.n_around - res.n_patch
+    free = np.linspace(front, rear + 2 * np.pi, n_free + 2)[1:-1]
+    return SectionPlan(rear, contact, front, free)
+
+
+@dataclass(frozen=True)
+class RingBlock:
+    """Vertex rings of a block of n sections in their section frames.
+
+    Attributes
+    ----------
+    x, z : (n, m) float [mm]
+        Section-frame coordinates.
+    s : (n, m) float [mm]
+        Carcass arc coordinate from bead 1.
+    contact : (n, m) bool
+        Vertices on the support surface.
+    phi : (n,) float [rad]
+        Section angles.
+    """
+
+    x: np.ndarray = field(repr=False)
+    z: np.ndarray = field(repr=False)
+    s: np.ndarray = field(repr=False)
+    contact: np.ndarray = field(repr=False)
+    phi: np.ndarray = field(repr=False)
+
+
+@dataclass(frozen=True)
+class SectionRings:
+    """The four ring blocks of the mesh, in vertex order."""
+
+    rear: RingBlock
+    contact: RingBlock
+    front: RingBlock
+    free: RingBlock
+
+    def blocks(self) -> tuple[RingBlock, RingBlock, RingBlock, RingBlock]:
+        return self.rear, self.contact, self.front, self.free
+
+
+def section_rings(
+    patch: ContactPatch, plan: SectionPlan, res: MeshResolution, centreline=None
+) -> SectionRings:
+    """Section-frame rings: Rotta sections in the patch (ends of width zero), the
+    undeformed torus beyond it (shifted sideways by ``centreline`` if given)."""
+    K, kc = res.bulge_points, res.contact_points
+    tire = patch.tire
+    ends, _ = patch.sections_at(np.array([plan.rear, plan.front]))
+    sol_c, _ = patch.sections_at(plan.contact)
+    if np.any(sol_c.width <= 0):
+        raise TireModelError("a section between the patch ends is out of contact (split patch)")
+    xc, zc, sc, kcon = _contact_rings(sol_c, K, kc)
+    xt, zt, st, tcon = _tip_rings(ends, K)
+    n_free = len(plan.free)
+    xf, zf, sf, fcon = _free_rings(
+        n_free, K, tire.tire_radius, tire.arc_length, tire.rim_angle, patch.camber
+    )
+    if centreline is not None:
+        xf = xf + _centreline_shift(patch, plan, centreline)[:, None]
+    return SectionRings(
+        rear=RingBlock(xt[:1], zt[:1], st[:1], tcon[:1], np.array([plan.rear])),
+        contact=RingBlock(xc, zc, sc, kcon, plan.contact),
+        front=RingBlock(xt[1:], zt[1:], st[1:], tcon[1:], np.array([plan.front])),
+        free=RingBlock(xf, zf, sf, fcon, plan.free),
+    )
+
+
+def _centreline_shift(patch: ContactPatch, plan: SectionPlan, centreline) -> np.ndarray:
+    """Sideways shift [mm] of the free sections by the centre line beyond the patch."""
+    cs_, cdh = (np.asarray(a, float) for a in centreline)
+    R = patch.tire.wheel_radius
+    phi_f, rear, front = plan.free, plan.rear, plan.front
+    # free sections run forward from the front end; beyond half a turn, backward from the rear
+    ahead = phi_f - front < np.pi
+    s_pos = np.where(
+        ahead, patch.x[-1] + R * (phi_f - front), patch.x[0] - R * (rear + 2 * np.pi - phi_f)
+    )
+    return np.interp(s_pos, cs_, cdh, left=0.0, right=0.0)
+
+
+@dataclass(frozen=True)
+class PlacedVertices:
+    """Mesh vertices in the ground frame and their data.
+
+    Attributes
+    ----------
+    vertices : (N, 3) float [mm]
+    contact : (N,) bool
+    radial, lateral : (N,) float [mm]
+        Radial deformation and lateral displacement of each carcass point.
+    section : (N,) int
+        Section index around the wheel.
+    phi : (n_sections,) float [rad]
+    rings : tuple of (n_i, m_i) int arrays
+        Vertex indices of each block of :class:`SectionRings`, in order.
+    """
+
+    vertices: np.ndarray = field(repr=False)
+    contact: np.ndarray = field(repr=False)
+    radial: np.ndarray = field(repr=False)
+    lateral: np.ndarray = field(repr=False)
+    section: np.ndarray = field(repr=False)
+    phi: np.ndarray = field(repr=False)
+    rings: tuple = field(repr=False)
+
+
+def place_vertices(patch: ContactPatch, rings: SectionRings) -> PlacedVertices:
+    """Map every ring to the ground frame; sections in contact are translated onto the
+    support surface (by at most the patch ``flatness``) and their contact vertices
+    snapped to it."""
+    tire = patch.tire
+    r0, s0, gam = tire.tire_radius, tire.arc_length, patch.camber
+    surface = patch.surface
+    pts, data, con, sec, phis, idx = [], [], [], [], [], []
+    start, first = 0, 0
+    for b in rings.blocks():
+        n, m = b.x.shape
+        X, Y, Z = patch.to_ground(b.x, b.z, b.phi[:, None])
+        if b.contact.any():  # translate sections in contact onto the surface (<= flatness)
+            gap = np.where(b.contact, Z - surface.height(X), 0.0)
+            Z = Z - (gap.sum(axis=1) / b.contact.sum(axis=1))[:, None]
+        pts.append(np.stack([X, Y, Z], -1).reshape(-1, 3))
+        # per-vertex displacement against the same carcass point undeformed
+        ux, uz = _undeformed(b.s, r0, s0, gam)
+        _, UY, _ = patch.to_ground(ux, uz, b.phi[:, None])
+        data.append(np.stack([(r0 - np.hypot(b.x, b.z)).ravel(), (Y - UY).ravel()], -1))
+        con.append(b.contact.ravel())
+        sec.append(np.repeat(np.arange(first, first + n), m))
+        phis.append(b.phi)
+        idx.append(start + np.arange(n * m).reshape(n, m))
+        start += n * m
+        first += n
+    vertices = np.concatenate(pts)
+    contact = np.concatenate(con)
+    # contact vertices exactly onto the support surface (the residual tilt across one
+    # section is a tiny fraction of the patch `flatness`)
+    vertices[contact, 2] = surface.height(vertices[contact, 0])
+    ds = np.concatenate(data)
+    return PlacedVertices(
+        vertices,
+        contact,
+        ds[:, 0],
+        ds[:, 1],
+        np.concatenate(sec),
+        np.concatenate(phis),
+        tuple(idx),
+    )
+
+
+def tire_faces(patch: ContactPatch, placed: PlacedVertices, res: MeshResolution) -> np.ndarray:
+    """Triangles of the tire surface, oriented outward (away from each section's
+    centre, the air side inside)."""
+    K, kc = res.bulge_points, res.contact_points
+    rt, rc, ft, rf = placed.rings[0][0], placed.rings[1], placed.rings[2][0], placed.rings[3]
+    faces = np.concatenate(
+        [
+            _quads(rc[:-1], rc[1:]) if len(rc) > 1 else np.empty((0, 3), int),
+            _transition(rc[0], rt, K, kc, tip_after=False),
+            _transition(rc[-1], ft, K, kc, tip_after=True),
+            _quads(ft, rf[0]),
+            _quads(rf[:-1], rf[1:]),
+            _quads(rf[-1], rt),
+        ]
+    )
+    phi = placed.phi
+    centre = np.stack(patch.to_ground(np.zeros_like(phi), np.zeros_like(phi), phi), -1)
+    tri = placed.vertices[faces]
+    normal = np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0])
+    away = tri.mean(axis=1) - centre[placed.section[faces[:, 0]]]
+    if np.sum(np.einsum("ij,ij->i", normal, away) > 0) < 0.5 * len(faces):
+        faces = faces[:, ::-1]
+    return faces
+
+
+def bead_lines(placed: PlacedVertices) -> np.ndarray:
+    """(2, n_sections) vertex indices of the two bead lines, in order around the wheel."""
+    rt, rc, ft, rf = placed.rings[0][0], placed.rings[1], placed.rings[2][0], placed.rings[3]
+    first = np.concatenate([[rt[0]], rc[:, 0], [ft[0]], rf[:, 0]])
+    last = np.concatenate([[rt[-1]], rc[:, -1], [ft[-1]], rf[:, -1]])
+    return np.stack([first, last])
+
+
+def close_beads(vertices, faces, beads) -> np.ndarray:
+    """Triangles of a rim band joining the two bead lines (winding consistent with
+    ``faces``), making the mesh watertight."""
+    import trimesh
+
+    b1, b2 = beads[0], beads[1]
+    n1, n2 = np.roll(b1, -1), np.roll(b2, -1)  # next section, wrapping around
+    band = np.concatenate([np.column_stack([b1, n1, n2]), np.column_stack([b1, n2, b2])])
+    mesh0 = trimesh.Trimesh(vertices, np.concatenate([faces, band]), process=False)
+    return band if mesh0.is_winding_consistent else band[:, ::-1]
+
+
 def build_mesh(
-    patch: ContactPatch,
+    patch: ContactPatch | LoadCase,
     *,
     n_around: int = 720,
     n_patch: int | None = None,
@@ -190,8 +444,8 @@ def build_mesh(
 
     Parameters
     ----------
-    patch : ContactPatch
-        Solver result (``tiremesh.solve`` / ``solve_patch``).
+    patch : ContactPatch or LoadCase
+        Solver result (:func:`tiremesh.solve`), or a load case to solve first.
     n_around : int
         Sections around the whole wheel (>= 16).
     n_patch : int, optional
@@ -212,132 +466,40 @@ def build_mesh(
     Returns
     -------
     TireMesh
+
+    Examples
+    --------
+    >>> import tiremesh as tm
+    >>> from tiremesh.mesh import build_mesh
+    >>> case = tm.LoadCase(tm.get_tire(8), pressure=0.4, load=400.0)
+    >>> build_mesh(case, n_around=60).n_faces > 0
+    True
     """
     import trimesh
 
-    if not isinstance(patch, ContactPatch):
-        from .errors import InvalidParameter
-
-        raise InvalidParameter("patch", type(patch).__name__, "a tiremesh.ContactPatch")
-    n_around = v.integer("n_around", n_around, 16, 100_000)
-    n_patch = v.integer("n_patch", n_around // 3 if n_patch is None else n_patch, 3, n_around - 8)
-    K = v.integer("bulge_points", bulge_points, 4, 10_000)
-    kc = v.integer("contact_points", contact_points, 2, 10_000)
-
-    tire = patch.tire
-    r0, s0, theta0, gam = tire.tire_radius, tire.arc_length, tire.rim_angle, patch.camber
-    rear, front = patch.phi_ends
-    # sections: rear end, n_patch - 2 contact sections, front end, then the free tire
-    phi_c = np.linspace(rear, front, n_patch)[1:-1]
-    n_free = n_around - n_patch
-    phi_f = np.linspace(front, rear + 2 * np.pi, n_free + 2)[1:-1]
-    ends, _ = patch.sections_at(np.array([rear, front]))
-    sol_c, _ = patch.sections_at(phi_c)
-    if np.any(sol_c.width <= 0):
-        from .errors import TireModelError
-
-        raise TireModelError("a section between the patch ends is out of contact (split patch)")
-
-    xc, zc, sc, kcon = _contact_rings(sol_c, K, kc)
-    xt, zt, st, tcon = _tip_rings(ends, K)
-    xf, zf, sf, fcon = _free_rings(n_free, K, r0, s0, theta0, gam)
-    if centreline is not None:
-        cs_, cdh = (np.asarray(a, float) for a in centreline)
-        R = tire.wheel_radius
-        # free sections run forward from the front end; beyond half a turn, backward from the rear
-        ahead = phi_f - front < np.pi
-        s_pos = np.where(
-            ahead, patch.x[-1] + R * (phi_f - front), patch.x[0] - R * (rear + 2 * np.pi - phi_f)
-        )
-        shift = np.interp(s_pos, cs_, cdh, left=0.0, right=0.0)
-        xf = xf + shift[:, None]
-
-    nc = len(phi_c)
-    # vertex blocks: [rear tip | contact sections | front tip | free sections]
-    blocks = [
-        (xt[:1], zt[:1], st[:1], tcon[:1], np.array([rear])),
-        (xc, zc, sc, kcon, phi_c),
-        (xt[1:], zt[1:], st[1:], tcon[1:], np.array([front])),
-        (xf, zf, sf, fcon, phi_f),
-    ]
-    pts, data_s, data_con, data_sec, phis, rings = [], [], [], [], [], []
-    start, sec = 0, 0
-    for bx, bz, bs, bcon, bphi in blocks:
-        n, m = bx.shape
-        bphi = np.broadcast_to(np.atleast_1d(bphi), (n,))
-        X, Y, Z = patch.to_ground(bx, bz, bphi[:, None])
-        if bcon.any():  # translate sections in contact onto the surface (<= flatness)
-            gap = np.where(bcon, Z - surface_height(patch.surface, X), 0.0)
-            Z = Z - (gap.sum(axis=1) / bcon.sum(axis=1))[:, None]
-        pts.append(np.stack([X, Y, Z], -1).reshape(-1, 3))
-        # per-vertex displacement against the same carcass point undeformed
-        ux, uz = _undeformed(bs, r0, s0, gam)
-        _, UY, _ = patch.to_ground(ux, uz, bphi[:, None])
-        data_s.append(np.stack([(r0 - np.hypot(bx, bz)).ravel(), (Y - UY).ravel()], -1))
-        data_con.append(bcon.ravel())
-        data_sec.append(np.repeat(np.arange(sec, sec + n), m))
-        phis.append(bphi)
-        rings.append(start + np.arange(n * m).reshape(n, m))
-        start += n * m
-        sec += n
-    vertices = np.concatenate(pts)
-    contact = np.concatenate(data_con)
-    # contact vertices exactly onto the support surface (the residual tilt across one
-    # section is a tiny fraction of the patch `flatness`)
-    vertices[contact, 2] = surface_height(patch.surface, vertices[contact, 0])
-    rt, rc, ft, rf = rings[0][0], rings[1], rings[2][0], rings[3]
-
-    faces = [
-        _quads(rc[:-1], rc[1:]) if nc > 1 else np.empty((0, 3), int),
-        _transition(rc[0], rt, K, kc, tip_after=False),
-        _transition(rc[-1], ft, K, kc, tip_after=True),
-        _quads(ft, rf[0]),
-        _quads(rf[:-1], rf[1:]),
-        _quads(rf[-1], rt),
-    ]
-    faces = np.concatenate(faces)
-    face_contact = np.all(contact[faces], axis=1)
-
-    # orient outward: normals point away from each section's centre
-    centre = np.concatenate(
-        [np.stack(patch.to_ground(np.zeros_like(p), np.zeros_like(p), p), -1) for p in phis]
-    )
-    sec_of_vertex = np.concatenate(data_sec)
-    tri = vertices[faces]
-    normal = np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0])
-    away = tri.mean(axis=1) - centre[sec_of_vertex[faces[:, 0]]]
-    if np.sum(np.einsum("ij,ij->i", normal, away) > 0) < 0.5 * len(faces):
-        faces = faces[:, ::-1]
-
-    # bead vertices of every section, in order around the wheel
-    first = np.concatenate([[rt[0]], rc[:, 0], [ft[0]], rf[:, 0]])
-    last = np.concatenate([[rt[-1]], rc[:, -1], [ft[-1]], rf[:, -1]])
-    beads = np.stack([first, last])
+    patch = as_patch(patch)
+    res = mesh_resolution(n_around, n_patch, bulge_points, contact_points)
+    rings = section_rings(patch, plan_sections(patch, res), res, centreline)
+    placed = place_vertices(patch, rings)
+    faces = tire_faces(patch, placed, res)
+    face_contact = np.all(placed.contact[faces], axis=1)
+    beads = bead_lines(placed)
     if close_rim:
-        b1, b2 = beads[0], beads[1]
-        n1, n2 = np.roll(b1, -1), np.roll(b2, -1)  # next section, wrapping around
-        band = np.concatenate([np.column_stack([b1, n1, n2]), np.column_stack([b1, n2, b2])])
-        mesh0 = trimesh.Trimesh(vertices, np.concatenate([faces, band]), process=False)
-        if not mesh0.is_winding_consistent:
-            band = band[:, ::-1]
+        band = close_beads(placed.vertices, faces, beads)
         face_contact = np.concatenate([face_contact, np.zeros(len(band), bool)])
         faces = np.concatenate([faces, band])
-
-    mesh = trimesh.Trimesh(vertices=vertices, faces=faces, process=False)
-    ds = np.concatenate(data_s)
     point_data = {
-        "radial_deformation": ds[:, 0],
-        "lateral_displacement": ds[:, 1],
-        "contact": contact.astype(np.uint8),
-        "section": sec_of_vertex.astype(np.int32),
+        "radial_deformation": placed.radial,
+        "lateral_displacement": placed.lateral,
+        "contact": placed.contact.astype(np.uint8),
+        "section": placed.section.astype(np.int32),
     }
-    section_phi = np.concatenate(phis)
     return TireMesh(
-        mesh=mesh,
+        mesh=trimesh.Trimesh(vertices=placed.vertices, faces=faces, process=False),
         point_data=point_data,
         face_contact=face_contact,
         patch=patch,
-        section_phi=section_phi,
+        section_phi=placed.phi,
         bead_vertices=beads,
         closed=close_rim,
     )
@@ -352,7 +514,7 @@ def _ring_lengths(tm_: TireMesh) -> np.ndarray:
 
 
 def support_mesh(
-    patch: ContactPatch,
+    patch: ContactPatch | LoadCase,
     *,
     extent: float | None = None,
     thickness: float | None = None,
@@ -361,40 +523,61 @@ def support_mesh(
 ):
     """Mesh of the support surface under the patch (for renders), as a slab.
 
-    Flat ground and the disk (a plane; the disk's track is curved, not its surface)
-    give a box; a drum gives a thick cylinder segment of its radius.
+    Built from the surface protocol alone: the top profile runs along the surface at
+    arc lengths ``s`` (``x = surface.roll(s)``, ``z = surface.height(x)``), lowered by
+    ``sink`` along the profile normal; the bottom lies ``thickness`` further along the
+    normal. Flat ground and the disk (a plane; the disk's track is curved, not its
+    surface) give a box, a drum a thick cylinder segment of its radius.
 
     Parameters
     ----------
+    patch : ContactPatch or LoadCase
     extent : float [mm], optional
-        Half-size along x (default 0.6 x the wheel radius).
+        Half-length along the surface (default 0.6 x the wheel radius).
     thickness : float [mm], optional
         Slab thickness below the surface (default the tire radius).
     sink : float [mm]
         Lower the top face by this much (renders use a fraction of a mm so the contact
         faces, which lie exactly on the surface, do not z-fight with it).
     resolution : int
-        Segments along x (the drum's facets must stay well below the patch).
-    """
-    import trimesh
+        Segments along the surface (a curved surface's facets must stay well below
+        the patch).
 
+    Returns
+    -------
+    trimesh.Trimesh
+        Watertight, normals outward.
+    """
+
+    patch = as_patch(patch)
     R, r0 = patch.tire.wheel_radius, patch.tire.tire_radius
     ext = 0.6 * R if extent is None else float(v.positive("extent", extent, unit="mm"))
     th = r0 if thickness is None else float(v.positive("thickness", thickness, unit="mm"))
     n = v.integer("resolution", resolution, 2, 100_000)
-    half_y = 4.0 * r0
-    if isinstance(patch.surface, Drum):
-        rd = 0.5 * patch.surface.diameter
-        ang = np.linspace(-ext / rd, ext / rd, n + 1)
-        top = np.column_stack([(rd - sink) * np.sin(ang), (rd - sink) * np.cos(ang) - rd])
-        bot = np.column_stack(
-            [(rd - sink - th) * np.sin(ang), (rd - sink - th) * np.cos(ang) - rd]
-        )
-    else:
-        x = np.linspace(-ext, ext, n + 1)
-        top = np.column_stack([x, np.full_like(x, -sink)])
-        bot = np.column_stack([x, np.full_like(x, -sink - th)])
-    prof = np.concatenate([top, bot[::-1]])  # closed profile in (x, z)
+    top, bot = _slab_profile(patch.surface, ext, th, float(sink), n)
+    return _extrude_profile(np.concatenate([top, bot[::-1]]), 4.0 * r0, n + 1)
+
+
+def _slab_profile(surface, extent: float, thickness: float, sink: float, n: int):
+    """(n + 1, 2) top and bottom ``(x, z)`` of the slab under the surface profile."""
+    s = np.linspace(-extent, extent, n + 1)
+    ds = s[1] - s[0]
+    s_ext = np.concatenate([[s[0] - ds], s, [s[-1] + ds]])
+    x = surface.roll(s_ext)
+    prof = np.column_stack([x, surface.height(x)])
+    # central chords: for a circular profile exactly tangent at the middle point
+    t = prof[2:] - prof[:-2]
+    t /= np.linalg.norm(t, axis=1, keepdims=True)
+    normal = np.column_stack([-t[:, 1], t[:, 0]])  # up, out of the surface
+    on = prof[1:-1]
+    return on - sink * normal, on - (sink + thickness) * normal
+
+
+def _extrude_profile(prof, half_y: float, k: int):
+    """Closed slab from a closed (x, z) profile of ``k`` top then ``k`` bottom points,
+    extruded over ``-half_y .. half_y``."""
+    import trimesh
+
     m = len(prof)
     verts = np.concatenate(
         [np.column_stack([prof[:, 0], np.full(m, y), prof[:, 1]]) for y in (-half_y, half_y)]
@@ -402,7 +585,6 @@ def support_mesh(
     ring = np.arange(m)
     sides = _quads(np.append(ring, 0)[None, :], np.append(ring + m, m)[None, :])
     # end caps: the profile is a simple polygon; fan-free strip triangulation
-    k = n + 1
     cap = np.concatenate(
         [
             np.column_stack([ring[: k - 1], ring[1:k], ring[m - 1 : m - k : -1][: k - 1]]),
@@ -443,4 +625,22 @@ def rim_mesh(tire_mesh: TireMesh, *, depth: float = 12.0):
     return trimesh.Trimesh(verts, faces, process=False)
 
 
-__all__ = ["TireMesh", "build_mesh", "rim_mesh", "support_mesh", "surface_gap", "surface_height"]
+__all__ = [
+    "MeshResolution",
+    "PlacedVertices",
+    "RingBlock",
+    "SectionPlan",
+    "SectionRings",
+    "TireMesh",
+    "as_patch",
+    "bead_lines",
+    "build_mesh",
+    "close_beads",
+    "mesh_resolution",
+    "place_vertices",
+    "plan_sections",
+    "rim_mesh",
+    "section_rings",
+    "support_mesh",
+    "tire_faces",
+]

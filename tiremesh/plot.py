@@ -1,4 +1,4 @@
-"""Matplotlib figures of the model: a cross section (Figure 5-5) and the patch.
+"""Matplotlib figures of the model: a cross section (Figure 5-5).
 
 matplotlib is imported inside the functions, so ``import tiremesh`` stays fast.
 """
@@ -7,7 +7,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from .patch import ContactPatch
+from .case import LoadCase
+from .solver import ContactPatch, solve
 
 
 def section_curve(sections, index: int = 0, n: int = 200):
@@ -23,11 +24,26 @@ def section_curve(sections, index: int = 0, n: int = 200):
     return x, z
 
 
-def plot_section(patch: ContactPatch, phi: float = 0.0, ax=None):
+def plot_section(patch: ContactPatch | LoadCase, phi: float = 0.0, ax=None):
     """Plot the Rotta section at angle ``phi`` (Figure 5-5): undeformed circle, rim,
-    bulges, flat contact and ground, with the edges and radii annotated."""
+    bulges, flat contact and ground, with the edges and radii annotated.
+
+    Parameters
+    ----------
+    patch : ContactPatch or LoadCase
+        The solved patch, or a load case to solve.
+    phi : float [rad]
+        Section angle from bottom dead centre.
+    ax : matplotlib Axes, optional
+
+    Returns
+    -------
+    matplotlib Axes
+    """
     import matplotlib.pyplot as plt
 
+    if isinstance(patch, LoadCase):
+        patch = solve(patch)
     sol, _ = patch.sections_at(np.array([phi]))
     if ax is None:
         _, ax = plt.subplots(figsize=(6, 5.5))
@@ -53,29 +69,4 @@ def plot_section(patch: ContactPatch, phi: float = 0.0, ax=None):
         fontsize=9,
     )
     ax.legend(loc="upper right", fontsize=8)
-    return ax
-
-
-def plot_patch(patch: ContactPatch, ax=None, *, ellipses=()):
-    """Plot the patch outline in ground coordinates (x forward up the page), the
-    centre line, and optional :class:`contactpatch.EllipseFit` objects."""
-    import matplotlib.pyplot as plt
-
-    if ax is None:
-        _, ax = plt.subplots(figsize=(4, 7))
-    o = patch.outline
-    ax.fill(o[:, 1], o[:, 0], color="C2", alpha=0.5, label="model patch")
-    ax.plot(patch.centerline[:, 1], patch.centerline[:, 0], "k--", lw=0.8, label="centre line")
-    for k, e in enumerate(ellipses):
-        if e:
-            b = e.boundary(200)
-            ax.plot(b[:, 1], b[:, 0], color=f"C{k}", lw=1.5, label=f"ellipse ({e.method})")
-    ax.set_aspect("equal")
-    ax.set_xlabel("y [mm]")
-    ax.set_ylabel("x [mm] (forward)")
-    ax.set_title(
-        f"L = {patch.length:.1f} mm, W = {patch.width:.2f} mm, A = {patch.area:.0f} mm^2",
-        fontsize=9,
-    )
-    ax.legend(fontsize=7, loc="lower right")
     return ax

@@ -12,8 +12,10 @@ from __future__ import annotations
 import numpy as np
 
 from . import _validate as v
+from .case import LoadCase
 from .errors import InvalidParameter
-from .mesh import TireMesh, rim_mesh, support_mesh
+from .mesh import TireMesh, build_mesh, rim_mesh, support_mesh
+from .solver import ContactPatch
 
 VIEWS = ("iso", "side", "front", "bottom")
 SCALARS = {
@@ -22,7 +24,6 @@ SCALARS = {
     "contact": "contact",
     "section": "section index",
 }
-TIRE_COLOR = (0.15, 0.15, 0.15)
 SURFACE_COLOR = (0.80, 0.80, 0.76)
 
 
@@ -70,7 +71,7 @@ def _camera(view: str, tire_mesh: TireMesh):
 
 
 def render(
-    tire_mesh: TireMesh,
+    tire_mesh: TireMesh | ContactPatch | LoadCase,
     path=None,
     *,
     view: str = "iso",
@@ -87,7 +88,9 @@ def render(
 
     Parameters
     ----------
-    tire_mesh : TireMesh
+    tire_mesh : TireMesh, ContactPatch or LoadCase
+        The mesh; a patch or a load case (solved first) is meshed with the defaults
+        of :func:`tiremesh.mesh.build_mesh`.
     path : str or Path, optional
         PNG file to write (atomically); the image array is returned either way.
     view : {'iso', 'side', 'front', 'bottom'}
@@ -110,6 +113,8 @@ def render(
         raise InvalidParameter("scalars", scalars, " | ".join(SCALARS))
     w = v.integer("size[0] (width)", int(size[0]), 16, 8192)
     h = v.integer("size[1] (height)", int(size[1]), 16, 8192)
+    if not isinstance(tire_mesh, TireMesh):
+        tire_mesh = build_mesh(tire_mesh)
 
     poly = to_polydata(tire_mesh)
     if view == "front" and camera is None:
@@ -118,25 +123,7 @@ def render(
     pl = pv.Plotter(off_screen=True, window_size=(w, h))
     try:
         pl.set_background("white")
-        bar = dict(
-            title=SCALARS[scalars],
-            color="black",
-            vertical=False,
-            position_x=0.2,
-            position_y=0.87,
-            width=0.6,
-            height=0.06,
-            fmt="%.2f",
-        )
-        pl.add_mesh(
-            poly,
-            scalars=scalars,
-            cmap=cmap,
-            smooth_shading=True,
-            show_scalar_bar=scalar_bar,
-            scalar_bar_args=bar,
-            specular=0.2,
-        )
+        _add_tire(pl, poly, scalars, cmap, scalar_bar)
         if show_surface:
             ground = _trimesh_to_pv(support_mesh(tire_mesh.patch, sink=0.3))
             opacity = 0.25 if view == "bottom" else 1.0
@@ -145,22 +132,48 @@ def render(
             pl.add_mesh(_trimesh_to_pv(rim_mesh(tire_mesh)), color=(0.7, 0.72, 0.75), metallic=0.5)
         if ruler:
             _add_ruler(pl, tire_mesh, view)
-        if camera is not None:
-            pl.camera_position = camera
-        else:
-            position, scale = _camera(view, tire_mesh)
-            pl.camera_position = position
-            if scale is not None:
-                pl.enable_parallel_projection()
-                pl.camera.parallel_scale = scale
-            else:
-                pl.camera.view_angle = 30.0
+        _set_camera(pl, camera, view, tire_mesh)
         image = pl.screenshot(return_img=True)
     finally:
         pl.close()
     if path is not None:
         _write_png(path, image)
     return image
+
+
+def _add_tire(pl, poly, scalars: str, cmap: str, scalar_bar: bool) -> None:
+    bar = dict(
+        title=SCALARS[scalars],
+        color="black",
+        vertical=False,
+        position_x=0.2,
+        position_y=0.87,
+        width=0.6,
+        height=0.06,
+        fmt="%.2f",
+    )
+    pl.add_mesh(
+        poly,
+        scalars=scalars,
+        cmap=cmap,
+        smooth_shading=True,
+        show_scalar_bar=scalar_bar,
+        scalar_bar_args=bar,
+        specular=0.2,
+    )
+
+
+def _set_camera(pl, camera, view: str, tire_mesh: TireMesh) -> None:
+    if camera is not None:
+        pl.camera_position = camera
+        return
+    position, scale = _camera(view, tire_mesh)
+    pl.camera_position = position
+    if scale is not None:
+        pl.enable_parallel_projection()
+        pl.camera.parallel_scale = scale
+    else:
+        pl.camera.view_angle = 30.0
 
 
 def _add_ruler(pl, tire_mesh: TireMesh, view: str) -> None:
@@ -202,7 +215,7 @@ def _headless() -> None:
 def _write_png(path, image) -> None:
     from PIL import Image
 
-    from ._io import atomic_path
+    from .io import atomic_path
 
     with atomic_path(path) as tmp:
         Image.fromarray(np.asarray(image, np.uint8)).save(tmp, format="PNG")

@@ -1,4 +1,5 @@
-"""Rotta's cross section (section 5.1, Eq. 5-7 to 5-14, forces Eq. 5-25, 5-26).
+"""Rotta's cross section (section 5.1, equations 5-7, 5-10, 5-11, 5-12 and 5-13;
+forces per length, equations 5-25 and 5-26).
 
 Each radial cross section pressed onto the ground is a flat contact segment
 ``[e1, e2]`` plus two circular side bulges, each tangent to the ground at its patch
@@ -8,16 +9,17 @@ conserved.
 Frame (Figure 5-1, Appendix C): origin at the centre of the *undeformed* section
 circle, ``x`` horizontal toward side 2, ``z`` up toward the rim, ground at
 ``z = -r0 + dv``. Side 1 is at ``-x`` and side 2 at ``+x``; in the ground frame of
-:mod:`tiremesh.patch` side 2 is ``+y``. Positive camber rotates the rim toward
+:mod:`tiremesh.solver` side 2 is ``+y``. Positive camber rotates the rim toward
 ``+x`` (the wheel top leans to ``+y``).
 
 Closed form used here (a departure from the appendix's nested ``fzero``)
 -------------------------------------------------------------------------
 For a bulge of bead height ``H`` above the ground and swept angle ``theta``
-(tangent point to bead), Eq. 5-9 and 5-11 give ``r = H / (1 - cos theta)`` and the
-horizontal bead-to-edge offset ``d = r sin theta = H cot(theta / 2)``. Substituting
-into the arc-length condition ``r theta = s`` (Eq. 5-7 to 5-12) leaves, per side, the
-circular-segment relation::
+(tangent point to bead), equations 5-11 and 5-12 give ``r = H / (1 - cos theta)``
+and the horizontal bead-to-edge offset ``d = r sin theta = H cot(theta / 2)``.
+Substituting into the arc-length condition ``r theta = s`` of equation 5-13, with the
+side's arc length ``s`` from equation 5-10, leaves, per side, the circular-segment
+relation::
 
     q(theta) = (theta - sin theta) / (1 - cos theta) = c / H,     theta in (0, 2 pi)
 
@@ -36,6 +38,11 @@ point is ``delta = r0 * camber`` (the arc distance of section 5.2 from the carca
 centre line to the lowest point of the cambered tire). Table 5-4's 10.9956 is
 ``14 mm * pi / 4``. We use the fixed point; :func:`camber_delta_iteration`
 reproduces the dissertation's iteration for the tests.
+
+References
+----------
+A. E. Dressel (2013), section 5.1 and Tables 5-3, 5-4. The index of equations
+(equation -> function -> test) is in ``docs/model.md``.
 """
 
 from __future__ import annotations
@@ -70,7 +77,8 @@ def bulge_ratio(theta):
     """Circular-segment ratio ``q = (theta - sin theta) / (1 - cos theta)``.
 
     ``q`` is (arc length - chord-wise bead offset) / bead height of a Rotta side
-    bulge (section 5.1; see module docstring).
+    bulge: the arc-length condition of equation 5-13 written in the bulge angle
+    (section 5.1; see module docstring).
 
     Parameters
     ----------
@@ -178,9 +186,10 @@ class SectionSolution:
     edge1, edge2 : (...) float [mm]
         Contact-patch edges ``e1 < e2`` in the section frame (Table 5-4 ``cp_edges``).
     radius1, radius2 : (...) float [mm]
-        Side-bulge radii ``r1, r2`` (Eq. 5-9).
+        Side-bulge radii ``r1, r2`` (equation 5-11).
     angle1, angle2 : (...) float [rad]
-        Angles swept by the bulges, tangent point to bead (Eq. 5-11).
+        Angles swept by the bulges, tangent point to bead (equation 5-12, on every
+        branch).
     height1, height2 : (...) float [mm]
         Bead heights above the ground, ``H = z_bead + r0 - dv``.
     bead1, bead2 : tuple of (...) float [mm]
@@ -239,36 +248,43 @@ class SectionSolution:
         return self.radius2 * self.angle2
 
     def lateral_force_density(self, pressure) -> np.ndarray:
-        """``dS/dy = p (r1 - r2)`` [N/mm], Eq. 5-25 (positive toward side 2)."""
+        """``dS/dy = p (r1 - r2)`` [N/mm], equation 5-25 (positive toward side 2)."""
         return np.asarray(pressure) * (self.radius1 - self.radius2)
 
     def vertical_force_density(self, pressure) -> np.ndarray:
-        """``dN/dy = p (e2 - e1)`` [N/mm], Eq. 5-26 (zero where edges cross)."""
+        """``dN/dy = p (e2 - e1)`` [N/mm], equation 5-26 (zero where edges cross)."""
         return np.asarray(pressure) * np.maximum(self.width, 0.0)
 
 
-def _solve_sections(r0, w, dv, dh, camber, delta, broadcast=False):
-    """Unchecked core of :func:`solve_sections`; returns (solution, bad_h, bad_c)."""
-    theta0 = 2.0 * np.arcsin(0.5 * w / r0)
-    half_s0 = r0 * (np.pi - 0.5 * theta0)
+def section_arrays(r0, w, dv, dh, camber, delta, broadcast=False):
+    """Unchecked core of :func:`solve_sections`; returns (solution, bad_h, bad_c).
+
+    Notes
+    -----
+    Dressel (2013), section 5.1: equation 5-10 (arc bookkeeping, ``c = s - d``),
+    equation 5-13 (the arc-length root, per side), equation 5-11 (bulge radius) and
+    equation 5-12 (bead-to-edge offset), in that order below.
+    """
+    theta0 = 2.0 * np.arcsin(0.5 * w / r0)  # equation 5-2, inlined
+    half_s0 = r0 * (np.pi - 0.5 * theta0)  # s0 / 2, equation 5-4
     xb1, zb1, xb2, zb2 = bead_positions(r0, w, camber)
     zg = -r0 + dv
     h1, h2 = zb1 - zg, zb2 - zg
-    c1 = half_s0 + delta + xb1 - dh  # Eq. 5-7 with e1 = xb1 + d1, minus d1
-    c2 = half_s0 - delta - xb2 + dh
+    c1 = half_s0 + delta + xb1 - dh  # Eq. 5-10 (side 1): c1 = s1 - d1, e1 = xb1 + d1
+    c2 = half_s0 - delta - xb2 + dh  # side 2 of equation 5-10: c2 = s2 - d2
     bad_h = (h1 <= 0) | (h2 <= 0)
     bad_c = (c1 <= 0) | (c2 <= 0)
     h1s, h2s = np.where(bad_h | bad_c, 1.0, h1), np.where(bad_h | bad_c, 1.0, h2)
     y1, y2 = np.where(bad_c | bad_h, 1.0, c1) / h1s, np.where(bad_c | bad_h, 1.0, c2) / h2s
-    th = solve_bulge_angle(np.stack(np.broadcast_arrays(y1, y2)))
+    th = solve_bulge_angle(np.stack(np.broadcast_arrays(y1, y2)))  # Eq. 5-13
     half = 0.5 * th
     sin_h = np.sin(half)
     cot = np.cos(half) / sin_h
     hs = np.stack(np.broadcast_arrays(h1s, h2s))
-    r = hs / (2.0 * sin_h * sin_h)
+    r = hs / (2.0 * sin_h * sin_h)  # Eq. 5-11: r = H / (1 - cos theta)
     _, dq = bulge_ratio(th)
     (th1, th2), (cot1, cot2), (r1, r2), (dq1, dq2) = th, cot, r, dq
-    e1, e2 = xb1 + h1s * cot1, xb2 - h2s * cot2
+    e1, e2 = xb1 + h1s * cot1, xb2 - h2s * cot2  # Eq. 5-12: d = r sin theta = H cot(theta/2)
     # lowest point from each side (Table 5-4 cp_mids)
     low1 = e1 - (r1 * th1 - r0 * (np.pi - 0.5 * theta0 + camber))
     low2 = e2 + (r2 * th2 - r0 * (np.pi - 0.5 * theta0 - camber))
@@ -336,7 +352,7 @@ def solve_sections(
 ) -> SectionSolution:
     """Solve Rotta cross sections, vectorized over any broadcastable inputs.
 
-    Section 5.1, Eq. 5-7 to 5-14; Table 5-4 is the worked example.
+    Section 5.1; Table 5-4 is the worked example.
 
     Parameters
     ----------
@@ -349,7 +365,8 @@ def solve_sections(
         ground. May be <= 0 (the edges then cross: no contact).
     horz_deflection : (...) float [mm]
         ``dh``: horizontal position of the carcass point that first touched the
-        ground (``dv tan(camber)`` for a rolling cambered tire, Eq. 5-13).
+        ground (``dv tan(camber)`` for a rolling cambered tire, equation 5-7; around
+        the wheel, equation 5-17).
     camber : (...) float [rad]
         Camber angle, |camber| < pi/2.
     delta : (...) float [mm], optional
@@ -365,6 +382,11 @@ def solve_sections(
         Non-finite or out-of-range input, a bead at or below the ground
         (``vert_deflection`` too large), or a displacement that leaves a bulge no
         carcass (``horz_deflection`` too large).
+
+    Notes
+    -----
+    Dressel (2013), section 5.1: equations 5-10, 5-11, 5-12 and 5-13, solved in
+    closed form per side (module docstring); see :func:`section_arrays`.
     """
     r0 = v.positive("tire_radius", tire_radius, unit="mm")
     w = v.positive("rim_width", rim_width, unit="mm")
@@ -374,7 +396,7 @@ def solve_sections(
     dh = v.finite("horz_deflection", horz_deflection, unit="mm")
     gamma = v.in_range("camber", camber, -np.pi / 2, np.pi / 2, unit="rad")
     dl = r0 * gamma if delta is None else v.finite("delta", delta, unit="mm")
-    sol, bad_h, bad_c = _solve_sections(r0, w, dv, dh, gamma, dl, broadcast=True)
+    sol, bad_h, bad_c = section_arrays(r0, w, dv, dh, gamma, dl, broadcast=True)
     if np.any(bad_h):
         hmin = np.minimum(sol.height1, sol.height2)
         raise InvalidParameter(
@@ -396,15 +418,16 @@ def camber_delta_iteration(tire_radius, rim_width, vert_deflection, camber, *, s
     """The dissertation's camber-delta correction (section 5.1, Table 5-4), run exactly.
 
     Starts at ``delta = r0 sin(camber)`` and repeats ``delta += lowest1 - dh`` with
-    ``dh = dv tan(camber)``. Returns the sequence of deltas (``steps + 1`` values);
-    the first correction already lands on the fixed point ``r0 * camber``.
+    ``dh = dv tan(camber)`` (equation 5-7). Returns the sequence of deltas
+    (``steps + 1`` values); the first correction already lands on the fixed point
+    ``r0 * camber``.
 
     Returns
     -------
     deltas : (steps + 1, ...) float [mm]
     """
     r0 = np.asarray(tire_radius, float)
-    dh = np.asarray(vert_deflection, float) * np.tan(camber)
+    dh = np.asarray(vert_deflection, float) * np.tan(camber)  # Eq. 5-7
     deltas = [r0 * np.sin(camber)]
     for _ in range(steps):
         sol = solve_sections(r0, rim_width, vert_deflection, dh, camber, delta=deltas[-1])

@@ -1,118 +1,89 @@
 """Support surfaces: flat ground, test drum, test disk (section 5.3).
 
-A drum (section 5.3.1, Eq. 5-18 to 5-21) curves away from the tire in the rolling
-direction and lowers each section's vertical deflection; a disk (section 5.3.2,
-Eq. 5-22 to 5-24) is flat but its circular track curves sideways, which shifts
-each section's horizontal deflection.
+Everything the model, the mesh, the patch extraction and the exports need from a
+surface is the :class:`Surface` protocol below; no other module asks which kind of
+surface it has. A new surface is one class here (or anywhere: subclass
+:class:`SurfaceBase`, override what differs from flat ground) plus its tests; give it
+``register_surface`` to make it parseable from the command line.
+
+Frame: ground ``x`` forward (rolling direction), ``y`` lateral, ``z`` up, origin on
+the surface below the wheel centre; the contact plane is ``z = 0``.
+
+A drum (section 5.3.1) curves away from the tire in the rolling direction and lowers
+each section's vertical deflection by its drop (equations 5-19, 5-20 and 5-21); a
+disk (section 5.3.2) is flat but its circular track curves sideways, which shifts
+each section's horizontal deflection (equations 5-22, 5-23 and 5-24). Drum and disk
+share :func:`curvature_drop`: equations 5-19 and 5-22 are the same formula, and so
+are equations 5-20 and 5-23.
+
+References
+----------
+A. E. Dressel (2013), section 5.3. The index of equations is in ``docs/model.md``.
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Literal
+from typing import ClassVar, Literal, Protocol, runtime_checkable
 
 import numpy as np
 
 from . import _validate as v
 from .errors import InvalidParameter
 
-
-@dataclass(frozen=True)
-class Flat:
-    """Flat ground (UWM flat track, a plate)."""
-
-    kind = "flat"
-
-    def describe(self) -> str:
-        return "flat"
+SURFACE_FORMS = "flat | drum:DIAMETER_MM | disk:DIAMETER_MM[:toward|away]"
 
 
-@dataclass(frozen=True)
-class Drum:
-    """Outside of a cylindrical drum (TU Delft: 2.5 m diameter).
+@runtime_checkable
+class Surface(Protocol):
+    """What the model, mesh, patch extraction and export need from a support surface.
 
-    Parameters
-    ----------
-    diameter : float [mm]
+    All methods are vectorized (numpy broadcasting) and pure.
     """
 
-    diameter: float
-    kind = "drum"
+    kind: ClassVar[str]
 
-    def __post_init__(self) -> None:
-        object.__setattr__(
-            self, "diameter", float(v.positive("drum diameter", self.diameter, unit="mm"))
-        )
+    @property
+    def spec(self) -> str:
+        """Command-line form that :func:`parse_surface` reads back (``drum:2500``)."""
 
     def describe(self) -> str:
-        return f"drum {self.diameter:g} mm"
+        """Human-readable label for tables and titles."""
 
+    def drop(self, phi, wheel_radius) -> tuple[np.ndarray, np.ndarray]:
+        """Drop of the surface below the contact plane under the section at ``phi``
+        [rad], and its derivative [mm, mm/rad] (lowers the vertical deflection)."""
 
-@dataclass(frozen=True)
-class Disk:
-    """Flat rotating disk whose circular track curves sideways (Padua: 3 m).
+    def shift(self, phi, wheel_radius, camber) -> tuple[np.ndarray, np.ndarray]:
+        """Sideways shift of the track under the section at ``phi`` [rad], and its
+        derivative [mm, mm/rad] (adds to the horizontal deflection)."""
 
-    Parameters
-    ----------
-    diameter : float [mm]
-        Diameter of the circular track.
-    curving : {'toward', 'away'}
-        Whether the track's centre of curvature lies on the side toward which the
-        wheel top leans (``'toward'`` the camber, as when cornering) or the other.
-        With zero camber, ``'toward'`` puts the centre on ``+y``.
-    """
+    def height(self, x) -> np.ndarray:
+        """Height ``z`` [mm] of the surface at ground position ``x`` [mm]."""
 
-    diameter: float
-    curving: Literal["toward", "away"] = "toward"
-    kind = "disk"
+    def gap(self, points) -> np.ndarray:
+        """Distance [mm] of ``points`` (n, 3) above the surface (negative: below)."""
 
-    def __post_init__(self) -> None:
-        object.__setattr__(
-            self, "diameter", float(v.positive("disk diameter", self.diameter, unit="mm"))
-        )
-        if self.curving not in ("toward", "away"):
-            raise InvalidParameter("curving", self.curving, "'toward' or 'away'")
+    def unroll(self, x) -> np.ndarray:
+        """Arc length along the surface [mm] of the surface point above ground ``x``
+        (what paper wrapped on the surface records)."""
 
-    def center_side(self, camber: float) -> float:
-        """+1 if the track centre is on ``+y``, -1 if on ``-y``."""
-        lean = 1.0 if camber >= 0 else -1.0
-        return lean if self.curving == "toward" else -lean
+    def roll(self, s) -> np.ndarray:
+        """Inverse of :meth:`unroll`: ground ``x`` [mm] of arc length ``s`` [mm]."""
 
-    def describe(self) -> str:
-        return f"disk {self.diameter:g} mm curving {self.curving} the camber"
-
-
-Surface = Flat | Drum | Disk
-
-
-def parse_surface(text: str) -> Surface:
-    """'flat', 'drum:2500', 'disk:3000', 'disk:3000:away' (diameters in mm)."""
-    parts = [p.strip().lower() for p in str(text).split(":")]
-    try:
-        if parts[0] in ("flat", "plate", "ground") and len(parts) == 1:
-            return Flat()
-        if parts[0] == "drum" and len(parts) == 2:
-            return Drum(float(parts[1]))
-        if parts[0] == "disk" and len(parts) in (2, 3):
-            return Disk(float(parts[1]), parts[2] if len(parts) == 3 else "toward")
-    except ValueError as exc:
-        if isinstance(exc, InvalidParameter):
-            raise
-        raise InvalidParameter(
-            "surface", text, "flat | drum:DIAMETER_MM | disk:DIAMETER_MM[:toward|away]"
-        ) from exc
-    raise InvalidParameter(
-        "surface", text, "flat | drum:DIAMETER_MM | disk:DIAMETER_MM[:toward|away]"
-    )
+    def stretch(self, x) -> np.ndarray:
+        """``d unroll / dx`` [-]: surface length per unit of ground ``x``."""
 
 
 def curvature_drop(phi, wheel_radius, curvature):
-    """Drop of a curved surface under a wheel section, Eq. 5-19/5-20 (and 5-22/5-23).
+    """Drop of a curved surface under a wheel section (section 5.3) and its
+    derivative with respect to ``phi``.
 
-    ``D = R_s (1 - cos phi_s) / cos phi`` with ``R_s sin phi_s = R sin phi``, written
-    as ``kappa R^2 sin^2 phi / ((1 + sqrt(1 - (kappa R sin phi)^2)) cos phi)`` so a
-    zero curvature ``kappa = 1 / R_s`` (flat) gives exactly 0 and a negative one
-    flips the sign.
+    ``D = R_s (1 - cos phi_s) / cos phi`` (equation 5-19 for a drum, 5-22 for a disk)
+    with ``R_s sin phi_s = R sin phi`` (equation 5-20, 5-23), written as ``kappa R^2
+    sin^2 phi / ((1 + sqrt(1 - (kappa R sin phi)^2)) cos phi)`` (the closed forms of
+    equations 5-21 and 5-24) so a zero curvature ``kappa = 1 / R_s`` (flat) gives
+    exactly 0 and a negative one flips the sign.
 
     Parameters
     ----------
@@ -127,16 +98,248 @@ def curvature_drop(phi, wheel_radius, curvature):
     -------
     drop : (...) float [mm]
     ddrop_dphi : (...) float [mm/rad]
+
+    Notes
+    -----
+    Dressel (2013), sections 5.3.1 and 5.3.2, equations 5-19, 5-20 (drum) and 5-22,
+    5-23 (disk).
     """
     k = np.asarray(curvature, float)
     R = np.asarray(wheel_radius, float)
     sp, cp = np.sin(phi), np.cos(phi)
-    u = k * R * sp
-    root = np.sqrt(1.0 - u * u)
+    u = k * R * sp  # Eq. 5-20, Eq. 5-23: sin(phi_s) = R sin(phi) / R_s
+    root = np.sqrt(np.clip(1.0 - u * u, 0.0, None))
     num = k * R * R * sp * sp
     den = (1.0 + root) * cp
     with np.errstate(divide="ignore", invalid="ignore"):
-        droot = np.where(root > 0, -u * k * R * cp / root, 0.0)
+        droot = np.where(root > 0, -u * k * R * cp / np.where(root > 0, root, 1.0), 0.0)
     dnum = 2.0 * k * R * R * sp * cp
     dden = droot * cp - (1.0 + root) * sp
-    return num / den, (dnum * den - num * dden) / (den * den)
+    return num / den, (dnum * den - num * dden) / (den * den)  # Eq. 5-19, Eq. 5-22
+
+
+class SurfaceBase:
+    """Flat ground; subclass and override what a new surface changes."""
+
+    kind: ClassVar[str] = "flat"
+
+    @property
+    def spec(self) -> str:
+        return self.kind
+
+    def describe(self) -> str:
+        return self.kind
+
+    def drop(self, phi, wheel_radius):
+        z = np.zeros(np.broadcast(phi, wheel_radius).shape)
+        return z, z
+
+    def shift(self, phi, wheel_radius, camber):
+        z = np.zeros(np.broadcast(phi, wheel_radius, camber).shape)
+        return z, z
+
+    def height(self, x):
+        return np.zeros_like(np.asarray(x, float))
+
+    def gap(self, points):
+        p = np.asarray(points, float)
+        return p[:, 2] - self.height(p[:, 0])
+
+    def unroll(self, x):
+        return np.asarray(x, float).copy()
+
+    def roll(self, s):
+        return np.asarray(s, float).copy()
+
+    def stretch(self, x):
+        return np.ones_like(np.asarray(x, float))
+
+
+_REGISTRY: dict[str, type] = {}
+
+
+def register_surface(name: str):
+    """Class decorator: make ``name[:args]`` parseable by :func:`parse_surface`.
+    The class needs a classmethod ``from_spec(args: list[str])``."""
+
+    def deco(cls):
+        _REGISTRY[name] = cls
+        return cls
+
+    return deco
+
+
+@register_surface("flat")
+@dataclass(frozen=True)
+class Flat(SurfaceBase):
+    """Flat ground (UWM flat track, a plate)."""
+
+    kind: ClassVar[str] = "flat"
+
+    @classmethod
+    def from_spec(cls, args: list[str]) -> Flat:
+        if args:
+            raise ValueError("flat takes no arguments")
+        return cls()
+
+
+@register_surface("drum")
+@dataclass(frozen=True)
+class Drum(SurfaceBase):
+    """Outside of a cylindrical drum (TU Delft: 2.5 m diameter), section 5.3.1.
+
+    Its :meth:`drop` is the drum term of equation 5-21 (equation 5-19 with equation
+    5-20 substituted), which the solver subtracts as in equation 5-18.
+
+    Parameters
+    ----------
+    diameter : float [mm]
+        Must exceed the tire's wheel diameter's curvature limit: ``diameter > 100`` mm
+        (a drum smaller than the wheel is outside the model's domain, 5.3.1).
+    """
+
+    diameter: float
+    kind: ClassVar[str] = "drum"
+
+    def __post_init__(self) -> None:
+        d = float(v.positive("drum diameter", self.diameter, unit="mm"))
+        if d <= 100.0:
+            raise InvalidParameter("drum diameter", d, "> 100 mm (a test drum, not a roller)")
+        object.__setattr__(self, "diameter", d)
+
+    @property
+    def curvature(self) -> float:
+        """``1 / R_drum`` [1/mm]."""
+        return 2.0 / self.diameter
+
+    @property
+    def spec(self) -> str:
+        return f"drum:{self.diameter:g}"
+
+    def describe(self) -> str:
+        return f"drum {self.diameter:g} mm"
+
+    @classmethod
+    def from_spec(cls, args: list[str]) -> Drum:
+        (d,) = args
+        return cls(float(d))
+
+    def drop(self, phi, wheel_radius):
+        return curvature_drop(phi, wheel_radius, self.curvature)  # drop of equation 5-21
+
+    def height(self, x):
+        x = np.asarray(x, float)
+        k = self.curvature
+        return -k * x * x / (1.0 + np.sqrt(np.clip(1.0 - (k * x) ** 2, 0.0, None)))
+
+    def gap(self, points):
+        p = np.asarray(points, float)
+        rd = 0.5 * self.diameter
+        return np.hypot(p[:, 0], p[:, 2] + rd) - rd
+
+    def unroll(self, x):
+        k = self.curvature
+        return np.arcsin(np.clip(k * np.asarray(x, float), -1.0, 1.0)) / k
+
+    def roll(self, s):
+        k = self.curvature
+        return np.sin(k * np.asarray(s, float)) / k
+
+    def stretch(self, x):
+        k = self.curvature
+        return 1.0 / np.sqrt(np.clip(1.0 - (k * np.asarray(x, float)) ** 2, 1e-300, None))
+
+
+@register_surface("disk")
+@dataclass(frozen=True)
+class Disk(SurfaceBase):
+    """Flat rotating disk whose circular track curves sideways (Padua: 3 m), 5.3.2.
+
+    Its :meth:`shift` is equation 5-24 (equation 5-22 with equation 5-23
+    substituted), added to each section's horizontal deflection.
+
+    Parameters
+    ----------
+    diameter : float [mm]
+        Diameter of the circular track, > 100 mm.
+    curving : {'toward', 'away'}
+        Whether the track's centre of curvature lies on the side toward which the
+        wheel top leans (``'toward'`` the camber, as when cornering) or the other.
+        With zero camber, ``'toward'`` puts the centre on ``+y``.
+    """
+
+    diameter: float
+    curving: Literal["toward", "away"] = "toward"
+    kind: ClassVar[str] = "disk"
+
+    def __post_init__(self) -> None:
+        d = float(v.positive("disk diameter", self.diameter, unit="mm"))
+        if d <= 100.0:
+            raise InvalidParameter("disk diameter", d, "> 100 mm")
+        object.__setattr__(self, "diameter", d)
+        if self.curving not in ("toward", "away"):
+            raise InvalidParameter("curving", self.curving, "'toward' or 'away'")
+
+    @property
+    def spec(self) -> str:
+        return f"disk:{self.diameter:g}:{self.curving}"
+
+    def describe(self) -> str:
+        return f"disk {self.diameter:g} mm curving {self.curving} the camber"
+
+    @classmethod
+    def from_spec(cls, args: list[str]) -> Disk:
+        if len(args) not in (1, 2):
+            raise ValueError("disk takes DIAMETER[:toward|away]")
+        return cls(float(args[0]), *args[1:])
+
+    def center_side(self, camber):
+        """+1 where the track centre is on ``+y``, -1 where on ``-y`` (per camber)."""
+        lean = np.where(np.asarray(camber, float) >= 0, 1.0, -1.0)
+        return lean if self.curving == "toward" else -lean
+
+    def shift(self, phi, wheel_radius, camber):
+        k = self.center_side(camber) * 2.0 / self.diameter
+        return curvature_drop(phi, wheel_radius, k)  # Eq. 5-24
+
+
+def parse_surface(text: str | Surface) -> Surface:
+    """A surface from its command-line form.
+
+    Parameters
+    ----------
+    text : str
+        ``flat`` (or ``plate``, ``ground``), ``drum:2500``, ``disk:3000``,
+        ``disk:3000:away`` (diameters in mm), or any registered form. A
+        :class:`Surface` passes through.
+
+    Returns
+    -------
+    Surface
+    """
+    if isinstance(text, SurfaceBase | Surface):  # SurfaceBase first: the fast check
+        return text
+    parts = [p.strip().lower() for p in str(text).split(":")]
+    name = {"plate": "flat", "ground": "flat"}.get(parts[0], parts[0])
+    cls = _REGISTRY.get(name)
+    if cls is None:
+        raise InvalidParameter("surface", text, SURFACE_FORMS)
+    try:
+        return cls.from_spec(parts[1:])
+    except InvalidParameter:
+        raise
+    except (ValueError, TypeError) as exc:
+        raise InvalidParameter("surface", text, SURFACE_FORMS) from exc
+
+
+__all__ = [
+    "SURFACE_FORMS",
+    "Disk",
+    "Drum",
+    "Flat",
+    "Surface",
+    "SurfaceBase",
+    "curvature_drop",
+    "parse_surface",
+    "register_surface",
+]

@@ -1,29 +1,49 @@
 """Parameter sweeps: tire x pressure x load x camber x slip x surface -> table.
 
-Cases without friction or deflection beyond the patch are solved together as
-arrays (:func:`tiremesh.solve_many`); the others one by one with
-:func:`tiremesh.lateral.solve_lateral`, in parallel on local processes or on a Dask
-cluster (``scheduler=ADDRESS``). Every case becomes one row; a case the model
-cannot solve becomes a row with its error.
+Every row of a sweep becomes one :class:`~tiremesh.case.LoadCase` in one place,
+:func:`case_from_row`. Cases without friction, deflection beyond the patch or slip
+are solved together as arrays (:func:`tiremesh.solve_many` on a
+:class:`~tiremesh.case.CaseTable`); the others one by one with
+:func:`tiremesh.solve_lateral`, in parallel on local processes or on a Dask cluster
+(``scheduler=ADDRESS``, through :func:`tiremesh.parallel.parallel_map`). Every case
+becomes one row; a case the model cannot solve becomes a row with its error.
 
-Case keys (units in the names): ``tire`` (catalogue id or name) or
-``tire_radius_mm`` + ``rim_width_mm``; ``rim_width_mm``; ``pressure_bar``; ``load_N``;
-``camber_deg``; ``slip_deg``; ``lateral_mm``; ``surface`` (flat | drum:D | disk:D);
-``friction`` (inf); ``relaxation`` (0 = none).
+Case keys (units in the names), see :data:`CASE_KEYS`: ``tire`` (catalogue id or
+name) or ``tire_radius_mm`` + ``rim_width_mm``; ``rim_width_mm``; ``pressure_bar``;
+``load_N``; ``camber_deg``; ``slip_deg``; ``lateral_mm``; ``surface`` (flat | drum:D |
+disk:D, or a :class:`~tiremesh.surface.Surface`); ``friction`` (inf);
+``relaxation`` (0 = no deflection beyond the patch); ``slip_kinematics``
+(leading | centre). Any other key is an error.
 """
 
 from __future__ import annotations
 
 import csv
+import difflib
 import itertools
 import math
-import os
 from pathlib import Path
+from types import SimpleNamespace
 
 import numpy as np
 
+from .case import LoadCase
 from .errors import InvalidParameter, TireModelError
 
+CASE_KEYS = (
+    "tire",
+    "tire_radius_mm",
+    "rim_width_mm",
+    "pressure_bar",
+    "load_N",
+    "camber_deg",
+    "slip_deg",
+    "lateral_mm",
+    "surface",
+    "friction",
+    "relaxation",
+    "slip_kinematics",
+)
 DEFAULTS = {
     "camber_deg": 0.0,
     "slip_deg": 0.0,
@@ -31,34 +51,138 @@ DEFAULTS = {
     "surface": "flat",
     "friction": math.inf,
     "relaxation": 0.0,
+    "slip_kinematics": "leading",
 }
+VECTOR_SECTIONS = 65  # sections per patch of the vectorized path
+STIFFNESS_PLOTS = (
+    ("norm_lateral_stiffness_1_mm", "normalized lateral stiffness [1/mm]"),
+    ("norm_camber_stiffness_1_deg", "normalized camber stiffness [1/deg]"),
+    ("norm_cornering_stiffness_1_deg", "normalized cornering stiffness [1/deg]"),
+)
+
+
+def check_keys(cases) -> None:
+    """Raise :class:`InvalidParameter` naming the first key that is not a case key.
+
+    Parameters
+    ----------
+    cases : iterable of dict
+        Sweep rows (or a grid's axes as one dict).
+
+    Raises
+    ------
+    InvalidParameter
+        A key outside :data:`CASE_KEYS` (e.g. ``camber`` instead of ``camber_deg``).
+    """
+    for case in cases:
+        for key in case:
+            if key not in CASE_KEYS:
+                near = difflib.get_close_matches(str(key), CASE_KEYS, n=1)
+                hint = f"; did you mean {near[0]!r}?" if near else ""
+                raise InvalidParameter(
+                    key,
+                    case[key],
+                    "a sweep key: " + ", ".join(CASE_KEYS),
+                    f"unknown key {key!r}{hint}",
+                )
 
 
 def grid(**axes) -> list[dict]:
-    """All combinations of the given value lists: ``grid(tire=[5, 8], pressure_bar=[3, 5])``."""
+    """All combinations of the given value lists.
+
+    Parameters
+    ----------
+    **axes
+        Case keys (:data:`CASE_KEYS`) with a value or a list of values each.
+
+    Returns
+    -------
+    list of dict
+        One case per combination, the last key varying fastest.
+
+    Raises
+    ------
+    InvalidParameter
+        An unknown key.
+
+    Examples
+    --------
+    >>> grid(tire=[5, 8], pressure_bar=[3, 5])[1]
+    {'tire': 5, 'pressure_bar': 5}
+    """
+    check_keys([axes])
     keys = list(axes)
-    vals = [np.atleast_1d(axes[k]).tolist() for k in keys]
+    vals = [[_plain(x) for x in _values(axes[k])] for k in keys]
     return [dict(zip(keys, combo, strict=True)) for combo in itertools.product(*vals)]
 
 
+def _values(axis) -> list:
+    """An axis as a list: a scalar, a string or a Surface is one value."""
+    if isinstance(axis, str | bytes) or np.ndim(axis) == 0:
+        return [axis]
+    return list(np.ravel(np.asarray(axis, dtype=object)))
+
+
+def _plain(x):
+    """numpy scalars as Python numbers (tables, JSON and equality stay simple)."""
+    return x.item() if isinstance(x, np.generic) else x
+
+
 def parse_grid(spec: str) -> list[dict]:
-    """'tire=5,8 pressure_bar=2:11:10 load_N=304,500' -> cases (a:b:n is a linspace)."""
+    """Cases from a command-line grid.
+
+    Parameters
+    ----------
+    spec : str
+        Space-separated ``key=v1,v2,...`` or ``key=start:stop:count`` (a linspace),
+        e.g. ``'tire=5,8 pressure_bar=2:11:10 load_N=304,500'``.
+
+    Returns
+    -------
+    list of dict
+
+    Raises
+    ------
+    InvalidParameter
+        A malformed part or an unknown key.
+    """
     axes = {}
     for part in spec.split():
         if "=" not in part:
             raise InvalidParameter("grid", part, "key=v1,v2,... or key=start:stop:count")
         k, val = part.split("=", 1)
-        if val.count(":") == 2:
+        if val.count(":") == 2 and _is_number(val.split(":")[0]):
             a, b, n = val.split(":")
-            axes[k] = list(np.linspace(float(a), float(b), int(n)))
+            try:
+                axes[k] = list(np.linspace(float(a), float(b), int(n)))
+            except ValueError as exc:
+                raise InvalidParameter(k, val, "start:stop:count (count an integer)") from exc
         else:
             axes[k] = [_auto(x) for x in val.split(",")]
     return grid(**axes)
 
 
 def read_cases(path) -> list[dict]:
+    """Cases from a CSV file, one per row, columns named as the case keys (empty
+    cells take the defaults).
+
+    Parameters
+    ----------
+    path : str or PathLike
+
+    Returns
+    -------
+    list of dict
+
+    Raises
+    ------
+    InvalidParameter
+        A column that is not a case key.
+    """
     with open(path, newline="", encoding="utf-8-sig") as fh:
-        return [{k: _auto(v) for k, v in r.items() if v != ""} for r in csv.DictReader(fh)]
+        cases = [{k: _auto(v) for k, v in r.items() if v != ""} for r in csv.DictReader(fh)]
+    check_keys(cases)
+    return cases
 
 
 def _auto(v):
@@ -68,128 +192,195 @@ def _auto(v):
         return v
 
 
-def _tire(case):
+def _is_number(text: str) -> bool:
+    return isinstance(_auto(text), float)
+
+
+def _number(row: dict, key: str) -> float:
+    if key not in row or row[key] is None or row[key] == "":
+        raise InvalidParameter(key, None, "a value in every case")
+    try:
+        return float(row[key])
+    except (TypeError, ValueError) as exc:
+        raise InvalidParameter(key, row[key], "a number") from exc
+
+
+def _tire(row: dict):
     from .catalog import get_tire
     from .geometry import TireGeometry
 
-    rim = case.get("rim_width_mm")
-    if "tire" in case and str(case["tire"]).strip() != "":
-        key = case["tire"]
+    rim = _number(row, "rim_width_mm") if "rim_width_mm" in row else None
+    if "tire" in row and str(row["tire"]).strip() != "":
+        key = row["tire"]
         key = str(int(key)) if isinstance(key, float) and key.is_integer() else key
         return get_tire(key, rim_width=rim)
-    if "tire_radius_mm" in case and rim is not None:
-        return TireGeometry(float(case["tire_radius_mm"]), float(rim))
+    if "tire_radius_mm" in row and rim is not None:
+        return TireGeometry(_number(row, "tire_radius_mm"), rim)
     raise InvalidParameter(
-        "tire", case.get("tire"), "a catalogue tire or tire_radius_mm + rim_width_mm"
+        "tire", row.get("tire"), "a catalogue tire or tire_radius_mm + rim_width_mm"
     )
 
 
-def solve_case(case: dict) -> dict:
-    """One row: the case and its results (never raises: errors are recorded)."""
-    from .lateral import Relaxation, solve_lateral, stiffnesses
-    from .surface import parse_surface
+def case_from_row(row: dict) -> LoadCase:
+    """The load case of one sweep row (the only place a row becomes a case).
 
-    c = {**DEFAULTS, **case}
-    row = dict(case)
+    Parameters
+    ----------
+    row : dict
+        Case keys (:data:`CASE_KEYS`); missing optional keys take :data:`DEFAULTS`
+        (note ``relaxation`` 0: no deflection beyond the patch unless asked for).
+
+    Returns
+    -------
+    LoadCase
+
+    Raises
+    ------
+    InvalidParameter
+        An unknown key, a missing ``pressure_bar`` / ``load_N`` / tire, or a value
+        the load case rejects (the message names the key).
+    """
+    check_keys([row])
+    r = {**DEFAULTS, **row}
+    return LoadCase.from_units(
+        _tire(r),
+        pressure_bar=_number(r, "pressure_bar"),
+        load_N=_number(r, "load_N"),
+        camber_deg=_number(r, "camber_deg"),
+        slip_deg=_number(r, "slip_deg"),
+        lateral_mm=_number(r, "lateral_mm"),
+        surface=r["surface"],
+        relaxation=_number(r, "relaxation"),
+        friction=_number(r, "friction"),
+        slip_kinematics=str(r["slip_kinematics"]).strip().lower(),
+    )
+
+
+def _result_row(row: dict, case: LoadCase, values: dict, extra=(), tail=()) -> dict:
+    """The input row, status, tire size, the results common to both paths (with
+    ``extra`` after the forces and ``tail`` after the force orientation), then the
+    stiffnesses (:func:`tiremesh.lateral.stiffnesses`)."""
+    from .lateral import stiffnesses
+
+    t = case.tire
+    out = dict(row)
+    out.update(status="ok", error="", tire_radius=t.tire_radius, rim_width=t.rim_width)
+    out.update(
+        {
+            "deflection_mm": values["deflection"],
+            "sinkage_pct": 100 * values["sinkage"],
+            "length_mm": values["length"],
+            "width_mm": values["width"],
+            "area_mm2": values["area"],
+            "vertical_force_N": values["vertical_force"],
+            "lateral_force_N": values["lateral_force"],
+            **dict(extra),
+            "net_force_orientation_deg": math.degrees(values["net_force_orientation"]),
+            **dict(tail),
+        }
+    )
+    forces = SimpleNamespace(
+        lateral=case.lateral,
+        slip=case.slip,
+        camber=case.camber,
+        lateral_force=values["lateral_force"],
+        vertical_force=values["vertical_force"],
+    )
+    out.update(stiffnesses(forces))
+    return out
+
+
+def _error_row(row: dict, exc: Exception) -> dict:
+    return {**row, "status": "error", "error": f"{type(exc).__name__}: {exc}"}
+
+
+def solve_case(row: dict) -> dict:
+    """Solve one sweep row with :func:`tiremesh.solve_lateral` (friction, deflection
+    beyond the patch, slip kinematics as the row says).
+
+    Parameters
+    ----------
+    row : dict
+        Case keys, see :func:`case_from_row`.
+
+    Returns
+    -------
+    dict
+        The row, ``status`` ('ok' | 'error'), ``error`` and the results
+        (deflection, patch size, forces, trail, moment, stiffnesses). Never raises
+        for a case the model rejects: the error is recorded.
+    """
+    from .lateral import solve_lateral
+
     try:
-        tire = _tire(c)
-        r = solve_lateral(
-            tire,
-            pressure=0.1 * float(c["pressure_bar"]),
-            load=float(c["load_N"]),
-            camber=math.radians(float(c["camber_deg"])),
-            slip=math.radians(float(c["slip_deg"])),
-            lateral=float(c["lateral_mm"]),
-            surface=parse_surface(str(c["surface"])),
-            relaxation=Relaxation.uniform(float(c["relaxation"])),
-            friction=float(c["friction"]),
-        )
-        p = r.patch
-        row.update(
-            {
-                "status": "ok",
-                "error": "",
-                "tire_radius": tire.tire_radius,
-                "rim_width": tire.rim_width,
-                "deflection_mm": p.deflection,
-                "sinkage_pct": 100 * p.sinkage,
-                "length_mm": p.length,
-                "width_mm": p.width,
-                "area_mm2": p.area,
-                "vertical_force_N": r.vertical_force,
-                "lateral_force_N": r.lateral_force,
-                "patch_lateral_force_N": r.patch_lateral_force,
-                "net_force_orientation_deg": math.degrees(r.net_force_orientation),
-                "pneumatic_trail_mm": r.pneumatic_trail,
-                "aligning_moment_Nmm": r.aligning_moment,
-                "relaxation_length_mm": r.relaxation_length[1],
-            }
-        )
-        row.update(stiffnesses(r))
+        case = case_from_row(row)
+        r = solve_lateral(case)
     except (TireModelError, ValueError) as exc:
-        row.update(status="error", error=f"{type(exc).__name__}: {exc}")
-    return row
+        return _error_row(row, exc)
+    p = r.patch
+    values = {
+        "deflection": p.deflection,
+        "sinkage": p.sinkage,
+        "length": p.length,
+        "width": p.width,
+        "area": p.area,
+        "vertical_force": r.vertical_force,
+        "lateral_force": r.lateral_force,
+        "net_force_orientation": r.net_force_orientation,
+    }
+    tail = {
+        "pneumatic_trail_mm": r.pneumatic_trail,
+        "aligning_moment_Nmm": r.aligning_moment,
+        "relaxation_length_mm": r.relaxation_length[1],
+    }
+    return _result_row(row, case, values, {"patch_lateral_force_N": r.patch_lateral_force}, tail)
 
 
-def _vector_rows(cases: list[dict]) -> list[dict]:
-    """Plain cases (no friction, no relaxation) solved together as arrays."""
-    from .lateral import tangent_rule
-    from .load import solve_many
-    from .surface import parse_surface
+def _solve_vector(cases: list[LoadCase]) -> list:
+    """:func:`solve_many` of ``cases``: per case a dict of floats, or the error of a
+    case the model rejects (a failing batch is bisected down to its bad cases)."""
+    from .case import CaseTable
+    from .solver import solve_many
 
-    rows, tires = [], []
-    for case in cases:
-        tires.append(_tire({**DEFAULTS, **case}))
-    c = [{**DEFAULTS, **case} for case in cases]
-    surf = [parse_surface(str(x["surface"])) for x in c]
-    drum = [s.diameter if s.kind == "drum" else np.inf for s in surf]
-    disk = [s.diameter if s.kind == "disk" else np.inf for s in surf]
-    cam = np.radians([float(x["camber_deg"]) for x in c])
-    side = [s.center_side(g) if s.kind == "disk" else 1.0 for s, g in zip(surf, cam, strict=True)]
-    out = solve_many(
-        tire_radius=[t.tire_radius for t in tires],
-        rim_width=[t.rim_width for t in tires],
-        bead_seat_diameter=[t.bead_seat_diameter for t in tires],
-        pressure=[0.1 * float(x["pressure_bar"]) for x in c],
-        load=[float(x["load_N"]) for x in c],
-        camber=cam,
-        slip=np.radians([float(x["slip_deg"]) for x in c]),
-        lateral=[float(x["lateral_mm"]) for x in c],
-        drum_diameter=drum,
-        disk_diameter=disk,
-        disk_side=side,
-        n_sections=65,
-    )
-    for i, case in enumerate(cases):
-        fy, fz = float(out["lateral_force"][i]), float(out["vertical_force"][i])
-        row = dict(case)
-        row.update(
-            {
-                "status": "ok",
-                "error": "",
-                "tire_radius": tires[i].tire_radius,
-                "rim_width": tires[i].rim_width,
-                "deflection_mm": float(out["deflection"][i]),
-                "sinkage_pct": 100 * float(out["sinkage"][i]),
-                "length_mm": float(out["length"][i]),
-                "width_mm": float(out["width"][i]),
-                "area_mm2": float(out["area"][i]),
-                "vertical_force_N": fz,
-                "lateral_force_N": fy,
-                "net_force_orientation_deg": math.degrees(float(out["net_force_orientation"][i])),
-            }
+    try:
+        out = solve_many(CaseTable.from_cases(cases), n_sections=VECTOR_SECTIONS)
+    except (TireModelError, ValueError) as exc:
+        if len(cases) == 1:
+            return [exc]
+        mid = len(cases) // 2
+        return _solve_vector(cases[:mid]) + _solve_vector(cases[mid:])
+    return [{k: float(v[i]) for k, v in out.items()} for i in range(len(cases))]
+
+
+def _vector_rows(rows: list[dict]) -> list[dict]:
+    """Plain rows (no friction, relaxation or slip) solved together as arrays."""
+    out: list = [None] * len(rows)
+    cases = {}
+    for i, row in enumerate(rows):
+        try:
+            cases[i] = case_from_row(row)
+        except (TireModelError, ValueError) as exc:
+            out[i] = _error_row(row, exc)
+    idx = list(cases)
+    for i, got in zip(idx, _solve_vector([cases[i] for i in idx]), strict=True):
+        if isinstance(got, Exception):
+            out[i] = _error_row(rows[i], got)
+        else:
+            out[i] = _result_row(rows[i], cases[i], got)
+    return out
+
+
+def _vectorizable(row: dict) -> bool:
+    """No friction, no deflection beyond the patch, no slip: :func:`solve_many` gives
+    the same forces as :func:`solve_lateral`."""
+    try:
+        return (
+            float(row.get("friction", math.inf)) == math.inf
+            and not float(row.get("relaxation", 0.0))
+            and not float(row.get("slip_deg", 0.0))
         )
-        deg = float(c[i]["camber_deg"])
-        if deg:
-            row["norm_camber_stiffness_1_deg"] = fy / fz / deg
-            row["tangent_rule_agreement"] = row["norm_camber_stiffness_1_deg"] / float(
-                tangent_rule(deg)
-            )
-            row["camber_thrust_deficiency"] = 1 - row["tangent_rule_agreement"]
-        if c[i]["lateral_mm"]:
-            row["norm_lateral_stiffness_1_mm"] = fy / fz / float(c[i]["lateral_mm"])
-        rows.append(row)
-    return rows
+    except (TypeError, ValueError):
+        return False  # solve_case records the error
 
 
 def run_sweep(
@@ -199,133 +390,155 @@ def run_sweep(
     scheduler: str | None = None,
     progress: bool = False,
 ) -> list[dict]:
-    """Solve every case; rows in the order of ``cases``."""
-    plain = [
-        i
-        for i, c in enumerate(cases)
-        if float(c.get("friction", math.inf)) == math.inf
-        and not float(c.get("relaxation", 0.0))
-        and not float(c.get("slip_deg", 0.0))
-    ]
+    """Solve every case of a sweep.
+
+    Parameters
+    ----------
+    cases : list of dict
+        Case keys (:data:`CASE_KEYS`), e.g. from :func:`grid`, :func:`parse_grid`
+        or :func:`read_cases`.
+    workers : int, optional
+        Local processes for the cases solved one by one (default: the CPU count).
+    scheduler : str, optional
+        Address of a Dask scheduler; overrides ``workers``.
+    progress : bool
+        Show a progress bar (stderr) over the cases solved one by one.
+
+    Returns
+    -------
+    list of dict
+        One row per case, in the order of ``cases`` (see :func:`solve_case`).
+
+    Raises
+    ------
+    InvalidParameter
+        A case has an unknown key (nothing is solved).
+    """
+    from .parallel import parallel_map
+
+    check_keys(cases)
     rows: list = [None] * len(cases)
-    if plain:
-        try:
-            for i, r in zip(plain, _vector_rows([cases[i] for i in plain]), strict=True):
-                rows[i] = r
-        except (TireModelError, ValueError):
-            for i in plain:  # one bad case: fall back to one by one, recording errors
-                rows[i] = solve_case(cases[i])
-    rest = [i for i in range(len(cases)) if rows[i] is None]
-    for i, r in zip(
-        rest, _map([cases[i] for i in rest], workers, scheduler, progress), strict=True
-    ):
+    plain = [i for i, c in enumerate(cases) if _vectorizable(c)]
+    for i, r in zip(plain, _vector_rows([cases[i] for i in plain]), strict=True):
         rows[i] = r
+    rest = [i for i in range(len(cases)) if rows[i] is None]
+    results = parallel_map(
+        solve_case, [cases[i] for i in rest], workers=workers, scheduler=scheduler, min_items=4
+    )
+    if progress and rest:
+        from tqdm import tqdm
+
+        results = tqdm(results, total=len(rest), desc="sweep", unit="case")
+    for j, r in results:
+        rows[rest[j]] = r
     return rows
 
 
-def _map(cases, workers, scheduler, progress):
-    if not cases:
-        return []
-    if scheduler:
-        from dask.distributed import Client
-
-        with Client(scheduler, timeout="30s") as client:
-            return client.gather(client.map(solve_case, cases, pure=False))
-    n = workers if workers is not None else (os.cpu_count() or 1)
-    if n <= 1 or len(cases) < 4:
-        return [solve_case(c) for c in cases]
-    import multiprocessing as mp
-    from concurrent.futures import ProcessPoolExecutor
-
-    with ProcessPoolExecutor(max_workers=n, mp_context=mp.get_context("forkserver")) as pool:
-        return list(pool.map(solve_case, cases, chunksize=max(1, len(cases) // (4 * n))))
-
-
-def write_rows(rows: list[dict], path) -> Path:
-    from ._io import atomic_path
-
-    cols = list(dict.fromkeys(k for r in rows for k in r))
-    with atomic_path(path) as tmp, tmp.open("w", newline="", encoding="utf-8") as fh:
-        w = csv.DictWriter(fh, fieldnames=cols, lineterminator="\n")
-        w.writeheader()
-        w.writerows(rows)
-    return Path(path)
-
-
 def sweep_plots(rows: list[dict], out_dir) -> list[Path]:
-    """Normalized stiffness vs pressure and load; tangent-rule agreement vs tire radius
-    over rim width (Figure 6-2). PNG and SVG."""
+    """Figures of a sweep: normalized stiffnesses vs pressure and load, and the
+    tangent-rule agreement vs tire radius over rim width (Figure 6-2).
+
+    Parameters
+    ----------
+    rows : list of dict
+        Rows of :func:`run_sweep` (or read back from its table: numbers as text).
+    out_dir : str or PathLike
+        Folder for the figures (created if missing).
+
+    Returns
+    -------
+    list of Path
+        PNG and SVG files written (a figure whose quantity no row has is skipped).
+    """
     import matplotlib
 
     matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    from ._io import atomic_path
-
     out = Path(out_dir)
-    out.mkdir(parents=True, exist_ok=True)
     ok = [r for r in rows if r.get("status") == "ok"]
     written = []
-    for key, label in (
-        ("norm_lateral_stiffness_1_mm", "normalized lateral stiffness [1/mm]"),
-        ("norm_camber_stiffness_1_deg", "normalized camber stiffness [1/deg]"),
-        ("norm_cornering_stiffness_1_deg", "normalized cornering stiffness [1/deg]"),
-    ):
-        rs = [r for r in ok if key in r]
-        if not rs:
-            continue
-        fig, axes = plt.subplots(1, 2, figsize=(10, 4))
-        for ax, xk in zip(axes, ("pressure_bar", "load_N"), strict=True):
-            groups = {}
-            for r in rs:
-                other = "load_N" if xk == "pressure_bar" else "pressure_bar"
-                groups.setdefault(
-                    (str(r.get("tire", r.get("tire_radius_mm"))), r.get(other)), []
-                ).append(r)
-            for (tire, val), g in sorted(groups.items(), key=lambda kv: str(kv[0])):
-                g.sort(key=lambda r: float(r[xk]))
-                ax.plot(
-                    [float(r[xk]) for r in g],
-                    [float(r[key]) for r in g],
-                    marker="o",
-                    ms=3,
-                    label=f"{tire}, {val:g}",
-                )
-            ax.set_xlabel(xk.replace("_", " "))
-            ax.set_ylabel(label)
-            ax.grid(alpha=0.3)
-        axes[1].legend(fontsize=6)
-        written += _save(fig, out / key, atomic_path, plt)
-    rs = [r for r in ok if "tangent_rule_agreement" in r]
+    for key, label in STIFFNESS_PLOTS:
+        rs = [r for r in ok if _has(r, key)]
+        if rs:
+            written += _stiffness_figure(rs, key, label, out / key)
+    rs = [r for r in ok if _has(r, "tangent_rule_agreement")]
     if rs:
-        fig, ax = plt.subplots(figsize=(6, 4))
-        sc = ax.scatter(
-            [r["tire_radius"] / r["rim_width"] for r in rs],
-            [100 * r["tangent_rule_agreement"] for r in rs],
-            c=[r["sinkage_pct"] for r in rs],
-            s=12,
-        )
-        fig.colorbar(sc, label="sinkage [%]")
-        ax.axhline(100, color="k", lw=0.8)
-        ax.set_xlabel("tire radius / rim width")
-        ax.set_ylabel("agreement with the tangent rule [%]")
-        ax.set_title("Camber thrust vs the tangent rule (cf. Figure 6-2)")
-        ax.grid(alpha=0.3)
-        written += _save(fig, out / "tangent_rule_agreement", atomic_path, plt)
+        written += _tangent_rule_figure(rs, out / "tangent_rule_agreement")
     return written
 
 
-def _save(fig, stem, atomic_path, plt):
-    paths = []
-    for ext in (".png", ".svg"):
-        with atomic_path(stem.with_suffix(ext)) as tmp:
-            fig.savefig(
-                tmp,
-                format=ext[1:],
-                bbox_inches="tight",
-                dpi=120,
-                metadata={} if ext == ".png" else {"Date": None},
+def _has(row: dict, key: str) -> bool:
+    return row.get(key) not in (None, "")
+
+
+def _save(fig, stem: Path) -> list[Path]:
+    from .io import save_figure
+
+    fig.tight_layout()
+    return save_figure(fig, stem, formats=(".png", ".svg"), dpi=120)
+
+
+def _stiffness_figure(rows: list[dict], key: str, label: str, stem: Path) -> list[Path]:
+    """``key`` vs pressure (left) and load (right), one curve per tire and the other
+    variable."""
+    import matplotlib.pyplot as plt
+
+    fig, axes = plt.subplots(1, 2, figsize=(10, 4))
+    for ax, xk, other in zip(
+        axes, ("pressure_bar", "load_N"), ("load_N", "pressure_bar"), strict=True
+    ):
+        groups: dict = {}
+        for r in rows:
+            tire = str(r.get("tire", r.get("tire_radius_mm")))
+            groups.setdefault((tire, r.get(other)), []).append(r)
+        for (tire, val), g in sorted(groups.items(), key=lambda kv: str(kv[0])):
+            g.sort(key=lambda r: float(r[xk]))
+            ax.plot(
+                [float(r[xk]) for r in g],
+                [float(r[key]) for r in g],
+                marker="o",
+                ms=3,
+                label=f"{tire}, {_label(val)}",
             )
-        paths.append(stem.with_suffix(ext))
-    plt.close(fig)
-    return paths
+        ax.set_xlabel(xk.replace("_", " "))
+        ax.set_ylabel(label)
+        ax.grid(alpha=0.3)
+    axes[1].legend(fontsize=6)
+    return _save(fig, stem)
+
+
+def _label(val) -> str:
+    return f"{val:g}" if isinstance(val, int | float) else str(val)
+
+
+def _tangent_rule_figure(rows: list[dict], stem: Path) -> list[Path]:
+    """Camber thrust against the tangent rule (cf. Figure 6-2), coloured by sinkage."""
+    import matplotlib.pyplot as plt
+
+    fig, ax = plt.subplots(figsize=(6, 4))
+    sc = ax.scatter(
+        [float(r["tire_radius"]) / float(r["rim_width"]) for r in rows],
+        [100 * float(r["tangent_rule_agreement"]) for r in rows],
+        c=[float(r["sinkage_pct"]) for r in rows],
+        s=12,
+    )
+    fig.colorbar(sc, label="sinkage [%]")
+    ax.axhline(100, color="k", lw=0.8)
+    ax.set_xlabel("tire radius / rim width")
+    ax.set_ylabel("agreement with the tangent rule [%]")
+    ax.set_title("Camber thrust vs the tangent rule (cf. Figure 6-2)")
+    ax.grid(alpha=0.3)
+    return _save(fig, stem)
+
+
+__all__ = [
+    "CASE_KEYS",
+    "DEFAULTS",
+    "case_from_row",
+    "check_keys",
+    "grid",
+    "parse_grid",
+    "read_cases",
+    "run_sweep",
+    "solve_case",
+    "sweep_plots",
+]

@@ -8,7 +8,7 @@ from numpy.testing import assert_allclose
 
 import inkprint as ip
 from inkprint.read import Scan
-from inkprint.synth import SheetSpec, render_sheet, superellipse_area
+from inkprint.synth import render_sheet
 
 from .conftest import one_print_sheet
 
@@ -125,9 +125,9 @@ def test_contact_pressure_worked_example_section_4_1_1():
     # section 4.1.1: 15479 px^2 at 0.1726 mm/px is 461.7 mm^2; under 304 N that is
     # 0.6587 N/mm^2 = 95.5 % of 100 psi (the printed numbers round the scale)
     from contactpatch import PatchMetrics
-    from inkprint.coords import area_mm2
+    from inkprint.coords import area_px_to_mm2
 
-    a = area_mm2(15479, 0.1726)
+    a = area_px_to_mm2(15479, 0.1726)
     assert_allclose(a, 461.7, rtol=2e-3)
     m = PatchMetrics(a, a, 1.0, 0, (0, 0), 0, 1, 1, 1, np.zeros(1), np.zeros(1), 1, None, None)
     cp = ip.contact_pressure(m, 304.0, 100 * 0.00689475728)
@@ -144,23 +144,40 @@ def test_pixel_to_mm_conversion_is_consistent():
     assert_allclose(y, [20.0, 17.9])  # y up from the bottom edge
 
 
-def test_superellipse_area_matches_polygon():
-    import shapely
+def test_scale_conversions_live_in_coords():
+    from inkprint import coords
 
-    from inkprint.synth import PrintSpec, _outline
+    s = coords.dpi_to_mm_per_px(300.0)
+    assert_allclose([s, coords.mm_per_px_to_dpi(s)], [25.4 / 300, 300.0])
+    assert_allclose(coords.px_to_mm_length(coords.mm_to_px_length(7.5, s), s), 7.5)
+    assert_allclose(coords.area_px_to_mm2(np.array([1, 4]), 0.5), [0.25, 1.0])
+    assert isinstance(coords.area_px_to_mm2(3, 0.5), float)
+    assert coords.area_mm2_to_px(0.05, s) == 7  # the default speck at 300 dpi
+    assert_allclose(coords.dots_per_cm_to_dpi(100.0), 254.0)
+    assert_allclose(coords.pdf_px_per_pt(25.4 / 72), 1.0)  # 72 dpi: a pixel per point
 
-    p = PrintSpec(70.0, 8.0, (0, 0))
-    assert_allclose(
-        shapely.Polygon(_outline(p, 20000)).area, superellipse_area(70.0, 8.0), rtol=1e-5
+
+def test_analyze_scan_accepts_a_path(sheet_factory):
+    path, truths = sheet_factory(
+        "by_path.png", tire_radius=12.0, load=400.0, pressure=0.5, seed=5, tread="slick"
     )
+    by_path = ip.analyze_scan(path, sensitivity=False)
+    by_str = ip.analyze_scan(str(path), sensitivity=False)
+    by_scan = ip.analyze_scan(ip.read_scan(path), sensitivity=False)
+    check(by_path, truths, 150)
+    for r in (by_str, by_scan):
+        assert [p.metrics.hull_area for p in r.prints] == [
+            p.metrics.hull_area for p in by_path.prints
+        ]
+    assert by_path.path == str(path) and by_path.scale_source == "metadata"
+    with pytest.raises(ip.InvalidInput, match="scan"):
+        ip.analyze_scan(np.ones((10, 10), np.float32))
 
 
-def test_synthetic_render_is_unbiased():
-    # coverage of a rendered slick print equals its true area (no rasterization bias)
-    spec = SheetSpec(
-        one_print_sheet(dpi=300, unevenness=0.0).prints, dpi=300, grain=0.0, gradient=0.0, specks=0
-    )
-    img, truths = render_sheet(spec)
-    paper = np.median(img)
-    dark = 1.0 - img.astype(float) / paper
-    assert_allclose(dark.sum() / 0.85 * (25.4 / 300) ** 2, truths[0].net_area, rtol=3e-3)
+def test_analyze_scan_docstring_example():
+    import doctest
+
+    import inkprint.analyze
+
+    result = doctest.testmod(inkprint.analyze, optionflags=doctest.ELLIPSIS)
+    assert result.attempted >= 5 and result.failed == 0

@@ -1,25 +1,85 @@
-"""The synthetic outline law (independent of the Rotta model)."""
+"""Synthetic sheets (inkprint.synth) measured against their exact truth.
 
+The renderer is the ground truth of every analysis test, so it is checked on its
+own: the ink it draws (pixel coverage, read through inkprint.coords) has the truth's
+area, place, orientation and extents, and the truths come in sheet order.
+"""
+
+import math
+
+import numpy as np
 import pytest
 from numpy.testing import assert_allclose
 
-from inkprint.synth import outline_law, superellipse_area
+from inkprint.coords import dpi_to_mm_per_px, px_to_mm
+from inkprint.synth import (
+    TREADS,
+    PrintSpec,
+    SheetSpec,
+    outline_law,
+    render_sheet,
+    superellipse_area,
+)
+
+DPI = 300
 
 
-def test_outline_law_maxxis_section_4_1_1():
-    # section 4.1.1: Maxxis radial, 304 N, 100 psi: a 7.57 mm wide plate print
-    length, width = outline_law(304.0, 0.6895, 9.5)
-    assert_allclose(width, 7.57, rtol=0.01)
-    # load / area = 1.03 x inflation pressure (Figure 4-3: slightly above)
-    assert_allclose(304.0 / superellipse_area(length, width), 1.03 * 0.6895, rtol=1e-9)
+def clean_sheet(*prints):
+    """Even paper, no grain, no specks: a pixel's darkness is its inked fraction."""
+    return SheetSpec(prints, dpi=DPI, size=(160.0, 240.0), grain=0.0, gradient=0.0, specks=0)
 
 
-def test_outline_law_drum_over_plate_table_4_1():
-    # Table 4-1 means: drum/plate length 92 %, width 112 %, area ~104 %
-    lp, wp = outline_law(400.0, 0.5, 12.0)
-    ld, wd = outline_law(400.0, 0.5, 12.0, surface="drum")
-    assert_allclose([ld / lp, wd / wp], [0.92, 1.12])
-    assert_allclose(superellipse_area(ld, wd) / superellipse_area(lp, wp), 1.03, atol=0.01)
+def coverage(img, ink):
+    """Inked fraction of each pixel, and the (x, y) [mm] of each pixel centre."""
+    cov = np.clip(1.0 - img.astype(float) / np.median(img), 0, None) / ink
+    rr, cc = np.mgrid[0 : img.shape[0], 0 : img.shape[1]]
+    x, y = px_to_mm(rr + 0.5, cc + 0.5, n_rows=img.shape[0], mm_per_px=dpi_to_mm_per_px(DPI))
+    return cov, x, y
+
+
+@pytest.mark.parametrize("tread", TREADS)
+def test_rendered_print_has_its_true_area_place_orientation_and_extent(tread):
+    p = PrintSpec(60.0, 12.0, (80.0, 150.0), angle=30.0, tread=tread, unevenness=0.0)
+    img, (truth,) = render_sheet(clean_sheet(p))
+    cov, x, y = coverage(img, p.ink)
+    s = dpi_to_mm_per_px(DPI)
+    w = cov.sum()
+    rtol = 0.02 if tread == "file" else 3e-3  # the file tread's 0.9 mm voids blur
+    assert_allclose(w * s * s, truth.net_area, rtol=rtol)
+    cx, cy = (cov * x).sum() / w, (cov * y).sum() / w
+    assert_allclose([cx, cy], [truth.ink.centroid.x, truth.ink.centroid.y], atol=0.02)
+    dx, dy = x - cx, y - cy
+    sxx, syy, sxy = ((cov * a * b).sum() / w for a, b in ((dx, dx), (dy, dy), (dx, dy)))
+    assert_allclose(0.5 * math.degrees(math.atan2(2 * sxy, sxx - syy)), truth.angle, atol=0.1)
+    a = math.radians(truth.angle)
+    along, across = dx * math.cos(a) + dy * math.sin(a), dy * math.cos(a) - dx * math.sin(a)
+    inked = cov > 0.5
+    assert abs(np.ptp(along[inked]) - truth.length) <= s  # pixel centres: within 1 px
+    assert abs(np.ptp(across[inked]) - truth.width) <= s
+
+
+def test_truths_come_top_to_bottom_whatever_the_spec_order():
+    low = PrintSpec(50.0, 10.0, (80.0, 60.0), unevenness=0.0)
+    high = PrintSpec(40.0, 9.0, (70.0, 180.0), angle=-20.0, unevenness=0.0)
+    img, truths = render_sheet(clean_sheet(low, high))
+    cov, x, y = coverage(img, low.ink)
+    assert [round(t.length) for t in truths] == [40, 50]
+    for t in truths:  # each truth's centroid is where its ink is drawn
+        near = (np.abs(y - t.ink.centroid.y) < 30) & (cov > 0)
+        w = cov[near].sum()
+        centroid = [(cov * x)[near].sum() / w, (cov * y)[near].sum() / w]
+        assert_allclose(centroid, [t.ink.centroid.x, t.ink.centroid.y], atol=0.02)
+
+
+def test_superellipse_area_matches_polygon():
+    import shapely
+
+    from inkprint.synth import _outline
+
+    p = PrintSpec(70.0, 8.0, (0, 0))
+    assert_allclose(
+        shapely.Polygon(_outline(p, 20000)).area, superellipse_area(70.0, 8.0), rtol=1e-5
+    )
 
 
 @pytest.mark.parametrize(("args", "match"), [((0, 0.5, 10), "load"), ((300, -1, 10), "pressure")])

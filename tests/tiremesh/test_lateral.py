@@ -153,7 +153,7 @@ def test_slip_gives_cornering_force_and_positive_trail():
     assert_allclose(c, c[0], rtol=0.02) and 0.05 < c[0] < 0.5  # linear at small slip
     assert all(r.pneumatic_trail > 0 for r in rs)
     centre = solve_lateral(
-        T37, load=400.0, pressure=4 * BAR, slip=math.radians(1), slip_anchor="centre"
+        T37, load=400.0, pressure=4 * BAR, slip=math.radians(1), slip_kinematics="centre"
     )
     assert abs(centre.lateral_force) < 1e-6  # Appendix C's centred turn: no net force
 
@@ -208,7 +208,7 @@ def test_solve_lateral_invalid():
         solve_lateral(T37, load=400.0, pressure=0.4, friction=-1)
     with pytest.raises(tm.InvalidParameter, match="relaxation"):
         solve_lateral(T37, load=400.0, pressure=0.4, relaxation=1.5)
-    with pytest.raises(tm.InvalidParameter, match="slip_anchor"):
-        solve_lateral(T37, load=400.0, pressure=0.4, slip_anchor="middle")
+    with pytest.raises(tm.InvalidParameter, match="slip_kinematics"):
+        solve_lateral(T37, load=400.0, pressure=0.4, slip_kinematics="middle")
     with pytest.raises(tm.InvalidParameter, match="method"):
         beam_rotta(tm.solve(T37, load=400.0, pressure=0.4), method="magic")

@@ -82,17 +82,18 @@ def test_solve_many_matches_single_solves():
     load = rng.uniform(250, 600, m)
     camber = rng.uniform(-0.6, 0.6, m)
     drum = np.where(rng.random(m) < 0.5, np.inf, 2500.0)
+    surfaces = [tm.Flat() if np.isinf(d) else tm.Drum(d) for d in drum]
     out = tm.solve_many(
         tire_radius=radius,
         rim_width=rim,
         pressure=pressure,
         load=load,
         camber=camber,
-        drum_diameter=drum,
+        surface=surfaces,
     )
     assert_allclose(out["vertical_force"], load, rtol=1e-6)
     for i in range(m):
-        surf = tm.Flat() if np.isinf(drum[i]) else tm.Drum(drum[i])
+        surf = surfaces[i]
         p = tm.solve(
             tm.TireGeometry(radius[i], rim[i]),
             load=load[i],

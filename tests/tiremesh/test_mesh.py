@@ -1,6 +1,9 @@
-"""Deformed-tire mesh (sections 5.2, 5.3; Figure 5-13) and its contact patch."""
+"""Deformed-tire mesh (sections 5.2, 5.3; Figure 5-13) and its contact patch.
 
-import itertools
+The patch cut from the mesh by :mod:`contactpatch` is tested in
+``tests/contactpatch/test_mesh_cut.py`` (tiremesh tests do not import contactpatch).
+"""
+
 import math
 
 import numpy as np
@@ -8,7 +11,6 @@ import pytest
 import trimesh
 from numpy.testing import assert_allclose
 
-import contactpatch as cp
 import tiremesh as tm
 from tiremesh.mesh import build_mesh, support_mesh
 
@@ -30,28 +32,26 @@ def case(request):
     return request.param, patch, build_mesh(patch)
 
 
-def test_build_mesh_patch_matches_solver_outline(case):
-    # issue 3: mesh patch vs the solver's own outline, 0.5 % at default resolution
+def test_build_mesh_contact_faces_match_solver_patch(case):
+    # the patch edges are mesh vertices: the contact faces cover the solver's patch
+    # (area along the surface, extents in unrolled x and in y) to 2e-4
     _, patch, mesh = case
-    geom = cp.patch_from_mesh(mesh, allow_multiple=False)
-    m = cp.measure(geom, axis=0.0)
-    assert_allclose(geom.area, patch.area, rtol=5e-3)
-    assert_allclose(m.length, patch.length, rtol=5e-3)
-    assert_allclose(m.width, patch.width, rtol=5e-3)
-    # in fact far better: the patch edges are mesh vertices
-    assert_allclose(
-        [geom.area, m.length, m.width], [patch.area, patch.length, patch.width], rtol=2e-4
-    )
+    area = mesh.mesh.area_faces[mesh.face_contact].sum()
+    on = mesh.point_data["contact"].astype(bool)
+    v = mesh.mesh.vertices[on]
+    s = patch.surface.unroll(v[:, 0])
+    assert_allclose(area, patch.area, rtol=2e-4)
+    assert_allclose(np.ptp(s), patch.length, rtol=2e-4)
+    assert_allclose(np.ptp(v[:, 1]), patch.width, rtol=2e-4)
 
 
-def test_build_mesh_patch_error_shrinks_with_resolution():
-    patch = tm.solve(T37, load=400.0, pressure=0.4, camber=math.radians(30), surface=tm.Drum(2500))
-    errors = []
-    for n_patch in (12, 24, 48, 96):
-        geom = cp.patch_from_mesh(build_mesh(patch, n_around=3 * n_patch, n_patch=n_patch))
-        errors.append(abs(geom.area / patch.area - 1))
-    # polygon inscribed in a smooth outline: second order in the section spacing
-    assert all(b < a / 3 for a, b in itertools.pairwise(errors)), errors
+def test_build_mesh_accepts_a_load_case():
+    case = tm.LoadCase(T37, pressure=0.4, load=400.0, camber=math.radians(20))
+    a = build_mesh(case, n_around=96)
+    b = build_mesh(tm.solve(case), n_around=96)
+    assert a.patch.case == case
+    assert_allclose(a.mesh.vertices, b.mesh.vertices, rtol=0, atol=0)
+    assert np.array_equal(a.mesh.faces, b.mesh.faces)
 
 
 def test_build_mesh_validity(case):
@@ -108,7 +108,8 @@ def test_build_mesh_contact_lies_on_surface(case):
     on = mesh.point_data["contact"].astype(bool)
     assert_allclose(mesh.surface_gap()[on], 0.0, atol=1e-9)
     assert np.all(mesh.surface_gap()[~on] > -1e-6)  # nothing below the surface
-    assert np.array_equal(cp.contact_faces(mesh), mesh.face_contact)
+    assert_allclose(mesh.surface_gap(), mesh.patch.surface.gap(mesh.mesh.vertices))
+    assert np.array_equal(mesh.face_contact, np.all(on[mesh.mesh.faces], axis=1))
 
 
 def test_build_mesh_point_data():
@@ -132,12 +133,35 @@ def test_build_mesh_invalid():
         build_mesh(patch, bulge_points=1)
     with pytest.raises(tm.InvalidParameter, match="patch"):
         build_mesh("not a patch")
+    with pytest.raises(tm.InvalidParameter, match="n_patch"):
+        build_mesh(patch, n_around=32, n_patch=30)
 
 
-@pytest.mark.parametrize("surface", [tm.Flat(), tm.Drum(2500)])
-def test_support_mesh_is_a_closed_slab(surface):
+@pytest.mark.parametrize("surface", [tm.Flat(), tm.Drum(2500), tm.Disk(3000)])
+@pytest.mark.parametrize("sink", [0.0, 0.3])
+def test_support_mesh_is_a_closed_slab(surface, sink):
     patch = tm.solve(T37, load=400.0, pressure=0.4, surface=surface)
-    slab = support_mesh(patch)
+    slab = support_mesh(patch, sink=sink, thickness=10.0)
     assert slab.is_watertight and slab.volume > 0
-    top = slab.vertices[slab.vertices[:, 2] > -1e-9]
-    assert_allclose(tm.mesh.surface_gap(surface, top), 0.0, atol=1e-9)
+    gap = surface.gap(slab.vertices)
+    top = gap > -sink - 5.0
+    # top face `sink` below the surface, bottom 10 mm further, along the normal
+    assert_allclose(gap[top], -sink, atol=1e-9)
+    assert_allclose(gap[~top], -sink - 10.0, atol=1e-9)
+    assert top.sum() == (~top).sum()
+
+
+def test_support_mesh_of_a_drum_is_a_cylinder_segment():
+    patch = tm.solve(T37, load=400.0, pressure=0.4, surface=tm.Drum(2500))
+    slab = support_mesh(patch, extent=300.0, resolution=60)
+    r = np.hypot(slab.vertices[:, 0], slab.vertices[:, 2] + 1250.0)
+    assert_allclose(np.unique(np.round(r, 6)), [1250.0 - T37.tire_radius, 1250.0])
+    # arc length along the top: the extent each way
+    top = np.isclose(r, 1250.0)
+    ang = np.arctan2(slab.vertices[top, 0], slab.vertices[top, 2] + 1250.0)
+    assert_allclose([ang.min(), ang.max()], [-300.0 / 1250.0, 300.0 / 1250.0], rtol=1e-12)
+
+
+def test_support_mesh_accepts_a_load_case():
+    case = tm.LoadCase(T37, pressure=0.4, load=400.0, surface="drum:2500")
+    assert_allclose(support_mesh(case).vertices, support_mesh(tm.solve(case)).vertices)

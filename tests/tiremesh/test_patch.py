@@ -188,7 +188,9 @@ def test_solve_lateral_and_slip_signs():
     # Appendix C: positive lateral displacement pushes the patch to +y and raises force on +y
     lat = tm.solve(T37, load=400.0, pressure=4 * BAR, lateral=1.0)
     assert lat.lateral_force > 0
-    slip = tm.solve(T37, load=400.0, pressure=4 * BAR, slip=math.radians(1))
+    slip = tm.solve(
+        T37, load=400.0, pressure=4 * BAR, slip=math.radians(1), slip_kinematics="centre"
+    )
     front = slip.centerline[slip.centerline[:, 0] > 0]
     assert np.all(front[:, 1] > 0)  # front of the patch turned toward +y
 

@@ -11,7 +11,7 @@ from numpy.testing import assert_allclose
 from PIL import Image
 
 import tiremesh as tm
-from tiremesh.export import export_mesh
+from tiremesh.export import export_mesh, patch_polydata
 from tiremesh.mesh import build_mesh
 from tiremesh.render import VIEWS, render
 
@@ -58,6 +58,23 @@ def test_render_colours_by_scalars(tire_mesh):
 def test_render_invalid(tire_mesh, kw, match):
     with pytest.raises(tm.InvalidParameter, match=match):
         render(tire_mesh, **kw)
+
+
+def test_render_accepts_a_patch_or_a_load_case(tire_mesh):
+    case = tire_mesh.patch.case
+    ref = render(build_mesh(case), view="side", size=SIZE)
+    assert np.array_equal(render(case, view="side", size=SIZE), ref)
+    assert np.array_equal(render(tire_mesh.patch, view="side", size=SIZE), ref)
+
+
+@pytest.mark.parametrize("surface", [tm.Flat(), tm.Drum(2500), tm.Disk(3000)])
+def test_export_patch_outline_lies_on_the_surface(surface):
+    patch = tm.solve(tm.get_tire(8), load=400.0, pressure=0.4, surface=surface)
+    pts = np.asarray(patch_polydata(build_mesh(patch, n_around=120)).points)
+    assert_allclose(surface.gap(pts), 0.0, atol=1e-9)
+    # wrapped back from the unrolled outline: unrolling again gives the outline
+    assert_allclose(surface.unroll(pts[:, 0]), patch.outline[:-1, 0], atol=1e-9)
+    assert_allclose(pts[:, 1], patch.outline[:-1, 1])
 
 
 def test_export_vtp_round_trip(tire_mesh, tmp_path):

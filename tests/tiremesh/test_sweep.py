@@ -5,10 +5,20 @@ import subprocess
 import sys
 
 import numpy as np
+import pytest
 from numpy.testing import assert_allclose
 
 import tiremesh as tm
-from tiremesh.sweep import grid, parse_grid, run_sweep, sweep_plots
+from tiremesh.io import read_table, write_table
+from tiremesh.sweep import (
+    case_from_row,
+    grid,
+    parse_grid,
+    read_cases,
+    run_sweep,
+    solve_case,
+    sweep_plots,
+)
 
 
 def test_sweep_vectorized_matches_single_solves():
@@ -18,13 +28,14 @@ def test_sweep_vectorized_matches_single_solves():
     rows = run_sweep(cases)
     assert len(rows) == 16 and all(r["status"] == "ok" for r in rows)
     for r in rows[::5]:
-        p = tm.solve(
+        case = tm.LoadCase.from_units(
             tm.get_tire(int(r["tire"])),
-            load=r["load_N"],
-            pressure=0.1 * r["pressure_bar"],
-            camber=math.radians(r["camber_deg"]),
+            load_N=r["load_N"],
+            pressure_bar=r["pressure_bar"],
+            camber_deg=r["camber_deg"],
             n_sections=65,
         )
+        p = tm.solve(case)
         assert_allclose(
             [r["deflection_mm"], r["lateral_force_N"]],
             [p.deflection, p.lateral_force],
@@ -86,3 +97,119 @@ def test_sweep_plots_and_cli(tmp_path):
     assert out.returncode == 0, out.stderr
     assert (tmp_path / "s.csv").read_text().count("\n") == 3
     assert np.isfinite(rows[0]["tangent_rule_agreement"])
+
+
+def test_case_from_row_is_the_one_conversion():
+    row = dict(
+        tire=8,
+        pressure_bar=4.0,
+        load_N=400.0,
+        camber_deg=10.0,
+        slip_deg=1.0,
+        lateral_mm=0.5,
+        surface="drum:2500",
+        relaxation=0.99,
+        friction=1.2,
+        slip_kinematics="centre",
+    )
+    case = case_from_row(row)
+    assert case == tm.LoadCase(
+        tm.get_tire(8),
+        pressure=0.4,
+        load=400.0,
+        camber=math.radians(10),
+        slip=math.radians(1),
+        lateral=0.5,
+        surface=tm.Drum(2500),
+        relaxation=tm.Relaxation.uniform(0.99),
+        friction=1.2,
+        slip_kinematics="centre",
+    )
+    # defaults: flat, no slip, no friction, no deflection beyond the patch
+    plain = case_from_row(dict(tire_radius_mm=15.0, rim_width_mm=17.0, pressure_bar=3, load_N=300))
+    assert plain.tire.tire_radius == 15.0 and plain.tire.rim_width == 17.0
+    assert plain.surface == tm.Flat() and plain.friction == math.inf
+    assert plain.relaxation == tm.Relaxation.uniform(0.0)
+    # a Surface object passes through
+    assert case_from_row({**row, "surface": tm.Disk(3000)}).surface == tm.Disk(3000)
+
+
+@pytest.mark.parametrize(
+    ("row", "match"),
+    [
+        (dict(tire=5, load_N=400.0), "pressure_bar"),
+        (dict(tire=5, pressure_bar=4.0), "load_N"),
+        (dict(pressure_bar=4.0, load_N=400.0), "tire"),
+        (dict(tire=5, pressure_bar="lots", load_N=400.0), "pressure_bar"),
+        (dict(tire=5, pressure_bar=4.0, load_N=400.0, camber_deg=95.0), "camber"),
+        (dict(tire=5, pressure_bar=4.0, load_N=400.0, surface="moon"), "surface"),
+        (dict(tire=5, pressure_bar=4.0, load_N=400.0, camber=45.0), "camber"),
+    ],
+)
+def test_case_from_row_names_the_bad_key(row, match):
+    with pytest.raises(tm.InvalidParameter, match=match):
+        case_from_row(row)
+    out = solve_case(row)  # recorded, not raised
+    assert out["status"] == "error" and match in out["error"]
+
+
+def test_unknown_grid_keys_are_errors(tmp_path):
+    # `camber=45` used to be silently ignored (solved at zero camber)
+    with pytest.raises(tm.InvalidParameter, match="camber_deg"):
+        grid(tire=[5], pressure_bar=[4.0], load_N=[400.0], camber=[45.0])
+    with pytest.raises(tm.InvalidParameter, match="presure_bar"):
+        parse_grid("tire=5 presure_bar=4 load_N=400")
+    with pytest.raises(tm.InvalidParameter, match="camber"):
+        run_sweep([dict(tire=5, pressure_bar=4.0, load_N=400.0, camber=45.0)])
+    path = tmp_path / "cases.csv"
+    path.write_text("tire,pressure_bar,load_N,notes\n5,4,400,x\n")
+    with pytest.raises(tm.InvalidParameter, match="notes"):
+        read_cases(path)
+
+
+def test_parse_grid_forms():
+    cases = parse_grid("tire=5 pressure_bar=2:4:3 surface=flat,disk:3000:away")
+    assert len(cases) == 6
+    assert [c["pressure_bar"] for c in cases[::2]] == [2.0, 3.0, 4.0]
+    assert {c["surface"] for c in cases} == {"flat", "disk:3000:away"}
+    assert all(type(c["pressure_bar"]) is float for c in cases)
+    with pytest.raises(tm.InvalidParameter, match="grid"):
+        parse_grid("tire")
+
+
+def test_sweep_per_case_path_is_solve_lateral_of_the_case():
+    row = dict(tire=5, pressure_bar=4.0, load_N=400.0, slip_deg=1.0, relaxation=0.993)
+    (out,) = run_sweep([row], workers=1)
+    r = tm.solve_lateral(case_from_row(row))
+    assert out["status"] == "ok"
+    assert out["lateral_force_N"] == r.lateral_force
+    assert out["pneumatic_trail_mm"] == r.pneumatic_trail
+    assert (
+        out["norm_cornering_stiffness_1_deg"]
+        == tm.stiffnesses(r)["norm_cornering_stiffness_1_deg"]
+    )
+
+
+def test_sweep_surfaces_as_objects_and_bad_cases_do_not_spoil_the_batch():
+    cases = grid(
+        tire=[5], pressure_bar=[1.0, 4.0], load_N=[400.0, 5000.0], surface=[tm.Drum(2500)]
+    )
+    rows = run_sweep(cases)
+    assert [r["status"] for r in rows] == ["ok", "error", "ok", "error"]
+    assert "largest load" in rows[1]["error"]
+    for i in (0, 2):
+        alone = run_sweep([cases[i]])[0]
+        assert alone["deflection_mm"] == pytest.approx(rows[i]["deflection_mm"], rel=1e-9)
+    # plain rows carry the same stiffness columns as rows solved one by one
+    (cam,) = run_sweep([dict(tire=5, pressure_bar=4.0, load_N=400.0, camber_deg=10.0)])
+    assert {"camber_stiffness_N_deg", "tangent_rule_agreement"} <= set(cam)
+
+
+def test_sweep_table_round_trip(tmp_path):
+    rows = run_sweep(parse_grid("tire=5 pressure_bar=3,5 load_N=400 camber_deg=5"), progress=True)
+    for ext in (".csv", ".json"):
+        back = read_table(write_table(rows, tmp_path / f"s{ext}"))
+        assert [float(r["lateral_force_N"]) for r in back] == [r["lateral_force_N"] for r in rows]
+    # figures from a table read back (numbers as text)
+    paths = sweep_plots(read_table(tmp_path / "s.csv"), tmp_path / "plots")
+    assert {p.name for p in paths} >= {"norm_camber_stiffness_1_deg.png"}

@@ -40,3 +40,14 @@ def test_parse_length():
 def test_parse_pressure_invalid(text):
     with pytest.raises(tm.InvalidParameter, match="pressure"):
         parse_pressure(text)
+
+
+def test_bar_is_one_constant_at_every_edge():
+    from tiremesh.sweep import case_from_row
+    from tiremesh.units import MPA_PER_BAR
+
+    assert parse_pressure("1bar") == MPA_PER_BAR
+    case = tm.LoadCase.from_units(tm.get_tire(5), pressure_bar=4.0, load_N=400.0)
+    assert case.pressure == 4.0 * MPA_PER_BAR
+    assert case_from_row(dict(tire=5, pressure_bar=4.0, load_N=400.0)).pressure == case.pressure
+    assert case.describe()["pressure_bar"] == 4.0

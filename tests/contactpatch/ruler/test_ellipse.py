@@ -1,4 +1,4 @@
-"""Ellipse fits (direct, Appendix C least squares, moments)."""
+"""contactpatch.ruler.ellipse: ellipse fits (direct, Appendix C least squares, moments)."""
 
 import math
 

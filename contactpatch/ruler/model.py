@@ -1,4 +1,5 @@
-"""Model patches as measurable regions, and the appendix's ellipse (section 5.4).
+"""Model patches as measurable regions, and the appendix's ellipse (Dressel 2013,
+section 5.4, Figure 5-15).
 
 Figure 5-15's ellipse (98.49 x 9.783 mm for the 55 mm Big Apple at 5 mm
 deflection) is Appendix C's ``fit_ellipse`` -- a plain least-squares conic -- fitted
@@ -15,25 +16,44 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..errors import InvalidInput
 from .ellipse import EllipseFit, fit_ellipse_lsq
-from .errors import InvalidInput
+from .metrics import as_geometry
 
 
 def patch_polygon(patch):
-    """The solver's patch outline as a shapely Polygon (ground x, y [mm])."""
-    import shapely
+    """The solver's patch outline as a valid region (as :func:`contactpatch.measure`
+    sees it).
 
-    return shapely.Polygon(patch.outline)
-
-
-def appendix_points(patch, *, sections_per_half: int = 151, last_angle_deg: float = 15.0):
-    """The point set Appendix C fits its ellipse to: patch edges and centre line of
-    the sections in contact, on ``sections_per_half`` sections per half of the
-    wheel spaced uniformly from 0 to ``last_angle_deg``.
+    Parameters
+    ----------
+    patch : tiremesh.ContactPatch
 
     Returns
     -------
-    points : (n, 2) float [mm], as (y, x): lateral, forward
+    shapely Polygon [mm]
+        ``(s, y)``: arc length along the surface (ground ``x`` on flat ground) and
+        lateral. Made valid: the pointed ends may close with a round-off bow tie.
+    """
+    return as_geometry(patch)
+
+
+def appendix_points(patch, *, sections_per_half: int = 151, last_angle_deg: float = 15.0):
+    """The point set Appendix C fits its ellipse to (Figure 5-15): the patch edges and
+    centre line of the sections in contact.
+
+    Parameters
+    ----------
+    patch : tiremesh.ContactPatch
+    sections_per_half : int
+        Sections per half of the wheel, spaced uniformly in angle (>= 3).
+    last_angle_deg : float [deg]
+        Angle of the last section from bottom dead centre, in (0, 90).
+
+    Returns
+    -------
+    points : (n, 2) float [mm]
+        As (y, x): lateral, forward (the appendix's order).
     """
     if not isinstance(sections_per_half, int) or sections_per_half < 3:
         raise InvalidInput("sections_per_half", sections_per_half, "an integer >= 3")
@@ -51,10 +71,25 @@ def appendix_points(patch, *, sections_per_half: int = 151, last_angle_deg: floa
     return np.concatenate(pts)
 
 
-def appendix_ellipse(patch, **kwargs) -> EllipseFit:
-    """Figure 5-15's ellipse: :func:`fit_ellipse_lsq` on :func:`appendix_points`
-    (section 5.4). Returned in ground (x, y) coordinates (angle from +x)."""
-    pts = appendix_points(patch, **kwargs)
+def appendix_ellipse(patch, *, sections_per_half: int = 151, last_angle_deg: float = 15.0):
+    """Figure 5-15's ellipse (section 5.4): :func:`fit_ellipse_lsq` on
+    :func:`appendix_points`.
+
+    Parameters
+    ----------
+    patch : tiremesh.ContactPatch
+    sections_per_half, last_angle_deg : int, float [deg]
+        As in :func:`appendix_points`.
+
+    Returns
+    -------
+    EllipseFit
+        Method ``'appendix-lsq'``, in ground ``(x, y)`` [mm] (angle from +x);
+        falsy if the fit fails.
+    """
+    pts = appendix_points(
+        patch, sections_per_half=sections_per_half, last_angle_deg=last_angle_deg
+    )
     e = fit_ellipse_lsq(pts[:, ::-1])
     if e:
         return EllipseFit(e.center, e.length, e.width, e.angle, "appendix-lsq")

@@ -1,4 +1,4 @@
-"""Shared patch metrics and the model's appendix ellipse (section 5.4)."""
+"""contactpatch.ruler.metrics: shared patch metrics (section 4.1.1)."""
 
 import math
 
@@ -9,7 +9,6 @@ from numpy.testing import assert_allclose
 from shapely import affinity
 
 import contactpatch as cp
-import tiremesh as tm
 
 
 def test_measure_rectangle_with_hole():
@@ -52,17 +51,32 @@ def test_measure_invalid(region, kw, match):
         cp.measure(region, **kw)
 
 
-def test_appendix_ellipse_figure_5_15():
-    # Figure 5-15 (section 5.4; configuration in published-values.md): the fitted
-    # ellipse is 98.49 mm long, 9.783 mm wide, 756.8 mm^2 (Appendix C's fit_ellipse on
-    # the patch edges and centre line, 151 sections per half over 15 degrees)
-    tire = tm.TireGeometry.from_arc_length(128.2, 18.7)
-    patch = tm.solve_patch(tire, 5.0, pressure=0.4)
-    e = cp.appendix_ellipse(patch)
-    assert_allclose([e.length, e.width, e.area], [98.49, 9.783, 756.8], rtol=0.01)
-    assert_allclose([e.length, e.width, e.area], [98.49, 9.783, 756.8], rtol=1e-3)  # in fact
-    assert_allclose(e.length / patch.length, 0.8295, atol=0.005)  # 82.95 % of the patch
-    # the direct fit to the outline is a different (longer) ellipse: say which one
-    m = cp.measure(patch, axis=0.0)
-    assert m.ellipse_direct.length > 1.05 * e.length
-    assert_allclose(m.area, patch.area, rtol=1e-4)
+def test_measure_boundary_samples_is_an_option():
+    e = cp.EllipseFit((0.0, 0.0), 60.0, 12.0, 0.0)
+    poly = shapely.Polygon(e.boundary(500))
+    coarse = cp.measure(poly, boundary_samples=12)
+    fine = cp.measure(poly)  # default: 360 points along the hull
+    assert_allclose(fine.ellipse_direct.length, 60.0, rtol=1e-3)
+    assert coarse.ellipse_direct and coarse.ellipse_direct.length != fine.ellipse_direct.length
+    with pytest.raises(cp.InvalidInput, match="boundary_samples"):
+        cp.measure(poly, boundary_samples=4)
+
+
+def test_measure_net_area_and_centroid_of_an_outline():
+    hull = shapely.box(0, 0, 20, 10)
+    m = cp.measure(hull, net_area=150.0, net_centroid=(9.0, 5.0))
+    assert_allclose([m.area, m.hull_area, m.solidity], [150.0, 200.0, 0.75])
+    assert m.centroid == (9.0, 5.0)
+    with pytest.raises(cp.InvalidInput, match="net_area"):
+        cp.measure(hull, net_area=250.0)
+
+
+def test_measure_outline_array_and_patch_like_object():
+    ring = np.array([[0, 0], [40, 0], [40, 8], [0, 8], [0, 0]], float)
+
+    class Patch:
+        outline = ring
+
+    a, b = cp.measure(ring), cp.measure(Patch())
+    assert_allclose([a.length, a.width, a.area], [40, 8, 320])
+    assert_allclose([b.length, b.width, b.area], [40, 8, 320])

@@ -1,8 +1,9 @@
-"""Report figures (matplotlib, PNG and SVG), model vs prints.
+"""Report figures (matplotlib), model vs prints.
 
 Each function takes table rows (lists of dicts) and returns a matplotlib Figure;
-:func:`save` writes it as PNG and SVG atomically and deterministically (no dates or
-random ids in the SVG), so the same inputs give the same files.
+:func:`tiremesh.io.save_figure` writes it (PNG and SVG, atomically). The SVG is
+deterministic (no dates; a fixed ``svg.hashsalt`` for its ids), so the same inputs
+give the same files.
 """
 
 from __future__ import annotations
@@ -13,12 +14,17 @@ from pathlib import Path
 
 import numpy as np
 
-from ._util import number_or_nan as _f
+from tiremesh.io import cell_number_or_nan as _f
+from tiremesh.units import MPA_PER_BAR
+
+from ..ruler.ellipse import EllipseFit
+from .trends import DISSERTATION_TABLE_4_1
 
 MARKERS = "osD^v<>ph*"
 
 
 def _plt():
+    """pyplot on the Agg backend, with the report's style."""
     import matplotlib
 
     matplotlib.use("Agg")
@@ -28,31 +34,28 @@ def _plt():
     return plt
 
 
-def save(fig, stem) -> list[Path]:
-    """Write ``stem.png`` and ``stem.svg`` (atomically); returns the paths."""
-    from ._io import atomic_path
-
-    stem = Path(stem)
-    out = []
-    for ext, kw in ((".png", {"dpi": 130}), (".svg", {"metadata": {"Date": None}})):
-        path = stem.with_suffix(ext)
-        with atomic_path(path) as tmp:
-            fig.savefig(tmp, format=ext[1:], bbox_inches="tight", **kw)
-        out.append(path)
-    _plt().close(fig)
-    return out
-
-
 def _ok(rows):
+    """Rows where both the print and the model are ``ok``."""
     return [r for r in rows if r.get("status", "ok") == "ok" and r.get("model_status") == "ok"]
 
 
 def _tires(rows):
+    """Tire names of the rows, sorted."""
     return sorted({str(r.get("tire", "")) for r in rows})
 
 
 def area_vs_length_width(paired):
-    """Figure 6-3: contact area vs length and vs width, model and prints."""
+    """Contact area vs length and vs width, model and prints (cf. Figure 6-3).
+
+    Parameters
+    ----------
+    paired : list of dict
+        Rows of :func:`contactpatch.pair_prints`.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
     plt = _plt()
     fig, axes = plt.subplots(1, 2, figsize=(10, 4.2), sharey=True)
     rows = _ok(paired)
@@ -87,24 +90,35 @@ def area_vs_length_width(paired):
     fig.suptitle(
         "Area vs length and width: prints (filled) and Rotta model (open), cf. Figure 6-3"
     )
+    fig.tight_layout()
     return fig
 
 
 def load_per_area(paired):
-    """Figure 4-3: load / print area vs inflation pressure, with the 1:1 line."""
+    """Load over print area vs inflation pressure, with the 1:1 line (cf. Figure 4-3).
+
+    Parameters
+    ----------
+    paired : list of dict
+        Print rows (``pressure_bar`` [bar], ``load_per_hull_area_N_mm2``).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
     plt = _plt()
     fig, ax = plt.subplots(figsize=(5.5, 5))
     rows = [r for r in paired if r.get("status", "ok") == "ok"]
     for k, surface in enumerate(sorted({str(r.get("surface", "")) for r in rows})):
         rs = [r for r in rows if r.get("surface") == surface]
         ax.scatter(
-            [0.1 * _f(r["pressure_bar"]) for r in rs],
+            [MPA_PER_BAR * _f(r["pressure_bar"]) for r in rs],
             [_f(r["load_per_hull_area_N_mm2"]) for r in rs],
             marker=MARKERS[k],
             color=f"C{k}",
             label=surface,
         )
-    p = [0.1 * _f(r["pressure_bar"]) for r in rows]
+    p = [MPA_PER_BAR * _f(r["pressure_bar"]) for r in rows]
     if p:
         lim = [0, 1.15 * max(p)]
         ax.plot(lim, lim, "k-", lw=1, label="load / area = inflation pressure")
@@ -115,11 +129,25 @@ def load_per_area(paired):
     ax.set_title("Load over contact area vs inflation pressure (cf. Figure 4-3)")
     ax.grid(alpha=0.3)
     ax.legend(fontsize=8)
+    fig.tight_layout()
     return fig
 
 
 def tire_trends(paired, tire: str):
-    """Length, width and area vs pressure and vs load for one tire: prints and model."""
+    """Length, width and area vs pressure and vs load for one tire: prints and model.
+
+    Parameters
+    ----------
+    paired : list of dict
+        Rows of :func:`contactpatch.pair_prints`.
+    tire : str
+        The tire's name (``tire`` column).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        2 x 3 log-log panels.
+    """
     plt = _plt()
     rows = [r for r in _ok(paired) if r["tire"] == tire]
     fig, axes = plt.subplots(2, 3, figsize=(11, 6))
@@ -168,12 +196,24 @@ def tire_trends(paired, tire: str):
 
 
 def print_overlays(paired, *, columns: int = 4):
-    """Each print's hull and ellipse with the model patch outline, same scale (mm),
-    both centred and turned so the rolling direction is vertical."""
+    """Each print's hull and ellipse with the model patch outline, same scale.
+
+    Both are centred and turned so the rolling direction is vertical.
+
+    Parameters
+    ----------
+    paired : list of dict
+        Rows of :func:`contactpatch.pair_prints` (with ``hull_wkt`` and
+        ``model_outline_wkt`` [mm]).
+    columns : int
+        Panels per figure row.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
     import shapely
     from shapely import affinity
-
-    from .ellipse import EllipseFit
 
     plt = _plt()
     rows = [r for r in _ok(paired) if r.get("hull_wkt") and r.get("model_outline_wkt")]
@@ -219,11 +259,21 @@ def print_overlays(paired, *, columns: int = 4):
 
 
 def drum_vs_plate(print_summary, model_summary):
-    """Drum / plate ratios (Table 4-1): prints, model, and the dissertation's means."""
+    """Drum / plate ratios (Table 4-1): prints, model, and the dissertation's means.
+
+    Parameters
+    ----------
+    print_summary, model_summary : list of dict
+        Summaries of :func:`contactpatch.drum_plate_ratios` (length, width, area).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
     plt = _plt()
     fig, ax = plt.subplots(figsize=(6, 4))
     names = ["length", "width", "area"]
-    diss = [0.92, 1.12, 1.04]  # Table 4-1 means
+    diss = [s["mean"] for s in DISSERTATION_TABLE_4_1]
     x = np.arange(3)
     pm = [s["mean"] for s in print_summary][:3]
     ps = [s["stdev"] for s in print_summary][:3]
@@ -239,4 +289,5 @@ def drum_vs_plate(print_summary, model_summary):
     ax.set_ylim(0.6, 1.4)
     ax.legend(fontsize=8)
     ax.set_title("2.5 m drum vs flat plate")
+    fig.tight_layout()
     return fig

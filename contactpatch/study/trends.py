@@ -1,4 +1,5 @@
-"""Trends of patch size with pressure and load, prints and model (sections 4.1.1, 6.2).
+"""Trends of patch size with pressure and load, prints and model (Dressel 2013,
+sections 4.1.1, 6.2).
 
 * :func:`power_law_fit`: per group (tire, surface), the log-log regression
   ``log y = a + b log p + c log F`` -> the exponents of pressure (``b``) and load
@@ -17,9 +18,20 @@ from collections import defaultdict
 
 import numpy as np
 
-from ._util import number_or_nan as _f
-from .errors import InvalidInput
+import tiremesh as tm
+from tiremesh.io import cell_number_or_nan as _f
 
+from ..errors import InvalidInput
+from .compare import case_of
+
+#: a log-variable spanning less than this does not vary (no exponent is fitted)
+LOG_SPAN_ATOL = 1e-12
+#: Table 4-1 of the dissertation: measured drum / plate ratios of prints
+DISSERTATION_TABLE_4_1 = [
+    {"quantity": "length_mm", "max": 1.05, "min": 0.81, "mean": 0.92, "stdev": 0.031},
+    {"quantity": "width_mm", "max": 1.32, "min": 0.83, "mean": 1.12, "stdev": 0.085},
+    {"quantity": "hull_area_mm2", "max": 1.19, "min": 0.68, "mean": 1.04, "stdev": 0.082},
+]
 QUANTITIES = {
     "length": ("length_mm", "model_length_mm"),
     "width": ("width_mm", "model_width_mm"),
@@ -30,17 +42,29 @@ QUANTITIES = {
 def power_law_fit(x_pressure, x_load, y) -> dict:
     """Exponents of ``y ~ p^b F^c`` by least squares in logs.
 
+    Parameters
+    ----------
+    x_pressure : (n,) float [bar]
+        Inflation pressures (any unit: only ratios matter).
+    x_load : (n,) float [N]
+        Loads.
+    y : (n,) float
+        The size (length, width or area); points with a value <= 0 or not finite in
+        any of the three are left out.
+
     Returns
     -------
-    dict with ``b`` (pressure exponent), ``c`` (load exponent), ``r2``, ``n``;
-    NaN where a variable does not vary or there are too few points.
+    dict
+        ``b`` (pressure exponent), ``c`` (load exponent), ``r2`` (coefficient of
+        determination in logs), ``n`` (points used); NaN where a variable does not
+        vary or there are too few points.
     """
     p, f, yy = (np.asarray(a, float) for a in (x_pressure, x_load, y))
     ok = (p > 0) & (f > 0) & (yy > 0) & np.isfinite(p) & np.isfinite(f) & np.isfinite(yy)
     p, f, yy = np.log(p[ok]), np.log(f[ok]), np.log(yy[ok])
     cols, names = [np.ones_like(yy)], []
     for arr, name in ((p, "b"), (f, "c")):
-        if arr.size and np.ptp(arr) > 1e-12:
+        if arr.size and np.ptp(arr) > LOG_SPAN_ATOL:
             cols.append(arr)
             names.append(name)
     out = {"b": math.nan, "c": math.nan, "r2": math.nan, "n": int(yy.size)}
@@ -57,7 +81,23 @@ def power_law_fit(x_pressure, x_load, y) -> dict:
 
 
 def trend_table(paired: list[dict], *, group_keys=("tire", "surface")) -> list[dict]:
-    """One row per group and quantity: pressure and load exponents, prints and model."""
+    """Pressure and load exponents of length, width and area, prints and model.
+
+    Parameters
+    ----------
+    paired : list of dict
+        Rows of :func:`contactpatch.pair_prints`; only rows with both the print and
+        the model ``ok`` count.
+    group_keys : tuple of str
+        Columns that define a group (one power-law fit each).
+
+    Returns
+    -------
+    list of dict
+        One row per group and quantity: the group keys, ``quantity``, ``n``,
+        ``print_pressure_exp``, ``model_pressure_exp``, ``print_load_exp``,
+        ``model_load_exp``, ``print_r2``, ``model_r2``.
+    """
     groups = defaultdict(list)
     for r in paired:
         if r.get("status", "ok") == "ok" and r.get("model_status") == "ok":
@@ -87,8 +127,20 @@ def trend_table(paired: list[dict], *, group_keys=("tire", "surface")) -> list[d
 
 
 def sign_agreement(trends: list[dict]) -> list[dict]:
-    """Section 6.2.4 style counts: per quantity and variable, in how many groups the
-    prints and the model increase / decrease, and how often they agree."""
+    """Section 6.2.4 style counts of how sizes change with pressure and load.
+
+    Parameters
+    ----------
+    trends : list of dict
+        Rows of :func:`trend_table`.
+
+    Returns
+    -------
+    list of dict
+        Per quantity and variable (``pressure``, ``load``): ``cases`` (groups with
+        both exponents), ``print_increases``, ``model_increases`` and ``agree`` (same
+        sign).
+    """
     out = []
     for q in QUANTITIES:
         for var in ("pressure", "load"):
@@ -114,7 +166,19 @@ def sign_agreement(trends: list[dict]) -> list[dict]:
 
 
 def describe_agreement(row: dict) -> str:
-    """'Print length decreases with pressure in 6 of 6 cases; the model agrees in 6 of 6.'"""
+    """One row of :func:`sign_agreement` as a sentence.
+
+    Parameters
+    ----------
+    row : dict
+        A row of :func:`sign_agreement`.
+
+    Returns
+    -------
+    str
+        E.g. 'Print length decreases with pressure in 6 of 6 cases; the model agrees
+        in 6 of 6.'
+    """
     n, inc = row["cases"], row["print_increases"]
     word = "increases" if inc >= n - inc else "decreases"
     k = inc if word == "increases" else n - inc
@@ -132,12 +196,22 @@ def drum_plate_ratios(
 ) -> tuple[list[dict], list[dict]]:
     """Drum over plate ratios for prints (or model columns) of the same load case.
 
+    Parameters
+    ----------
+    rows : list of dict
+        Print rows (or paired rows with the model's columns renamed to the print's).
+    keys : tuple of str
+        Columns to take ratios of.
+    match : tuple of str
+        Columns that must agree for a drum row and a plate row to pair up.
+
     Returns
     -------
     pairs : list of dict
         One row per matched (drum, plate) pair with the ratios.
     summary : list of dict
-        Table 4-1: per quantity max, min, mean, stdev of the ratio.
+        Table 4-1: per quantity ``max``, ``min``, ``mean``, ``stdev`` of the ratio
+        and ``n``.
     """
     by_case = defaultdict(lambda: {"drum": [], "plate": []})
     for r in rows:
@@ -173,13 +247,41 @@ def drum_plate_ratios(
     return pairs, summary
 
 
+def _median_case(rows: list[dict]) -> dict:
+    """The middle row by (pressure, load)."""
+    rows = sorted(rows, key=lambda r: (_f(r["pressure_bar"]), _f(r["load_N"])))
+    return rows[len(rows) // 2]
+
+
+def _sizes(case: tm.LoadCase) -> tuple[float, float, float] | None:
+    """Model length, width [mm] and area [mm^2], or None if it cannot be solved."""
+    try:
+        p = tm.solve(case)
+    except tm.TireModelError:
+        return None
+    return p.length, p.width, p.area
+
+
 def rim_sensitivity(paired: list[dict], *, step: float = 0.1) -> list[dict]:
-    """Model d log(y) / d log(rim width) per tire at its median load case (plate),
-    by central differences of +-``step`` in rim width."""
-    import tiremesh as tm
+    """The model's d log(size) / d log(rim width) per tire, on flat ground.
 
-    from .compare import tire_of
+    Central differences of +-``step`` in rim width at each tire's median load case
+    (by pressure, then load).
 
+    Parameters
+    ----------
+    paired : list of dict
+        Rows of :func:`contactpatch.pair_prints` (rows with the model ``ok`` count).
+    step : float [-]
+        Relative rim-width change, in (0, 0.5).
+
+    Returns
+    -------
+    list of dict
+        Per tire: ``tire``, ``rim_width_mm``, ``pressure_bar``, ``load_N`` and
+        ``dlog_{length,width,area}_dlog_rim``; tires the model cannot solve at either
+        rim width are left out.
+    """
     if not 0 < step < 0.5:
         raise InvalidInput("step", step, "(0, 0.5)")
     by_tire = defaultdict(list)
@@ -188,21 +290,22 @@ def rim_sensitivity(paired: list[dict], *, step: float = 0.1) -> list[dict]:
             by_tire[str(r.get("tire", ""))].append(r)
     out = []
     for name in sorted(by_tire):
-        rs = sorted(by_tire[name], key=lambda r: (_f(r["pressure_bar"]), _f(r["load_N"])))
-        r = rs[len(rs) // 2]
-        tire = tire_of(r)
-        vals = {}
-        for sgn in (-1, 1):
-            t = tm.TireGeometry(
-                tire.tire_radius, tire.rim_width * (1 + sgn * step), tire.bead_seat_diameter
+        r = _median_case(by_tire[name])
+        case = case_of(r).replace(surface=tm.Flat())
+        tire = case.tire
+        sizes = [
+            _sizes(
+                case.replace(
+                    tire=tm.TireGeometry(
+                        tire.tire_radius,
+                        tire.rim_width * (1 + sgn * step),
+                        tire.bead_seat_diameter,
+                    )
+                )
             )
-            try:
-                p = tm.solve(t, load=_f(r["load_N"]), pressure=0.1 * _f(r["pressure_bar"]))
-            except tm.TireModelError:
-                vals = {}
-                break
-            vals[sgn] = (p.length, p.width, p.area)
-        if not vals:
+            for sgn in (-1, 1)
+        ]
+        if None in sizes:
             continue
         d = math.log((1 + step) / (1 - step))
         row = {
@@ -212,6 +315,6 @@ def rim_sensitivity(paired: list[dict], *, step: float = 0.1) -> list[dict]:
             "load_N": _f(r["load_N"]),
         }
         for i, q in enumerate(("length", "width", "area")):
-            row[f"dlog_{q}_dlog_rim"] = math.log(vals[1][i] / vals[-1][i]) / d
+            row[f"dlog_{q}_dlog_rim"] = math.log(sizes[1][i] / sizes[0][i]) / d
         out.append(row)
     return out

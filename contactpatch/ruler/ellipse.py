@@ -1,4 +1,5 @@
-"""Ellipse fits, shared by model patches and ink prints.
+"""Ellipse fits, shared by model patches and ink prints (Dressel 2013, section 5.4,
+Figure 5-15).
 
 Three estimators, each returning an :class:`EllipseFit` (falsy when it fails):
 
@@ -24,24 +25,36 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ._tol import tol
+from .._tol import tol
+
+#: a conic has 5 degrees of freedom: fewer distinct points cannot fix an ellipse
+MIN_FIT_POINTS = 5
 
 
 @dataclass(frozen=True)
 class EllipseFit:
     """A fitted ellipse, or a failed fit (falsy, with a reason).
 
-    Attributes
+    Parameters
     ----------
-    center : (2,) float
-    length, width : float
+    center : (2,) float [mm]
+        Centre in the coordinates of the fitted points.
+    length, width : float [mm]
         Full major and minor axes (``length >= width``).
     angle : float [rad]
         Major-axis direction from +x, in (-pi/2, pi/2].
     method : str
+        Estimator: ``'direct'``, ``'lsq'``, ``'moments'`` or ``'appendix-lsq'``.
     success : bool
+        False for a failed fit (the numbers are then NaN).
     reason : str
         Why the fit failed (empty on success).
+
+    Examples
+    --------
+    >>> e = EllipseFit((0.0, 0.0), 4.0, 2.0, 0.0)
+    >>> round(e.area, 6), bool(e)
+    (6.283185, True)
     """
 
     center: tuple[float, float] = (np.nan, np.nan)
@@ -57,15 +70,21 @@ class EllipseFit:
 
     @property
     def area(self) -> float:
-        """``pi * length * width / 4``."""
+        """``pi * length * width / 4`` [mm^2]."""
         return float(np.pi * self.length * self.width / 4.0)
 
-    @property
-    def axis_ratio(self) -> float:
-        return float(self.length / self.width)
-
     def boundary(self, n: int = 100) -> np.ndarray:
-        """(n, 2) points on the ellipse."""
+        """Points on the ellipse, first and last equal.
+
+        Parameters
+        ----------
+        n : int
+            Number of points.
+
+        Returns
+        -------
+        points : (n, 2) float [mm]
+        """
         t = np.linspace(0.0, 2 * np.pi, n)
         a, b = 0.5 * self.length, 0.5 * self.width
         c, s = np.cos(self.angle), np.sin(self.angle)
@@ -74,23 +93,57 @@ class EllipseFit:
 
     @classmethod
     def failed(cls, method: str, reason: str) -> EllipseFit:
+        """A failed fit.
+
+        Parameters
+        ----------
+        method : str
+            The estimator that failed.
+        reason : str
+            Why, for the user.
+
+        Returns
+        -------
+        EllipseFit
+            Falsy, all numbers NaN.
+        """
         return cls(method=method, success=False, reason=reason)
 
 
+def axis_angle(vx: float, vy: float) -> float:
+    """Direction of an axis (a line, not an arrow) from +x.
+
+    Parameters
+    ----------
+    vx, vy : float
+        A vector along the axis.
+
+    Returns
+    -------
+    angle : float [rad]
+        In (-pi/2, pi/2], the convention of every fit here.
+    """
+    angle = float(np.arctan2(vy, vx))
+    if angle <= -np.pi / 2:
+        angle += np.pi
+    elif angle > np.pi / 2:
+        angle -= np.pi
+    return angle
+
+
 def _prepare(points, method):
+    """Centred and scaled points, their mean and scale, or a failed fit."""
     p = np.asarray(points, dtype=float)
+    fail = None
     if p.ndim != 2 or p.shape[1] != 2:
-        return None, None, None, EllipseFit.failed(method, f"points must be (n, 2), got {p.shape}")
-    if not np.all(np.isfinite(p)):
-        return None, None, None, EllipseFit.failed(method, "points contain NaN or inf")
-    distinct = len(np.unique(p, axis=0))  # repeated points keep their weight in the fit
-    if distinct < tol.min_fit_points:
-        return (
-            None,
-            None,
-            None,
-            EllipseFit.failed(method, f"{distinct} distinct points, need >= 5"),
-        )
+        fail = f"points must be (n, 2), got {p.shape}"
+    elif not np.all(np.isfinite(p)):
+        fail = "points contain NaN or inf"
+    elif (distinct := len(np.unique(p, axis=0))) < MIN_FIT_POINTS:
+        # repeated points keep their weight in the fit; only distinct ones count here
+        fail = f"{distinct} distinct points, need >= {MIN_FIT_POINTS}"
+    if fail is not None:
+        return None, None, None, EllipseFit.failed(method, fail)
     mean = p.mean(axis=0)
     scale = np.sqrt(np.mean(np.sum((p - mean) ** 2, axis=1)))
     if scale == 0:
@@ -99,8 +152,24 @@ def _prepare(points, method):
 
 
 def conic_to_ellipse(coef, *, method: str = "", mean=(0.0, 0.0), scale: float = 1.0) -> EllipseFit:
-    """Ellipse of the conic ``A x^2 + B xy + C y^2 + D x + E y + F = 0`` (in coordinates
-    ``(p - mean) / scale``), or a failed fit if it is not a real ellipse."""
+    """Ellipse of the conic ``A x^2 + B xy + C y^2 + D x + E y + F = 0``.
+
+    Parameters
+    ----------
+    coef : (6,) float
+        ``A, B, C, D, E, F`` in the normalized coordinates ``(p - mean) / scale``.
+    method : str
+        Recorded in the result.
+    mean : (2,) float [mm]
+        Mean removed from the data before fitting.
+    scale : float [mm]
+        Scale the centred data were divided by.
+
+    Returns
+    -------
+    EllipseFit
+        In the original coordinates; failed if the conic is not a real ellipse.
+    """
     A, B, C, D, E, F = np.asarray(coef, float) / np.linalg.norm(coef)
     disc = 4 * A * C - B * B
     if not np.isfinite(disc) or disc <= tol.ellipse_discriminant:
@@ -116,25 +185,26 @@ def conic_to_ellipse(coef, *, method: str = "", mean=(0.0, 0.0), scale: float = 
         return EllipseFit.failed(method, "the fitted conic is an imaginary ellipse")
     semi = np.sqrt(semi2)
     k = int(np.argmax(semi))  # major axis: the smaller |eigenvalue|
-    vx, vy = vec[:, k]
-    angle = float(np.arctan2(vy, vx))
-    if angle <= -np.pi / 2:
-        angle += np.pi
-    elif angle > np.pi / 2:
-        angle -= np.pi
     center = (float(mean[0] + scale * x0), float(mean[1] + scale * y0))
     return EllipseFit(
-        center, float(2 * scale * semi[k]), float(2 * scale * semi[1 - k]), angle, method
+        center,
+        float(2 * scale * semi[k]),
+        float(2 * scale * semi[1 - k]),
+        axis_angle(*vec[:, k]),
+        method,
     )
 
 
 def fit_ellipse_direct(points) -> EllipseFit:
     """Direct least-squares ellipse (Fitzgibbon 1999, Halir-Flusser 1998 form).
 
+    The fit :func:`contactpatch.measure` applies to a patch's hull boundary; a
+    different ellipse from Figure 5-15's (see :func:`fit_ellipse_lsq`).
+
     Parameters
     ----------
-    points : (n, 2) float
-        Boundary points, n >= 5.
+    points : (n, 2) float [mm]
+        Boundary points, at least 5 distinct.
 
     Returns
     -------
@@ -158,7 +228,8 @@ def fit_ellipse_direct(points) -> EllipseFit:
         w, vecs = np.linalg.eig(M)
     # the ellipse is a real eigenpair (for exact data, the zero eigenvalue; the other
     # two may then form a complex pair): keep real ones with 4AC - B^2 > 0
-    real = np.abs(np.imag(w)) <= 1e-8 * max(np.max(np.abs(w)), np.finfo(float).tiny)
+    wmax = max(np.max(np.abs(w)), np.finfo(float).tiny)
+    real = np.abs(np.imag(w)) <= tol.eigen_imag_rtol * wmax
     vecs = np.real(vecs)
     cond = 4 * vecs[0] * vecs[2] - vecs[1] ** 2
     ok = np.nonzero(real & (cond > 0))[0]
@@ -172,8 +243,19 @@ def fit_ellipse_lsq(points) -> EllipseFit:
     """Algebraic least-squares conic about the data mean (Appendix C's ``fit_ellipse``).
 
     Solves ``a x^2 + b xy + c y^2 + d x + e y = -1`` for centred points. Reproduces
-    the ellipse of Figure 5-15 from the appendix's point set (patch edges and
-    centre line). May fit a hyperbola: then a failed fit.
+    the ellipse of Figure 5-15 (Dressel 2013, section 5.4) from the appendix's point
+    set (patch edges and centre line, :func:`contactpatch.appendix_points`).
+
+    Parameters
+    ----------
+    points : (n, 2) float [mm]
+        At least 5 distinct points.
+
+    Returns
+    -------
+    EllipseFit
+        Falsy with a reason for degenerate points or a conic that is not an ellipse
+        (e.g. a hyperbola).
     """
     method = "lsq"
     p, mean, scale, fail = _prepare(points, method)
@@ -187,8 +269,20 @@ def fit_ellipse_lsq(points) -> EllipseFit:
     return conic_to_ellipse(np.append(sol, 1.0), method=method, mean=mean, scale=scale)
 
 
-def _polygon_moments(geom):
-    """Area, centroid and central second moments of a shapely (Multi)Polygon."""
+def polygon_moments(geom):
+    """Area, centroid and central second moments of a region (Green's theorem).
+
+    Parameters
+    ----------
+    geom : shapely Polygon or MultiPolygon
+        Holes count negatively.
+
+    Returns
+    -------
+    (area, centroid, cov) or None
+        ``area`` float [mm^2], ``centroid`` (2,) [mm], ``cov`` (2, 2) float [mm^2]
+        (second moments about the centroid per unit area); None for zero area.
+    """
     from shapely.geometry.polygon import orient
 
     polys = list(getattr(geom, "geoms", [geom]))
@@ -216,39 +310,57 @@ def _polygon_moments(geom):
 
 
 def _cov_to_ellipse(center, cov, method) -> EllipseFit:
+    """The uniform ellipse with this centroid and covariance."""
     lam, vec = np.linalg.eigh(cov)
     if not np.all(np.isfinite(lam)) or lam[0] <= 0:
         return EllipseFit.failed(method, "region has no area in one direction")
-    vx, vy = vec[:, 1]
-    angle = float(np.arctan2(vy, vx))
-    if angle <= -np.pi / 2:
-        angle += np.pi
-    elif angle > np.pi / 2:
-        angle -= np.pi
     # a uniform ellipse with semi-axes a, b has variances a^2 / 4 and b^2 / 4
     return EllipseFit(
         (float(center[0]), float(center[1])),
         float(4 * np.sqrt(lam[1])),
         float(4 * np.sqrt(lam[0])),
-        angle,
+        axis_angle(*vec[:, 1]),
         method,
     )
 
 
 def ellipse_from_moments(region) -> EllipseFit:
-    """Ellipse with the area centroid and second moments of a shapely (Multi)Polygon."""
+    """Ellipse with the area centroid and second moments of a region.
+
+    Parameters
+    ----------
+    region : shapely Polygon or MultiPolygon [mm]
+
+    Returns
+    -------
+    EllipseFit
+        Method ``'moments'``; failed for an empty region or zero area.
+    """
     method = "moments"
     if region is None or getattr(region, "is_empty", True):
         return EllipseFit.failed(method, "empty region")
-    m = _polygon_moments(region)
+    m = polygon_moments(region)
     if m is None:
         return EllipseFit.failed(method, "region has zero area")
     return _cov_to_ellipse(m[1], m[2], method)
 
 
 def ellipse_from_mask(mask, *, pixel_size: float = 1.0) -> EllipseFit:
-    """Moments ellipse of a boolean image (row, col) in (x, y) = (col, row) units of
-    ``pixel_size``; each pixel counts as a filled square (variance + 1/12 px^2)."""
+    """Moments ellipse of a boolean image; each pixel counts as a filled square
+    (variance + 1/12 px^2).
+
+    Parameters
+    ----------
+    mask : (rows, cols) bool
+        Image, indexed (row, col); ``x`` = column, ``y`` = row.
+    pixel_size : float [mm/px]
+        Pixel pitch; the result is in these units.
+
+    Returns
+    -------
+    EllipseFit
+        Method ``'moments'``; failed for an empty mask.
+    """
     method = "moments"
     m = np.asarray(mask, bool)
     rows, cols = np.nonzero(m)

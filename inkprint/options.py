@@ -1,0 +1,193 @@
+"""Judgement thresholds of the print analysis, passed explicitly (never a global).
+
+An :class:`AnalysisOptions` travels as an argument from the caller to every step
+(:func:`inkprint.read_scan`, :func:`inkprint.binarize`, :func:`inkprint.group_blobs`,
+:func:`inkprint.edge_spots`, :func:`inkprint.analyze_scan`) and, inside the batch
+options, to worker processes and Dask workers: a worker re-imports :mod:`inkprint`, so
+a module-level setting changed by the caller would not reach it.
+
+Sizes are physical (mm, mm^2) and converted to pixels with the scan's scale
+(:mod:`inkprint.coords`), so the same options work at 150 and 600 dpi.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from dataclasses import dataclass
+from numbers import Real
+
+from .errors import InvalidInput
+
+
+def _finite(v) -> bool:
+    return isinstance(v, Real) and not isinstance(v, bool) and math.isfinite(v)
+
+
+# field -> (accepts the value, allowed range as told in the error)
+_RULES = {
+    "group_distance_mm": (lambda v: v > 0, "> 0 mm"),
+    "min_patch_area_mm2": (lambda v: v >= 0, ">= 0 mm^2"),
+    "min_patch_width_mm": (lambda v: v >= 0, ">= 0 mm"),
+    "min_net_to_gross": (lambda v: 0 <= v <= 1, "a fraction in [0, 1]"),
+    "max_patch_aspect": (lambda v: v >= 1, ">= 1 (length over width)"),
+    "speck_area_mm2": (lambda v: v >= 0, ">= 0 mm^2"),
+    "edge_spot_area_mm2": (lambda v: v >= 0, ">= 0 mm^2"),
+    "edge_spot_faintness": (lambda v: 0 <= v <= 1, "a fraction in [0, 1]"),
+    "edge_spot_distance_mm": (lambda v: v >= 0, ">= 0 mm"),
+    "edge_window_mm": (lambda v: v > 0, "> 0 mm"),
+    "sensitivity": (lambda v: 0 <= v < 1, "a relative change in [0, 1)"),
+    "min_ink_fraction": (lambda v: 0 <= v < 1, "a fraction in [0, 1)"),
+    "max_ink_fraction": (lambda v: 0 < v <= 1, "a fraction in (0, 1]"),
+    "max_pixels": (lambda v: v >= 1 and float(v).is_integer(), "a whole number of pixels >= 1"),
+    "min_dpi": (lambda v: v > 0, "> 0 dots per inch"),
+    "max_dpi": (lambda v: v > 0, "> 0 dots per inch"),
+    "pdf_dpi": (lambda v: v > 0, "> 0 dots per inch"),
+}
+
+
+@dataclass(frozen=True)
+class AnalysisOptions:
+    """Thresholds that decide what is a print, an edge spot or a usable scan.
+
+    Every field has the default the analysis was validated with; change one with
+    ``AnalysisOptions(min_patch_area_mm2=50.0)`` or :meth:`replace`. Invalid values
+    raise :class:`inkprint.InvalidInput` naming the field.
+
+    Parameters
+    ----------
+    group_distance_mm : float [mm]
+        Ink blobs closer than this belong to the same print (joins the knobs and
+        ribs of a tread; two prints on a sheet are further apart).
+    min_patch_area_mm2 : float [mm^2]
+        A group with less ink is a label, dust or a mark, not a print.
+    min_patch_width_mm : float [mm]
+        A group narrower than this across its axis is a line or handwriting (a
+        ruler, a pen stroke, a label's text line); bicycle prints are >= ~7 mm wide
+        (section 4.1.1).
+    min_net_to_gross : float [-]
+        A group whose ink covers less of its hull than this fraction is writing,
+        not a print.
+    max_patch_aspect : float [-]
+        A group longer than this many widths is a line, not a contact patch.
+    speck_area_mm2 : float [mm^2]
+        Ink blobs smaller than this are paper grain or dust and are removed.
+    edge_spot_area_mm2 : float [mm^2]
+        Section 7.1.1 rule: blobs at least this large (and dark) form the print's
+        core.
+    edge_spot_faintness : float [-]
+        A blob outside the core whose peak darkness is below this fraction of the
+        core's was not pressed: it bore no load.
+    edge_spot_distance_mm : float [mm]
+        A small blob outside the core farther than this from it bore no load.
+    edge_window_mm : float [mm]
+        Window of the local paper and ink levels whose mean defines the print's
+        edge (half contrast) for the outline.
+    sensitivity : float [-]
+        Relative threshold change of the sensitivity band: each print is measured
+        again at the threshold x (1 -+ ``sensitivity``).
+    min_ink_fraction, max_ink_fraction : float [-]
+        A sheet with less of its area inked than ``min_ink_fraction`` is blank
+        (:class:`inkprint.NoInk`); with more than ``max_ink_fraction``, all ink
+        (:class:`inkprint.AllInk`).
+    max_pixels : int [px]
+        Largest image accepted (width x height); larger files raise
+        :class:`inkprint.ImageTooLarge` before decoding (decompression-bomb guard).
+        2.5e8 is a letter sheet at 1800 dpi.
+    min_dpi, max_dpi : float [dots per inch]
+        Plausible scan resolutions: DPI metadata outside the range is ignored, a
+        scale given outside it is refused.
+    pdf_dpi : float [dots per inch]
+        Resolution at which PDF pages are rendered when no scale is given.
+    """
+
+    group_distance_mm: float = 3.0
+    min_patch_area_mm2: float = 100.0
+    min_patch_width_mm: float = 4.5
+    min_net_to_gross: float = 0.15
+    max_patch_aspect: float = 30.0
+    speck_area_mm2: float = 0.05
+    edge_spot_area_mm2: float = 1.5
+    edge_spot_faintness: float = 0.6
+    edge_spot_distance_mm: float = 2.0
+    edge_window_mm: float = 0.6
+    sensitivity: float = 0.10
+    min_ink_fraction: float = 1e-5
+    max_ink_fraction: float = 0.6
+    max_pixels: int = 250_000_000
+    min_dpi: float = 30.0
+    max_dpi: float = 10_000.0
+    pdf_dpi: float = 300.0
+
+    def __post_init__(self) -> None:
+        for name, (ok, allowed) in _RULES.items():
+            value = getattr(self, name)
+            if not (_finite(value) and ok(value)):
+                raise InvalidInput(name, value, allowed)
+        object.__setattr__(self, "max_pixels", int(self.max_pixels))
+        if self.max_ink_fraction <= self.min_ink_fraction:
+            raise InvalidInput(
+                "max_ink_fraction",
+                self.max_ink_fraction,
+                f"> min_ink_fraction = {self.min_ink_fraction:g}",
+            )
+        if self.max_dpi <= self.min_dpi:
+            raise InvalidInput("max_dpi", self.max_dpi, f"> min_dpi = {self.min_dpi:g}")
+        if not self.min_dpi <= self.pdf_dpi <= self.max_dpi:
+            raise InvalidInput(
+                "pdf_dpi",
+                self.pdf_dpi,
+                f"[min_dpi, max_dpi] = [{self.min_dpi:g}, {self.max_dpi:g}]",
+            )
+
+    def replace(self, **changes) -> AnalysisOptions:
+        """A copy with some fields changed (validated like a new instance).
+
+        Parameters
+        ----------
+        **changes
+            Field names and their new values, e.g. ``group_distance_mm=5.0``.
+
+        Returns
+        -------
+        AnalysisOptions
+
+        Raises
+        ------
+        InvalidInput
+            An unknown field name, or a value outside the field's range.
+        """
+        names = {f.name for f in dataclasses.fields(self)}
+        for name, value in changes.items():
+            if name not in names:
+                raise InvalidInput(name, value, "a field of AnalysisOptions")
+        return dataclasses.replace(self, **changes)
+
+
+DEFAULT_OPTIONS = AnalysisOptions()
+
+
+def resolve_options(options: AnalysisOptions | None) -> AnalysisOptions:
+    """The options a step runs with: ``options``, or the defaults when None.
+
+    Parameters
+    ----------
+    options : AnalysisOptions or None
+
+    Returns
+    -------
+    AnalysisOptions
+
+    Raises
+    ------
+    InvalidInput
+        ``options`` is neither None nor an :class:`AnalysisOptions`.
+    """
+    if options is None:
+        return DEFAULT_OPTIONS
+    if not isinstance(options, AnalysisOptions):
+        raise InvalidInput("options", type(options).__name__, "an inkprint.AnalysisOptions")
+    return options
+
+
+__all__ = ["DEFAULT_OPTIONS", "AnalysisOptions", "resolve_options"]

@@ -1,0 +1,212 @@
+"""Judgement thresholds are options passed explicitly, and they reach the workers.
+
+Before AnalysisOptions, ``inkprint.tol.min_patch_area_mm2 = 1e9`` gave error rows
+with one worker and ok rows with two: worker processes re-imported the module
+global. Here a threshold set by the caller must give the same rows in this process,
+in local worker processes and on a Dask cluster.
+"""
+
+import csv
+import math
+
+import pytest
+
+import inkprint as ip
+from inkprint import AnalysisOptions, InvalidInput
+from inkprint.batch import Options, run_batch
+from inkprint.synth import drum_and_plate_sheet, render_sheet, save_scan
+
+# a pool that cannot start falls back to this process with this warning: make it fail
+real_workers = pytest.mark.filterwarnings("error:worker processes failed")
+HUGE = AnalysisOptions(min_patch_area_mm2=1e9)
+# no blob is faint or far enough to be an edge spot: all ink bears load
+KEEP_ALL_INK = AnalysisOptions(edge_spot_faintness=0.0, edge_spot_distance_mm=1e3)
+
+
+@pytest.fixture(scope="module")
+def scans(tmp_path_factory):
+    d = tmp_path_factory.mktemp("option_scans")
+    for i in range(3):
+        spec = drum_and_plate_sheet(
+            tire_radius=12.0, load=350.0 + 50 * i, pressure=0.5, seed=i, halo_spots=8
+        )
+        img, _ = render_sheet(spec)
+        save_scan(img, d / f"s{i}.png", dpi=spec.dpi)
+    return d
+
+
+def batch_rows(src, out, options, **kw):
+    run_batch(src, out, options=options, progress=False, resume=False, **kw)
+    with open(out, newline="") as fh:
+        return list(csv.DictReader(fh))
+
+
+def no_print_rows(rows):
+    return all(
+        r["status"] == "error"
+        and r["error"].startswith("NoInk")
+        and "too little ink" in r["error"]
+        for r in rows
+    )
+
+
+@real_workers
+def test_threshold_reaches_local_worker_processes(scans, tmp_path):
+    opts = Options(sensitivity=False, analysis=HUGE)
+    one = batch_rows(scans, tmp_path / "one.csv", opts, workers=1)
+    two = batch_rows(scans, tmp_path / "two.csv", opts, workers=2)
+    assert len(one) == 3 and no_print_rows(one)
+    assert two == one
+
+
+@real_workers
+def test_band_width_reaches_local_worker_processes(scans, tmp_path):
+    wide = AnalysisOptions(sensitivity=0.3)
+    default = batch_rows(scans, tmp_path / "default.csv", Options(), workers=1)
+    one = batch_rows(scans, tmp_path / "one.csv", Options(analysis=wide), workers=1)
+    two = batch_rows(scans, tmp_path / "two.csv", wide, workers=2)  # AnalysisOptions alone
+    assert two == one and len(one) == 6 and all(r["status"] == "ok" for r in one)
+
+    def spread(r):
+        return float(r["area_mm2_hi"]) - float(r["area_mm2_lo"])
+
+    assert all(spread(w) > spread(d) for w, d in zip(one, default, strict=True))
+
+
+def test_threshold_reaches_dask_workers(scans, tmp_path):
+    from dask.distributed import LocalCluster
+
+    opts = Options(sensitivity=False, analysis=HUGE)
+    light = dict(sensitivity=False, method="fixed", threshold=0.7)  # the halo spots are ink
+    keep = Options(**light, analysis=KEEP_ALL_INK)
+    local = batch_rows(scans, tmp_path / "local.csv", opts, workers=1)
+    local_default = batch_rows(scans, tmp_path / "local_default.csv", Options(**light), workers=1)
+    local_keep = batch_rows(scans, tmp_path / "local_keep.csv", keep, workers=1)
+    with LocalCluster(
+        n_workers=1, processes=True, threads_per_worker=1, dashboard_address=None
+    ) as cluster:
+        addr = cluster.scheduler_address
+        remote = batch_rows(scans, tmp_path / "dask.csv", opts, scheduler=addr)
+        remote_keep = batch_rows(scans, tmp_path / "dask_keep.csv", keep, scheduler=addr)
+    assert no_print_rows(remote) and remote == local
+    assert remote_keep == local_keep and len(remote_keep) == 6
+    assert all(r["status"] == "ok" and r["n_edge_spots"] == "0" for r in remote_keep)
+    assert all(int(r["n_edge_spots"]) > 0 for r in local_default)
+
+
+def test_options_change_single_calls(sheet_factory):
+    path, _ = sheet_factory(
+        "opts.png", tire_radius=12.0, load=400.0, pressure=0.5, seed=4, halo_spots=12
+    )
+    scan = ip.read_scan(path)
+    with pytest.raises(ip.NoInk, match="too little ink"):
+        ip.analyze_scan(scan, sensitivity=False, options=HUGE)
+    light = dict(sensitivity=False, method="fixed", threshold=0.7)  # the halo spots are ink
+    base = ip.analyze_scan(scan, **light)
+    kept = ip.analyze_scan(scan, **light, options=KEEP_ALL_INK)
+    assert sum(p.n_edge_spots for p in base.prints) > 0
+    assert sum(p.n_edge_spots for p in kept.prints) == 0
+    b = ip.binarize(scan.grey, mm_per_px=scan.mm_per_px)
+    assert len(ip.group_blobs(b.mask, mm_per_px=scan.mm_per_px)) > 2
+    joined = AnalysisOptions(group_distance_mm=300.0)
+    assert len(ip.group_blobs(b.mask, mm_per_px=scan.mm_per_px, options=joined)) == 1
+    with pytest.raises(ip.AllInk):
+        ip.binarize(
+            scan.grey,
+            mm_per_px=scan.mm_per_px,
+            options=AnalysisOptions(min_ink_fraction=0.0, max_ink_fraction=1e-4),
+        )
+    with pytest.raises(ip.ImageTooLarge):
+        ip.read_scan(path, options=AnalysisOptions(max_pixels=1000))
+    with pytest.raises(InvalidInput, match="dpi"):
+        ip.read_scan(path, dpi=20)
+    assert ip.read_scan(path, dpi=20, options=AnalysisOptions(min_dpi=10.0)).dpi == 20
+    with pytest.raises(InvalidInput, match="options"):
+        ip.analyze_scan(scan, options={"min_patch_area_mm2": 1e9})
+
+
+@pytest.mark.parametrize(
+    ("field", "value"),
+    [
+        ("group_distance_mm", 0.0),
+        ("group_distance_mm", -3.0),
+        ("min_patch_area_mm2", -1.0),
+        ("min_patch_area_mm2", math.nan),
+        ("min_patch_width_mm", math.inf),
+        ("min_net_to_gross", 1.5),
+        ("max_patch_aspect", 0.5),
+        ("speck_area_mm2", "0.05"),
+        ("edge_spot_area_mm2", None),
+        ("edge_spot_faintness", -0.1),
+        ("edge_spot_distance_mm", -2.0),
+        ("edge_window_mm", 0.0),
+        ("sensitivity", 1.0),
+        ("sensitivity", True),
+        ("min_ink_fraction", -1e-5),
+        ("max_ink_fraction", 1.2),
+        ("max_pixels", 0),
+        ("max_pixels", 2.5),
+        ("min_dpi", 0.0),
+        ("max_dpi", -1.0),
+        ("pdf_dpi", math.nan),
+    ],
+)
+def test_invalid_option_names_its_field(field, value):
+    with pytest.raises(InvalidInput, match=field):
+        AnalysisOptions(**{field: value})
+    with pytest.raises(InvalidInput, match=field):
+        AnalysisOptions().replace(**{field: value})
+
+
+@pytest.mark.parametrize(
+    ("kw", "field"),
+    [
+        ({"min_ink_fraction": 0.5, "max_ink_fraction": 0.4}, "max_ink_fraction"),
+        ({"min_dpi": 500.0, "max_dpi": 400.0}, "max_dpi"),
+        ({"pdf_dpi": 20.0}, "pdf_dpi"),
+        ({"max_dpi": 200.0}, "pdf_dpi"),
+    ],
+)
+def test_inconsistent_options_name_the_field(kw, field):
+    with pytest.raises(InvalidInput, match=field):
+        AnalysisOptions(**kw)
+
+
+def test_options_replace_and_defaults():
+    base = AnalysisOptions()
+    changed = base.replace(group_distance_mm=5.0, max_pixels=1e6)
+    assert changed.group_distance_mm == 5.0 and base.group_distance_mm == 3.0
+    assert changed.max_pixels == 1_000_000 and isinstance(changed.max_pixels, int)
+    assert changed.replace(group_distance_mm=3.0, max_pixels=250_000_000) == base
+    with pytest.raises(InvalidInput, match="group_distanse_mm"):
+        base.replace(group_distanse_mm=5.0)
+    with pytest.raises(AttributeError):
+        base.group_distance_mm = 1.0  # frozen: no hidden global to change
+
+
+def test_public_api():
+    for name in ("AnalysisOptions", "run_batch", "BatchResult", "draw_overlay"):
+        assert name in ip.__all__ and hasattr(ip, name)
+    assert not hasattr(ip, "tol") and "tol" not in ip.__all__
+
+
+def test_cli_threshold_options(scans, tmp_path, capsys):
+    from inkprint.cli import main
+
+    scan = str(scans / "s0.png")
+    assert main(["analyze", scan, "--no-band", "--min-patch-area", "1e9"]) == 2
+    assert "too little ink" in capsys.readouterr().out
+    assert main(["analyze", scan, "--no-band", "--min-patch-width", "50"]) == 2
+    assert "mm wide" in capsys.readouterr().out
+    # 150 mm joins both prints and the ruler into one group: not a print
+    assert main(["analyze", scan, "--no-band", "--group-distance", "150"]) == 2
+    assert "writing or marks" in capsys.readouterr().out
+    assert main(["analyze", scan, "--no-band", "--csv", "--group-distance", "2.5"]) == 0
+    assert len(list(csv.DictReader(capsys.readouterr().out.splitlines()))) == 2
+    assert main(["analyze", scan, "--group-distance", "-1"]) == 2
+    assert "group_distance_mm" in capsys.readouterr().err
+    out = tmp_path / "b.csv"
+    args = ["batch", str(scans), "-o", str(out), "--workers", "2", "--quiet", "--no-band"]
+    assert main([*args, "--min-patch-area", "1e9"]) == 0
+    with open(out, newline="") as fh:
+        assert no_print_rows(list(csv.DictReader(fh)))

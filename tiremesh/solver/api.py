@@ -1,0 +1,280 @@
+"""Public entry points of the solver: one load case (:func:`solve`) or many
+(:func:`solve_many`), plus the load search on its own (:func:`find_sinkage`,
+:func:`max_load`)."""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass
+
+import numpy as np
+
+from .. import _validate as v
+from .._tol import tol
+from ..case import MAX_SECTIONS, CaseTable, LoadCase
+from ..errors import InvalidParameter, NotConverged
+from ..geometry import TireGeometry
+from .arrays import CaseArrays, case_arrays, group_by_surface, single_case_arrays
+from .evaluate import evaluate
+from .kinematics import displacements
+from .load import find_deflection, max_load_arrays
+from .patch import ContactPatch, patch_from_arrays
+
+
+def as_case(case, fields: dict) -> LoadCase:
+    """A LoadCase from ``case`` (returned as is, with ``fields`` applied) or from a
+    tire and keyword fields (the keyword convenience of every entry point)."""
+    if isinstance(case, LoadCase):
+        return case.replace(**fields) if fields else case
+    if isinstance(case, TireGeometry):
+        return LoadCase(case, **fields)
+    raise InvalidParameter("case", case, "a LoadCase, or a TireGeometry with keyword fields")
+
+
+def check_deflection(dw, cs: CaseArrays, name: str = "deflection"):
+    """``dw`` (m, 1) [mm] if every case is in (0, max deflection], else InvalidParameter."""
+    dmax = cs.max_deflection()
+    if np.any(dw > dmax):
+        i = int(np.argmax((dw > dmax).ravel()))
+        raise InvalidParameter(
+            name,
+            float(dw.flat[i]),
+            f"0 < {name} <= {float(dmax.flat[i]):.6g} mm",
+            "a bead would reach the support surface or a bulge run out of carcass",
+        )
+    return dw
+
+
+@dataclass(frozen=True)
+class Solved:
+    """Deflection-level solution of m cases on one surface (before the patch
+    integrals at the requested section count).
+
+    Attributes
+    ----------
+    cs : CaseArrays
+        The cases, the slip anchor offset included in ``lateral``.
+    dw : (m, 1) float [mm]
+        Wheel deflection.
+    ends : (rear, front) of (m, 1) float [rad], or None (not yet solved)
+    track_offset : (m, 1) float [mm], or None
+        Offset of a curved track (section 5.3.2), with ``ends``.
+    slip_offset : (m, 1) float [mm]
+        Lateral shift of the ``'leading'`` slip kinematics.
+    """
+
+    cs: CaseArrays
+    dw: np.ndarray
+    ends: tuple | None
+    track_offset: np.ndarray | None
+    slip_offset: np.ndarray
+
+    def evaluate(self, n: int):
+        """The patches with ``n`` sections (:func:`evaluate`)."""
+        return evaluate(self.cs, self.dw, n, ends=self.ends, offset=self.track_offset)
+
+
+def _deflection(cs: CaseArrays, load, deflection):
+    if load is not None:
+        return find_deflection(cs, load)
+    return check_deflection(deflection, cs), None, None
+
+
+def solve_arrays(cs: CaseArrays, *, load=None, deflection=None, leading=None) -> Solved:
+    """Wheel deflection, patch ends and slip anchor offset of m cases on one surface.
+
+    Parameters
+    ----------
+    cs : CaseArrays
+    load, deflection : (m, 1) float [N, mm]
+        Exactly one given.
+    leading : (m, 1) bool, optional
+        Cases with the ``'leading'`` slip kinematics: the lateral displacement is
+        shifted by ``-x_lead tan(slip)`` so that ``dh = lateral`` at the leading edge
+        (a fixed point, solved to ``tol.disk_offset_atol``).
+
+    Returns
+    -------
+    Solved
+    """
+    ta = np.tan(cs.slip)
+    active = (ta != 0) if leading is None else (np.asarray(leading) & (ta != 0))
+    base = cs.lateral
+    offset, prev = np.zeros_like(cs.r0), None
+    for _ in range(tol.max_iter):
+        cs_k = cs.with_lateral(base + offset)
+        dw, ends, track = _deflection(cs_k, load, deflection)
+        if not np.any(active):
+            return Solved(cs_k, dw, ends, track, offset)
+        if ends is None:
+            ends, track = evaluate(cs_k, dw, 9).ends_and_offset()
+        x_front = displacements(ends[1], dw, cs_k, 0.0).x
+        g = offset + np.where(active, x_front * ta, 0.0)  # zero when dh = lateral at the lead
+        if np.all(np.abs(g) <= tol.disk_offset_atol):
+            return Solved(cs_k, dw, ends, track, offset)
+        step = -g  # fixed-point step, then secant steps (the map is smooth and monotone)
+        if prev is not None:
+            with np.errstate(divide="ignore", invalid="ignore"):
+                secant = -g * (offset - prev[0]) / (g - prev[1])
+            step = np.where(np.isfinite(secant), secant, step)
+        prev = (offset, g)
+        offset = offset + step
+    raise NotConverged("leading-edge slip anchor", {"offset_mm": offset.ravel()})
+
+
+def solve(case: LoadCase | TireGeometry, /, **fields) -> ContactPatch:
+    """Solve the 3D Rotta model for one load case (sections 5.2, 5.3, 5.4 and 5.5).
+
+    Parameters
+    ----------
+    case : LoadCase or TireGeometry
+        The load case; or a tire, with the other :class:`LoadCase` fields as keywords
+        (``pressure``, ``load`` or ``deflection``, ``camber``...).
+    **fields
+        Load-case fields (applied with :meth:`LoadCase.replace` when ``case`` is a
+        LoadCase).
+
+    Returns
+    -------
+    ContactPatch
+
+    Examples
+    --------
+    >>> import tiremesh as tm
+    >>> patch = tm.solve(tm.get_tire(1), pressure=0.4, load=400.0)
+    >>> round(patch.vertical_force, 6)
+    400.0
+    """
+    case = as_case(case, fields)
+    cs = single_case_arrays(case)
+    load = None if case.load is None else np.array([[case.load]])
+    dw0 = None if case.deflection is None else np.array([[case.deflection]])
+    leading = np.array([[case.slip_kinematics == "leading"]])
+    sv = solve_arrays(cs, load=load, deflection=dw0, leading=leading)
+    out = sv.evaluate(case.n_sections)
+    return patch_from_arrays(case, out, 0, float(sv.dw[0, 0]), float(sv.slip_offset[0, 0]))
+
+
+def solve_patch(case: LoadCase | TireGeometry, deflection: float | None = None, /, **fields):
+    """:func:`solve` at a given wheel ``deflection`` [mm] (keyword convenience)."""
+    if deflection is not None:
+        fields = {**fields, "deflection": deflection, "load": None}
+    return solve(case, **fields)
+
+
+def find_sinkage(case: LoadCase | TireGeometry, load: float | None = None, /, **fields) -> float:
+    """Wheel deflection [mm] at which the tire carries the case's load (Appendix C
+    ``find_sinkage``).
+
+    Parameters
+    ----------
+    case : LoadCase or TireGeometry
+        With ``load`` given here or in the case.
+    load : float [N], optional
+
+    Returns
+    -------
+    deflection : float [mm]
+
+    Raises
+    ------
+    LoadTooHigh
+        The load exceeds what the tire carries before a bead reaches the surface;
+        ``.max_load`` holds that largest load [N].
+    """
+    if load is not None:
+        fields = {**fields, "load": load, "deflection": None}
+    case = as_case(case, fields)
+    if case.load is None:
+        raise InvalidParameter("load", None, "> 0 N (find_sinkage needs a load)")
+    cs = single_case_arrays(case)
+    sv = solve_arrays(
+        cs, load=np.array([[case.load]]), leading=np.array([[case.slip_kinematics == "leading"]])
+    )
+    return float(sv.dw[0, 0])
+
+
+def max_load(case: LoadCase | TireGeometry, /, **fields) -> float:
+    """Largest vertical load [N] the model carries at this pressure (deflection at
+    ``tol.rim_clearance`` of the point where a bead reaches the surface)."""
+    if isinstance(case, TireGeometry) and "load" not in fields and "deflection" not in fields:
+        fields = {**fields, "deflection": 1.0}
+    case = as_case(case, fields)
+    return float(max_load_arrays(single_case_arrays(case), tol.search_sections)[0][0, 0])
+
+
+RESULT_KEYS = (
+    "deflection",
+    "length",
+    "width",
+    "area",
+    "vertical_force",
+    "lateral_force",
+    "net_force_orientation",
+    "sinkage",
+)
+
+
+def _solve_group(table: CaseTable, surface, n: int) -> dict[str, np.ndarray]:
+    cs = case_arrays(table, surface)
+    col = lambda a: a.reshape(-1, 1)
+    by_load = not np.all(np.isnan(table.load))
+    load = col(table.load) if by_load else None
+    dw0 = None if by_load else v.positive("deflection", col(table.deflection), unit="mm")
+    leading = col(np.array([k == "leading" for k in table.slip_kinematics]))
+    sv = solve_arrays(cs, load=load, deflection=dw0, leading=leading)
+    cs, dw = sv.cs, sv.dw
+    out = sv.evaluate(n)
+    return {
+        "deflection": dw[:, 0],
+        "length": out.length,
+        "width": out.width,
+        "area": out.area,
+        "vertical_force": out.vertical_force,
+        "lateral_force": out.lateral_force,
+        "net_force_orientation": np.arctan2(out.lateral_force, out.vertical_force),
+        "sinkage": dw[:, 0] / cs.rim_height[:, 0],
+    }
+
+
+def solve_many(
+    cases: CaseTable | Sequence[LoadCase] | None = None, *, n_sections: int = 65, **columns
+) -> dict[str, np.ndarray]:
+    """Solve many load cases at once, vectorized.
+
+    Parameters
+    ----------
+    cases : CaseTable or sequence of LoadCase, optional
+        The cases; or give ``columns`` instead, the keyword arguments of
+        :meth:`CaseTable.from_columns` (``tire_radius``, ``rim_width``, ``pressure``,
+        ``load`` or ``deflection``, ``camber``, ``slip``, ``lateral``,
+        ``bead_seat_diameter``, ``surface``), broadcast together like numpy.
+    n_sections : int
+        Sections per patch (Clenshaw-Curtis), 9 .. 20001.
+
+    Returns
+    -------
+    dict of (m,) float arrays
+        ``deflection [mm], length [mm], width [mm], area [mm^2], vertical_force [N],
+        lateral_force [N], net_force_orientation [rad], sinkage [-]``.
+    """
+    n = v.integer("n_sections", n_sections, 9, MAX_SECTIONS)
+    if cases is None:
+        table = CaseTable.from_columns(**columns)
+    elif isinstance(cases, CaseTable):
+        table = cases
+    else:
+        table = CaseTable.from_cases(list(cases))
+    by_load = ~np.isnan(table.load)
+    if np.any(by_load) and not np.all(by_load):
+        parts = [(np.nonzero(by_load)[0]), np.nonzero(~by_load)[0]]
+    else:
+        parts = [np.arange(len(table))]
+    result = {k: np.full(len(table), np.nan) for k in RESULT_KEYS}
+    for idx in parts:
+        sub = table.take(idx)
+        for surface, rows in group_by_surface(sub):
+            got = _solve_group(sub.take(rows), surface, n)
+            for k in RESULT_KEYS:
+                result[k][idx[rows]] = got[k]
+    return result

@@ -1,0 +1,115 @@
+"""Load cases as broadcast arrays for the vectorized solver.
+
+A :class:`CaseArrays` holds ``m`` load cases on one support surface, each parameter
+of shape (m, 1) so that per-section arrays (m, n) broadcast against it. Cases on
+different surfaces are solved in separate groups (:func:`group_by_surface`), so one
+case's surface never changes how its batch companions are solved.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from .._tol import tol
+from ..case import CaseTable, LoadCase
+from ..section import bead_positions
+from ..surface import Surface
+
+
+@dataclass(frozen=True)
+class CaseArrays:
+    """Parameters of m load cases on one surface, each of shape (m, 1).
+
+    Attributes
+    ----------
+    r0, w : (m, 1) float [mm]
+        Tire radius and rim width.
+    R : (m, 1) float [mm]
+        Axle height of the unloaded wheel, ``D_bead / 2 + h`` (``h`` of equation 5-3).
+    gamma, slip : (m, 1) float [rad]
+    lateral : (m, 1) float [mm]
+    pressure : (m, 1) float [N/mm^2]
+    surface : Surface
+    """
+
+    r0: np.ndarray
+    w: np.ndarray
+    R: np.ndarray
+    gamma: np.ndarray
+    slip: np.ndarray
+    lateral: np.ndarray
+    pressure: np.ndarray
+    surface: Surface
+
+    @property
+    def m(self) -> int:
+        return self.r0.shape[0]
+
+    @property
+    def rim_height(self) -> np.ndarray:
+        """Rim height ``r0 + sqrt(r0^2 - w^2 / 4)`` (m, 1) [mm], equation 5-3."""
+        return self.r0 + np.sqrt(self.r0**2 - 0.25 * self.w**2)
+
+    def with_lateral(self, lateral) -> CaseArrays:
+        """The same cases with another lateral displacement (m, 1) [mm]."""
+        return CaseArrays(
+            self.r0, self.w, self.R, self.gamma, self.slip, lateral, self.pressure, self.surface
+        )
+
+    def take(self, index) -> CaseArrays:
+        """The cases ``index`` (int array) as new arrays."""
+        pick = lambda a: a[index]
+        return CaseArrays(
+            *(
+                pick(getattr(self, f))
+                for f in ("r0", "w", "R", "gamma", "slip", "lateral", "pressure")
+            ),
+            self.surface,
+        )
+
+    def max_deflection(self) -> np.ndarray:
+        """Largest wheel deflection (m, 1) [mm] before a bead reaches the ground or a
+        bulge runs out of carcass at the central section, times ``tol.rim_clearance``."""
+        cg, sg = np.cos(self.gamma), np.sin(self.gamma)
+        xb1, zb1, xb2, zb2 = bead_positions(self.r0, self.w, self.gamma)
+        limit = (np.minimum(zb1, zb2) + self.r0) / cg
+        half_s0 = self.r0 * (np.pi - np.arcsin(0.5 * self.w / self.r0))
+        delta = self.r0 * self.gamma
+        c1_room = half_s0 + delta + xb1 - self.lateral  # c1 > 0 -> dv tan g < c1_room
+        c2_room = half_s0 - delta - xb2 + self.lateral  # c2 > 0 -> dv tan g > -c2_room
+        with np.errstate(all="ignore"):
+            lim1 = np.where(sg > 0, c1_room / sg, np.inf)
+            lim2 = np.where(sg < 0, -c2_room / sg, np.inf)
+        return tol.rim_clearance * np.minimum(limit, np.minimum(lim1, lim2))
+
+
+def case_arrays(table: CaseTable, surface: Surface) -> CaseArrays:
+    """(m, 1) arrays of all rows of ``table`` (which must share ``surface``)."""
+    r0, w = table.tire_radius, table.rim_width
+    R = 0.5 * table.bead_seat_diameter + r0 + np.sqrt(r0**2 - 0.25 * w**2)
+    col = lambda a: np.asarray(a, float).reshape(-1, 1)
+    return CaseArrays(
+        col(r0),
+        col(w),
+        col(R),
+        col(table.camber),
+        col(table.slip),
+        col(table.lateral),
+        col(table.pressure),
+        surface,
+    )
+
+
+def single_case_arrays(case: LoadCase) -> CaseArrays:
+    """(1, 1) arrays of one load case."""
+    return case_arrays(CaseTable.from_cases([case]), case.surface)
+
+
+def group_by_surface(table: CaseTable) -> list[tuple[Surface, np.ndarray]]:
+    """Row indices of ``table`` grouped by (equal) surface, in first-seen order."""
+    groups: dict = {}
+    for i, s in enumerate(table.surface):
+        groups.setdefault(s, []).append(i)
+    return [(s, np.asarray(idx)) for s, idx in groups.items()]

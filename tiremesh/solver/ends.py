@@ -1,0 +1,113 @@
+"""Patch ends (section 5.2) and the track offset of a sideways-curved track (5.3.2).
+
+The patch ends are the roots of the section width ``e2 - e1`` along the wheel,
+found by a bracketed Newton iteration with analytic derivatives (not quantized to
+the section spacing, as in Appendix C).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from .._roots import newton_bracketed
+from .._tol import tol
+from ..errors import NoContact, NotConverged, TireModelError
+from .arrays import CaseArrays
+from .kinematics import sections_at
+
+
+def flat_end_angle(dw, cs: CaseArrays) -> np.ndarray:
+    """End angle of the patch on flat ground without camber, ``acos((R - dw) / R)``
+    (where equation 5-14 gives zero deflection)."""
+    return np.arccos(np.clip((cs.R - dw) / cs.R, -1.0, 1.0))
+
+
+def patch_ends(dw, cs: CaseArrays, offset, guess=None):
+    """Angles (rear, front) of the patch ends, each (m, 1) [rad].
+
+    Bracketed by the central section (in contact) and 1.05 x the flat-ground end,
+    where the surface no longer reaches the tire.
+
+    Raises
+    ------
+    NoContact
+        The central section of a case does not touch.
+    """
+    phi_flat = flat_end_angle(dw, cs)
+    outer = np.minimum(1.05 * phi_flat + 1e-9, 1.2)
+    zero = np.zeros_like(outer)
+    probe, _ = sections_at(np.stack([zero, outer, -outer]), dw, cs, offset)
+    width0 = probe.width[0]
+    if np.any(width0 <= 0):
+        i = int(np.argmax(width0.ravel() <= 0))
+        raise NoContact(
+            f"no contact: the central section's edges cross (width {width0.flat[i]:.4g} mm) "
+            f"at deflection {np.broadcast_to(dw, cs.r0.shape)[i, 0]:.6g} mm; increase the "
+            "deflection or load, or reduce the lateral displacement"
+        )
+    if np.any(probe.width[1:] > 0):
+        raise TireModelError(
+            "contact patch end not bracketed: a section beyond the flat-ground end "
+            "(where the surface no longer reaches it) still has positive width"
+        )
+
+    def fun(phi):
+        sol, d = sections_at(phi, dw, cs, offset)
+        return sol.width, sol.dwidth_ddv * d.ddv + sol.dwidth_ddh * d.ddh
+
+    lo = np.stack([-outer, zero])
+    hi = np.stack([zero, outer])
+    x0 = np.stack([-phi_flat, phi_flat]) if guess is None else np.stack(guess)
+    sign_lo = np.stack([-np.ones_like(zero), np.ones_like(zero)])
+    ends = newton_bracketed(
+        fun, x0, lo, hi, xtol=tol.end_xtol, what="contact patch end (section 5.2)", sign_lo=sign_lo
+    )
+    return ends[0], ends[1]
+
+
+def touching_patch_ends(dw, cs: CaseArrays, offset, guess=None):
+    """Like :func:`patch_ends`, but cases whose central section is out of contact do
+    not raise: their ends are 0. Returns ``(rear, front, touching)``."""
+    zero = np.zeros_like(np.broadcast_to(dw, cs.r0.shape))
+    probe, _ = sections_at(zero, dw, cs, offset)
+    touching = probe.width > 0
+    if np.all(touching):
+        rear, front = patch_ends(dw, cs, offset, guess)
+        return rear, front, touching
+    dw_t = np.where(touching, dw, cs.max_deflection())
+    rear, front = patch_ends(dw_t, cs, offset)
+    return np.where(touching, rear, 0.0), np.where(touching, front, 0.0), touching
+
+
+def has_track_shift(cs: CaseArrays) -> bool:
+    """Whether the surface shifts sections sideways (a curved track, 5.3.2)."""
+    probe = np.array([[0.1, -0.1]])
+    return bool(np.any(cs.surface.shift(probe, cs.R, cs.gamma)[0]))
+
+
+def track_offset(dw, cs: CaseArrays):
+    """Offset of section 5.3.2: the track shift at the patch ends (mean of both ends),
+    iterated to convergence (the appendix hard-codes 1.4 mm for its 3 m disk).
+
+    The offset has no equation number: it is the text after equation 5-24 ("the
+    entire contact patch needs to be offset ... so that the ends of the contact
+    patches are located where they would be if there were not a disk curvature").
+
+    Returns
+    -------
+    offset : (m, 1) float [mm]
+    ends : (rear, front) of (m, 1) float [rad], or None when the track is straight
+    """
+    if not has_track_shift(cs):
+        return np.zeros_like(cs.r0), None
+    shift = lambda phi: cs.surface.shift(phi, cs.R, cs.gamma)[0]
+    offset = shift(flat_end_angle(dw, cs))
+    for _ in range(tol.max_iter):
+        rear, front = patch_ends(dw, cs, offset)
+        new = 0.5 * (shift(rear) + shift(front))  # 5.3.2 offset (text after equation 5-24)
+        if np.all(np.abs(new - offset) <= tol.disk_offset_atol):
+            return new, (rear, front)
+        offset = new
+    raise NotConverged(
+        "track offset (section 5.3.2)", {"iterations": tol.max_iter, "offset_mm": offset.ravel()}
+    )

@@ -1,0 +1,214 @@
+"""The solved contact patch of one load case (sections 5.2, 5.3, 5.4 and 5.5)."""
+
+from __future__ import annotations
+
+import dataclasses
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..case import LoadCase
+from ..section import SectionSolution
+from ..units import MPA_PER_BAR
+from .arrays import CaseArrays, single_case_arrays
+from .evaluate import PatchArrays
+from .kinematics import section_to_ground, sections_at
+
+
+@dataclass(frozen=True)
+class ContactPatch:
+    """Solved Rotta tire: per-section arrays, patch outline, forces.
+
+    Units: mm, N, N/mm^2, rad. Ground frame: ``x`` forward, ``y`` toward section
+    side 2 (the side the wheel top leans to for positive camber), ``z`` up.
+
+    Attributes
+    ----------
+    case : LoadCase
+        The load case solved (``tire``, ``pressure``, ``camber``, ``slip``,
+        ``lateral``, ``surface`` are shortcuts to its fields).
+    deflection : float [mm]
+        Wheel displacement in its own plane (``delta_w``), given or found.
+    slip_offset : float [mm]
+        Lateral shift that puts the slip kinematics' anchor in place
+        (``-x_lead tan(slip)`` for ``'leading'``, 0 for ``'centre'``).
+    phi : (n,) float [rad]
+        Section angles from bottom dead centre (Clenshaw-Curtis nodes between the
+        exact patch ends).
+    x : (n,) float [mm]
+        Forward position of each section (``(R - dv) sin phi``).
+    sections : SectionSolution
+        Section geometry, arrays of shape (n,).
+    outline : (2n + 1, 2) float [mm]
+        Closed counter-clockwise patch polygon in ground ``(x, y)`` (first point
+        repeated at the end).
+    centerline : (n, 2) float [mm]
+        Where each section's first-touching carcass point lies (Figure 5-8).
+    length, width, area : float [mm, mm, mm^2]
+        Extent along x, extent along y, and the ground area (equation 5-26).
+    vertical_force, lateral_force : float [N]
+        ``p * area`` (equation 5-26) and ``integral p (r1 - r2) dx`` (equation 5-25).
+    disk_offset : float [mm]
+        Track offset of section 5.3.2 (0 on a straight track).
+    flatness : float [mm]
+        Largest height of a patch edge above/below the central contact line
+        (Figure 5-9: the 3D Rotta patch of a cambered tire is not exactly flat).
+    surface_z : float [mm]
+        Height of the support surface below the axle.
+    phi_ends : (float, float) [rad]
+        Rear and front patch-end angles.
+    x_weights : (n,) float [mm]
+        Quadrature weights along the patch: ``integral f dx = sum(x_weights * f)``.
+    """
+
+    case: LoadCase = field(repr=False)
+    deflection: float
+    slip_offset: float
+    phi: np.ndarray = field(repr=False)
+    x: np.ndarray = field(repr=False)
+    sections: SectionSolution = field(repr=False)
+    outline: np.ndarray = field(repr=False)
+    centerline: np.ndarray = field(repr=False)
+    length: float
+    width: float
+    area: float
+    vertical_force: float
+    lateral_force: float
+    disk_offset: float
+    flatness: float
+    surface_z: float = 0.0
+    phi_ends: tuple[float, float] = (0.0, 0.0)
+    x_weights: np.ndarray = field(default=None, repr=False)
+
+    tire = property(lambda self: self.case.tire, doc="Shortcut to ``case.tire``.")
+    pressure = property(lambda self: self.case.pressure, doc="Shortcut to ``case.pressure``.")
+    camber = property(lambda self: self.case.camber, doc="Shortcut to ``case.camber``.")
+    slip = property(lambda self: self.case.slip, doc="Shortcut to ``case.slip``.")
+    lateral = property(lambda self: self.case.lateral, doc="Shortcut to ``case.lateral``.")
+    surface = property(lambda self: self.case.surface, doc="Shortcut to ``case.surface``.")
+
+    @property
+    def net_force_orientation(self) -> float:
+        """Angle of the ground reaction from the vertical, ``atan2(Fy, Fz)`` [rad]."""
+        return float(np.arctan2(self.lateral_force, self.vertical_force))
+
+    @property
+    def sinkage(self) -> float:
+        """Wheel deflection over rim height [-] (section 6.1.2 reports it in %)."""
+        return self.deflection / self.tire.rim_height
+
+    @property
+    def lateral_force_density(self) -> np.ndarray:
+        """dS/dx per section [N/mm], equation 5-25."""
+        return self.sections.lateral_force_density(self.pressure)
+
+    @property
+    def vertical_force_density(self) -> np.ndarray:
+        """dN/dx per section [N/mm], equation 5-26."""
+        return self.sections.vertical_force_density(self.pressure)
+
+    def arrays(self) -> CaseArrays:
+        """This case as (1, 1) solver arrays (slip anchor included in ``lateral``)."""
+        cs = single_case_arrays(self.case)
+        return cs.with_lateral(cs.lateral + self.slip_offset)
+
+    def sections_at(self, phi) -> tuple[SectionSolution, np.ndarray]:
+        """Rotta sections of this load case at any angles ``phi`` (n,) [rad], inside or
+        beyond the patch (beyond it the edges cross: negative width).
+
+        Returns
+        -------
+        sections : SectionSolution, arrays (n,)
+        x : (n,) float [mm]
+            Forward position ``(R - dv) sin phi``.
+        """
+        phi = np.atleast_1d(np.asarray(phi, float))[None, :]
+        dw = np.array([[self.deflection]])
+        sol, d = sections_at(phi, dw, self.arrays(), self.disk_offset, True)
+        return _row(sol, 0, phi.shape), d.x[0]
+
+    def to_ground(self, xs, zs, phi):
+        """Section-frame points -> ground frame ``(x, y, z)`` [mm] (z = 0 on the surface
+        under the central section), see :func:`section_to_ground`."""
+        return section_to_ground(
+            xs,
+            zs,
+            phi,
+            tire_radius=self.tire.tire_radius,
+            wheel_radius=self.tire.wheel_radius,
+            camber=self.camber,
+            ground_z=self.surface_z,
+        )
+
+    def summary(self) -> dict[str, float | str]:
+        """Scalar results with unit-carrying names (for tables, JSON, CSV)."""
+        t = self.tire
+        return {
+            "tire": t.name or f"r0={t.tire_radius:.4g}mm",
+            "tire_radius_mm": t.tire_radius,
+            "arc_length_mm": t.arc_length,
+            "rim_width_mm": t.rim_width,
+            "bead_seat_diameter_mm": t.bead_seat_diameter,
+            "rim_height_mm": t.rim_height,
+            "surface": self.surface.describe(),
+            "pressure_bar": self.pressure / MPA_PER_BAR,
+            "camber_deg": float(np.degrees(self.camber)),
+            "slip_deg": float(np.degrees(self.slip)),
+            "lateral_mm": self.lateral,
+            "deflection_mm": self.deflection,
+            "sinkage_pct": 100.0 * self.sinkage,
+            "length_mm": self.length,
+            "width_mm": self.width,
+            "area_mm2": self.area,
+            "vertical_force_N": self.vertical_force,
+            "lateral_force_N": self.lateral_force,
+            "net_force_orientation_deg": float(np.degrees(self.net_force_orientation)),
+            "disk_offset_mm": self.disk_offset,
+            "flatness_mm": self.flatness,
+        }
+
+
+def _row(sol: SectionSolution, i: int, shape) -> SectionSolution:
+    """Row ``i`` of a SectionSolution of (m, n) arrays."""
+    pick = lambda a: np.broadcast_to(a, shape)[i]
+    return SectionSolution(
+        **{
+            f.name: (
+                tuple(pick(a) for a in getattr(sol, f.name))
+                if isinstance(getattr(sol, f.name), tuple)
+                else pick(getattr(sol, f.name))
+            )
+            for f in dataclasses.fields(sol)
+        }
+    )
+
+
+def patch_from_arrays(
+    case: LoadCase, out: PatchArrays, i: int, deflection: float, slip_offset: float
+) -> ContactPatch:
+    """The :class:`ContactPatch` of row ``i`` of solved ``out``."""
+    x1, y1 = (a[i] for a in out.edge1_xy)
+    x2, y2 = (a[i] for a in out.edge2_xy)
+    ring = np.concatenate([np.column_stack([x1, y1]), np.column_stack([x2, y2])[::-1]])
+    ring = np.vstack([ring, ring[:1]])
+    z1, z2 = (a[i] for a in out.edge_z)
+    return ContactPatch(
+        case=case,
+        deflection=float(deflection),
+        slip_offset=float(slip_offset),
+        phi=out.phi[i],
+        x=out.x[i],
+        sections=_row(out.sections, i, out.phi.shape),
+        outline=ring,
+        centerline=np.column_stack([out.centre_xy[0][i], out.centre_xy[1][i]]),
+        length=float(out.length[i]),
+        width=float(out.width[i]),
+        area=float(out.area[i]),
+        vertical_force=float(out.vertical_force[i]),
+        lateral_force=float(out.lateral_force[i]),
+        disk_offset=float(out.offset[i]),
+        flatness=float(max(np.abs(z1).max(), np.abs(z2).max())),
+        surface_z=float(out.surface_z[i]),
+        phi_ends=(float(out.rear[i, 0]), float(out.front[i, 0])),
+        x_weights=out.x_weights[i],
+    )
