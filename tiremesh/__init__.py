@@ -11,7 +11,8 @@ Surfaces      : Surface, SurfaceBase, Flat, Drum, Disk, parse_surface, register_
 Cross section : solve_sections, SectionSolution
 Whole tire    : solve, solve_patch, find_sinkage, max_load, solve_many, ContactPatch
 Lateral       : solve_lateral, LateralResult, stiffnesses
-Errors        : TireModelError, InvalidParameter, LoadTooHigh, NoContact, NotConverged
+Errors        : TireModelError, InvalidParameter, LoadTooHigh, ModelLimit (RimBottoms,
+                BulgeLimit, PatchEndLimit), NoContact, NotConverged
 Tolerances    : tol (numerical epsilons only)
 Shared tools  : tiremesh.io (atomic files, tables, figures), tiremesh.parallel,
                 tiremesh.units
@@ -25,7 +26,17 @@ PhD dissertation, University of Wisconsin-Milwaukee, 2013.
 from ._tol import tol
 from .case import CaseTable, LoadCase, Relaxation
 from .catalog import find_tire, get_tire, load_catalog
-from .errors import InvalidParameter, LoadTooHigh, NoContact, NotConverged, TireModelError
+from .errors import (
+    BulgeLimit,
+    InvalidParameter,
+    LoadTooHigh,
+    ModelLimit,
+    NoContact,
+    NotConverged,
+    PatchEndLimit,
+    RimBottoms,
+    TireModelError,
+)
 from .geometry import TireGeometry
 from .lateral import LateralResult, solve_lateral, stiffnesses
 from .section import SectionSolution, solve_sections
@@ -35,6 +46,7 @@ from .surface import Disk, Drum, Flat, Surface, SurfaceBase, parse_surface, regi
 __version__ = "0.2.0"
 
 __all__ = [
+    "BulgeLimit",
     "CaseTable",
     "ContactPatch",
     "Disk",
@@ -44,9 +56,12 @@ __all__ = [
     "LateralResult",
     "LoadCase",
     "LoadTooHigh",
+    "ModelLimit",
     "NoContact",
     "NotConverged",
+    "PatchEndLimit",
     "Relaxation",
+    "RimBottoms",
     "SectionSolution",
     "Surface",
     "SurfaceBase",

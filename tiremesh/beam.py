@@ -30,24 +30,66 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from . import _validate as v
+from . import validate as v
 from .errors import InvalidParameter, NotConverged
 
 
 def bending_inertia(tire_radius, thickness):
-    """``I = pi/4 (r^4 - (r - t)^4)`` [mm^4], equation 5-31 (half the section, far from the rim)."""
+    """Area moment of the carcass for the taut beam, equation 5-31 (section 5.9).
+
+    ``I = pi/4 (r^4 - (r - t)^4)`` (half the section, far from the rim).
+
+    Parameters
+    ----------
+    tire_radius : (...) float [mm]
+        Carcass radius ``r``.
+    thickness : (...) float [mm]
+        Casing thickness ``t``.
+
+    Returns
+    -------
+    I : (...) float [mm^4]
+    """
     r = np.asarray(tire_radius, float)
     return np.pi / 4.0 * (r**4 - (r - np.asarray(thickness, float)) ** 4)  # Eq. 5-31
 
 
 def tension_area(pressure, tire_radius):
-    """``T = p pi r^2`` [N], equation 5-32 (pressure on the inner cross-section area)."""
+    """Tread tension from the pressure on the cross-section area, equation 5-32.
+
+    ``T = p pi r^2`` (section 5.9.3.3).
+
+    Parameters
+    ----------
+    pressure : (...) float [N/mm^2]
+    tire_radius : (...) float [mm]
+        Carcass radius ``r``.
+
+    Returns
+    -------
+    T : (...) float [N]
+    """
     return np.asarray(pressure) * np.pi * np.asarray(tire_radius) ** 2  # Eq. 5-32
 
 
 def tension_hoop(pressure, wheel_radius, tire_radius):
-    """``T = p (R + 2 r)`` [N/mm as printed], equation 5-33 (radial pressure over the
-    circumference); about half of equation 5-32 for a 28-622 tire (section 5.9.3.3)."""
+    """Tread tension from the radial pressure over the circumference, equation 5-33.
+
+    ``T = p (R + 2 r)``; about half of equation 5-32 for a 28-622 tire (section
+    5.9.3.3).
+
+    Parameters
+    ----------
+    pressure : (...) float [N/mm^2]
+    wheel_radius : (...) float [mm]
+        Unloaded wheel radius ``R``.
+    tire_radius : (...) float [mm]
+        Carcass radius ``r``.
+
+    Returns
+    -------
+    T : (...) float [N/mm as printed; used as N by :func:`beam_rotta`]
+    """
     R, r = np.asarray(wheel_radius), np.asarray(tire_radius)
     return np.asarray(pressure) * (R + 2 * r)  # Eq. 5-33
 
@@ -102,7 +144,26 @@ def infinite_beam_point_load(x, *, EI: float, T: float, k: float, P: float) -> n
 
     ``EI m^4 - T m^2 + k = 0`` gives the decay rates ``a, b`` (real or complex
     conjugate); ``u = A e^{-a|x|} + B e^{-b|x|}`` with ``u'(0) = 0`` and the shear jump
-    ``2 EI u'''(0+) - 2 T u'(0+) = P`` (only the EI term survives).
+    ``2 EI u'''(0+) - 2 T u'(0+) = P`` (only the EI term survives). Checks
+    :func:`solve_beam` (equation 5-30).
+
+    Parameters
+    ----------
+    x : (n,) float [mm]
+        Positions along the beam (load at 0).
+    EI : float [N mm^2]
+        Bending stiffness.
+    T : float [N]
+        Tension.
+    k : float [N/mm^2]
+        Uniform foundation stiffness.
+    P : float [N]
+        Point load.
+
+    Returns
+    -------
+    u : (n,) float [mm]
+        Lateral displacement.
     """
     disc = np.sqrt(complex(T * T - 4 * EI * k))
     m2a, m2b = (T + disc) / (2 * EI), (T - disc) / (2 * EI)
@@ -143,6 +204,7 @@ class BeamResult:
 
     @property
     def net_force_orientation(self) -> float:
+        """Angle of the ground reaction from the vertical, ``atan2(Fy, Fz)`` [rad]."""
         return float(math.atan2(self.lateral_force, self.vertical_force))
 
 
@@ -169,17 +231,19 @@ def beam_rotta(
         Initial uniform lateral displacement of the centre line.
     method : {'consistent', 'dissertation'}
         Linearization (module docstring).
-    modulus : float [N/mm^2], thickness : float [mm]
-        Carcass E and casing thickness (equation 5-31).
-    tension : {'area', 'hoop'}
-        Equation 5-32 or 5-33.
+    modulus : float [N/mm^2], thickness : float [mm], tension : {'area', 'hoop'}
+        Carcass E and casing thickness (equation 5-31); tension by equation 5-32 or 5-33.
     half_length : float [mm], optional
         Beam half-length (default a quarter of the tire circumference).
+    n, max_iter : int
+        Beam grid points (21 .. 200001); iterations before NotConverged is raised.
     rtol : float, optional
-        Stop when the net force orientation changes by less than this (relative).
-        Default 1e-8 for 'consistent'; 1e-2 for 'dissertation', the loose stopping
-        rule of the appendix's iterations (0.1 N or 10 %), with which it settles in
-        a few steps near its start.
+        Relative change of the net force orientation to stop at: 1e-8 for 'consistent',
+        1e-2 for 'dissertation' (the appendix's loose rule, 0.1 N or 10 %).
+
+    Returns
+    -------
+    BeamResult
     """
     from .lateral import section_forces
 

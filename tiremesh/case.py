@@ -30,13 +30,14 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from . import _validate as v
+from . import validate as v
 from .errors import InvalidParameter
 from .geometry import TireGeometry
 from .surface import Flat, Surface, parse_surface
 from .units import MPA_PER_BAR
 
 SLIP_KINEMATICS = ("leading", "centre")
+FRICTION_MODELS = ("coulomb", "appendix")
 MAX_SECTIONS = 20001
 
 
@@ -126,6 +127,11 @@ class LoadCase:
         How a slip angle displaces the tread (module docstring).
     n_beyond : int
         Sections beyond each patch end in :func:`solve_lateral`, 9 .. 20001.
+    friction_model : {'coulomb', 'appendix'}
+        ``'coulomb'``: a sliding section's ground reaction is exactly ``mu dN``, so
+        ``|Fy| <= mu Fz`` always; ``'appendix'``: Appendix C's iteration, where
+        sliding sections keep the force of their relaxed displacement
+        (:mod:`tiremesh.lateral`).
 
     Examples
     --------
@@ -148,6 +154,7 @@ class LoadCase:
     friction: float = math.inf
     slip_kinematics: str = "leading"
     n_beyond: int = 129
+    friction_model: str = "coulomb"
 
     def __post_init__(self) -> None:
         if not isinstance(self.tire, TireGeometry):
@@ -177,6 +184,10 @@ class LoadCase:
         if self.slip_kinematics not in SLIP_KINEMATICS:
             raise InvalidParameter(
                 "slip_kinematics", self.slip_kinematics, "'leading' or 'centre'"
+            )
+        if self.friction_model not in FRICTION_MODELS:
+            raise InvalidParameter(
+                "friction_model", self.friction_model, "'coulomb' or 'appendix'"
             )
 
     def replace(self, **changes) -> LoadCase:
@@ -396,4 +407,4 @@ class CaseTable:
         )
 
 
-__all__ = ["SLIP_KINEMATICS", "CaseTable", "LoadCase", "Relaxation"]
+__all__ = ["FRICTION_MODELS", "SLIP_KINEMATICS", "CaseTable", "LoadCase", "Relaxation"]

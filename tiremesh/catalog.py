@@ -18,7 +18,22 @@ from .geometry import TireGeometry
 
 def asset_path(name: str) -> Path:
     """Path of a bundled asset: inside the installed package (``tiremesh/data``) or,
-    for a source checkout / editable install, the repository's ``assets/``."""
+    for a source checkout / editable install, the repository's ``assets/``.
+
+    Parameters
+    ----------
+    name : str
+        File name of the asset (``"tires.csv"``).
+
+    Returns
+    -------
+    Path
+
+    Raises
+    ------
+    FileNotFoundError
+        The asset is in neither place.
+    """
     packaged = resources.files("tiremesh").joinpath("data", name)
     if packaged.is_file():
         return Path(str(packaged))
@@ -60,7 +75,17 @@ class CatalogTire:
         return f"{self.brand} {self.model} {self.size:g}-{self.bead_seat_diameter:g}"
 
     def geometry(self, *, rim_width: float | None = None) -> TireGeometry:
-        """Tire geometry from the measured arc length (optionally on another rim)."""
+        """Tire geometry from the measured arc length (optionally on another rim).
+
+        Parameters
+        ----------
+        rim_width : float [mm], optional
+            Mount on another rim (default the Table 3-2 rim); equation 5-6.
+
+        Returns
+        -------
+        TireGeometry
+        """
         return TireGeometry.from_arc_length(
             self.arc_length,
             self.rim_width if rim_width is None else rim_width,
@@ -71,7 +96,12 @@ class CatalogTire:
 
 @functools.lru_cache(maxsize=1)
 def load_catalog() -> tuple[CatalogTire, ...]:
-    """All catalogue tires, in Table 3-2 order."""
+    """All catalogue tires, in Table 3-2 order.
+
+    Returns
+    -------
+    tuple of CatalogTire
+    """
     with asset_path("tires.csv").open(newline="", encoding="utf-8") as fh:
         rows = list(csv.DictReader(fh))
     return tuple(
@@ -91,7 +121,23 @@ def load_catalog() -> tuple[CatalogTire, ...]:
 
 def find_tire(key: int | str) -> CatalogTire:
     """A catalogue tire by id (``8``, ``"8"``) or by a case-insensitive part of its
-    name (``"big apple"``); an ambiguous or unknown name raises."""
+    name (``"big apple"``).
+
+    Parameters
+    ----------
+    key : int or str
+        Catalogue id (1-based) or a unique part of the name.
+
+    Returns
+    -------
+    CatalogTire
+
+    Raises
+    ------
+    InvalidParameter
+        An unknown id, or a name that matches no tire or several (the message lists
+        the candidates).
+    """
     tires = load_catalog()
     text = str(key).strip()
     if text.isdigit():

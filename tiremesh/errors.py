@@ -55,6 +55,53 @@ class LoadTooHigh(InvalidParameter):
         )
 
 
+class ModelLimit(InvalidParameter):
+    """The input lies beyond a geometric limit of Rotta's construction (chapter 5).
+
+    Attributes
+    ----------
+    limit : str
+        Which limit: ``'rim bottoms'``, ``'bulge out of carcass'`` or
+        ``'patch end'``.
+    state : dict
+        What the solver reached (case index, deflection, the offending section).
+    """
+
+    limit = "model limit"
+
+    def __init__(self, name: str, value: Any, allowed: str, state: dict | None = None) -> None:
+        self.state = dict(state or {})
+        detail = f"{self.limit} reached"
+        if self.state:
+            detail += "; state: " + ", ".join(
+                f"{k}={v:.6g}" if isinstance(v, float) else f"{k}={v!r}"
+                for k, v in self.state.items()
+            )
+        super().__init__(name, value, allowed, detail)
+
+
+class RimBottoms(ModelLimit):
+    """A bead (the rim) would reach the support surface: the deflection is too large."""
+
+    limit = "rim bottoms"
+
+
+class BulgeLimit(ModelLimit):
+    """A side bulge would need more carcass than it has: the section's sideways
+    displacement (from camber, slip, lateral displacement or a curved track) is
+    beyond Rotta's construction."""
+
+    limit = "bulge out of carcass"
+
+
+class PatchEndLimit(ModelLimit):
+    """The patch end cannot be found: sections beyond where the surface reaches the
+    unloaded tire still have a contact width (extreme slip, lateral displacement or
+    camber for this tire)."""
+
+    limit = "patch end"
+
+
 class NoContact(TireModelError):
     """The tire does not touch the support surface (e.g. zero deflection, or a
     lateral displacement so large that even the central section's edges cross)."""

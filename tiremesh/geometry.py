@@ -21,7 +21,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from . import _validate as v
+from . import validate as v
 from ._roots import newton_bracketed
 from ._tol import tol
 from .errors import InvalidParameter
@@ -55,6 +55,13 @@ def rim_height(tire_radius, rim_angle):
 
     ``h = r0 (1 + cos(theta0 / 2))``, equation 5-3.
 
+    Parameters
+    ----------
+    tire_radius : (...) float [mm]
+        Carcass radius ``r0``.
+    rim_angle : (...) float [rad]
+        Rim angle ``theta0`` (equation 5-2).
+
     Returns
     -------
     h : (...) float [mm]
@@ -68,6 +75,13 @@ def rim_height(tire_radius, rim_angle):
 
 def arc_length(tire_radius, rim_angle):
     """Carcass arc length from bead to bead, ``s0 = r0 (2 pi - theta0)``.
+
+    Parameters
+    ----------
+    tire_radius : (...) float [mm]
+        Carcass radius ``r0``.
+    rim_angle : (...) float [rad]
+        Rim angle ``theta0`` (equation 5-2).
 
     Returns
     -------

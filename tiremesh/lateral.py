@@ -35,6 +35,7 @@ A. E. Dressel (2013), sections 5.5, 5.6, 5.7 and 5.8 (equations 5-25, 5-26, 5-27
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from dataclasses import dataclass, field
 
@@ -81,6 +82,10 @@ class LateralResult:
     friction_share : float
         Total over patch lateral force used by the final friction check: each patch
         section had to hold ``friction_share x`` its own force.
+    reaction : (n_patch,) float [N/mm]
+        Lateral ground reaction per length on each patch section (its own force
+        times the share, capped at ``mu dN`` where it slides); ``lateral_force`` is
+        its integral.
     """
 
     patch: ContactPatch = field(repr=False)
@@ -100,6 +105,7 @@ class LateralResult:
     relaxation_length: tuple[float, float]
     iterations: int
     friction_share: float = 1.0
+    reaction: np.ndarray = field(default=None, repr=False)
 
     @property
     def case(self) -> LoadCase:
@@ -191,7 +197,7 @@ class BeyondSide:
         return float(np.sum(self.weights * self.dS))
 
 
-def beyond_side(patch: ContactPatch, dv_end, dh_end, rate, n) -> BeyondSide:
+def beyond_side(patch: ContactPatch, dv_end, dh_end, *, rate, n) -> BeyondSide:
     """Sections beyond one patch end, displaced as the end section decayed by
     ``exp((i - 1) s) = exp(-lambda s)``, ``lambda = 1 - i`` (equation 5-28), over 8 decay
     lengths (equation 5-29; at most a quarter wheel)."""
@@ -208,11 +214,11 @@ def beyond_side(patch: ContactPatch, dv_end, dh_end, rate, n) -> BeyondSide:
     return BeyondSide(s, dv, dh, dS, 0.5 * span * w)
 
 
-def beyond_both(patch: ContactPatch, dv, dh, relax: Relaxation, n: int):
+def beyond_both(patch: ContactPatch, dv, dh, *, relax: Relaxation, n: int):
     """(trailing, leading) :class:`BeyondSide` for patch displacements ``dh``."""
     return (
-        beyond_side(patch, dv[0], dh[0], relax.trail_out, n),
-        beyond_side(patch, dv[-1], dh[-1], relax.lead_out, n),
+        beyond_side(patch, dv[0], dh[0], rate=relax.trail_out, n=n),
+        beyond_side(patch, dv[-1], dh[-1], rate=relax.lead_out, n=n),
     )
 
 
@@ -241,6 +247,10 @@ class FrictionState:
     Attributes
     ----------
     dh, dS, dN : (n,) float [mm, N/mm, N/mm]
+        Section displacement and the carcass's lateral and vertical force per length.
+    reaction : (n,) float [N/mm]
+        Lateral ground reaction per length on each patch section: its own force plus
+        its share of the force beyond the patch, capped at ``mu dN`` where it slides.
     sliding : (n,) bool
     beyond : (BeyondSide, BeyondSide)
         Trailing and leading side.
@@ -252,16 +262,129 @@ class FrictionState:
     dh: np.ndarray
     dS: np.ndarray
     dN: np.ndarray
+    reaction: np.ndarray
     sliding: np.ndarray
     beyond: tuple
     iterations: int
     share: float
 
 
-def friction_iteration(patch: ContactPatch, case: LoadCase) -> FrictionState:
-    """Slide the patch sections whose lateral force (plus their share of the force
-    beyond the patch) exceeds ``mu dN`` (equation 5-27), until the total lateral force
-    converges (section 5.6); oscillation is damped by averaging."""
+def grip_state(patch: ContactPatch, case: LoadCase) -> FrictionState:
+    """No sliding: every section keeps its imposed displacement (``friction = inf``).
+
+    Parameters
+    ----------
+    patch : ContactPatch
+    case : LoadCase
+
+    Returns
+    -------
+    FrictionState
+    """
+    dv, dh = patch.sections.vert_deflection, patch.sections.horz_deflection
+    dS, dN = section_forces(patch, dv, dh)
+    beyond = beyond_both(patch, dv, dh, relax=case.relaxation, n=case.n_beyond)
+    own = float(np.sum(patch.x_weights * dS))
+    q = (own + sum(b.force for b in beyond)) / own if own else 1.0
+    return FrictionState(dh, dS, dN, q * dS, np.zeros(dS.shape, bool), beyond, 0, q)
+
+
+def _normal_load(patch: ContactPatch, dN) -> np.ndarray:
+    """Normal load per length [N/mm] that integrates exactly to the vertical force."""
+    total = float(np.sum(patch.x_weights * dN))
+    return dN * (patch.vertical_force / total) if total > 0 else dN
+
+
+def coulomb_friction(patch: ContactPatch, case: LoadCase) -> FrictionState:
+    """Coulomb friction on the patch (section 5.6), the default ``friction_model``.
+
+    Each patch section must react its own lateral force times the share ``q`` =
+    (patch + beyond-patch force) / patch force (the force beyond the patch is carried
+    to the ground by the patch, in proportion to each section's own force). Where
+    that demand exceeds ``mu dN`` the section slides (equation 5-27): its ground
+    reaction is exactly ``mu dN`` in the direction of the demand, and its
+    displacement relaxes toward its gripping neighbour nearer the patch centre
+    (:func:`slide`), which changes the force beyond the patch and so ``q``. ``q`` is
+    iterated as a fixed point until its root is bracketed, then by regula falsi with
+    bisection safeguards, so it converges also where a section toggles between grip
+    and slide (the iteration then stops at the switch).
+
+    Guarantees: ``|Fy| <= mu Fz`` (every reaction is within its cap); ``mu = 0``
+    gives ``Fy = 0``; full sliding gives ``Fy = mu Fz`` with the sign of the demand.
+
+    Parameters
+    ----------
+    patch : ContactPatch
+    case : LoadCase
+        ``friction`` (mu), ``relaxation`` and ``n_beyond`` are used.
+
+    Returns
+    -------
+    FrictionState
+    """
+    mu, relax, nb = case.friction, case.relaxation, case.n_beyond
+    x, dv, w = patch.x, patch.sections.vert_deflection, patch.x_weights
+    dh_imp = patch.sections.horz_deflection
+    dh_free = zero_force_displacement(patch, dv)
+    dS_imp, dN_imp = section_forces(patch, dv, dh_imp)
+    normal = _normal_load(patch, dN_imp)  # the vertical load stays where the patch put it
+    cap = mu * normal
+
+    def state(q):
+        sliding = np.abs(q * dS_imp) > cap  # Eq. 5-27
+        dh = dh_free + slide(dh_imp - dh_free, sliding, x, relax)
+        dS, _ = section_forces(patch, dv, dh)
+        beyond = beyond_both(patch, dv, dh, relax=relax, n=nb)
+        own = float(np.sum(w * dS))
+        q_new = (own + sum(b.force for b in beyond)) / own if own else q
+        reaction = np.where(sliding, np.sign(q * dS_imp) * cap, q * dS)
+        return FrictionState(dh, dS, normal, reaction, sliding, beyond, 0, q), q_new
+
+    q = grip_state(patch, case).share
+    bracket = None  # (q, G(q)) on each side of the root of G(q) = q_new(q) - q
+    prev = None
+    for it in range(1, tol.max_iter + 1):
+        st, q_new = state(q)
+        g = q_new - q
+        if abs(g) <= tol.friction_rtol * (1.0 + abs(q)) or np.all(st.sliding):
+            return dataclasses.replace(st, iterations=it)
+        if prev is not None and g * prev[1] < 0:
+            bracket = (prev, (q, g))
+        elif bracket is not None:
+            lo, hi = bracket
+            bracket = ((q, g), hi) if g * lo[1] > 0 else (lo, (q, g))
+        prev = (q, g)
+        if bracket is None:
+            q = q_new  # fixed-point step until the root is bracketed
+            continue
+        (a, ga), (b, gb) = bracket
+        q_sec = b - gb * (b - a) / (gb - ga)  # regula falsi, bisection if it stalls
+        q = q_sec if min(a, b) < q_sec < max(a, b) and it % 3 else 0.5 * (a + b)
+        if abs(b - a) <= tol.friction_rtol * (1.0 + abs(q)):
+            return dataclasses.replace(state(q)[0], iterations=it)  # at a grip/slide switch
+    raise NotConverged(
+        "Coulomb friction iteration (section 5.6)",
+        {"iterations": tol.max_iter, "share": q, "bracket": bracket},
+    )
+
+
+def appendix_friction(patch: ContactPatch, case: LoadCase) -> FrictionState:
+    """Appendix C's friction iteration (``friction_model='appendix'``): sections whose
+    own force times the share exceeds ``mu dN`` (equation 5-27) relax toward their
+    gripping neighbour, until the total carcass force converges; oscillation is
+    damped by averaging. Unlike :func:`coulomb_friction` the sliding sections keep
+    the force of their displacement, so ``|Fy|`` can exceed ``mu Fz``
+    (``docs/model.md``).
+
+    Parameters
+    ----------
+    patch : ContactPatch
+    case : LoadCase
+
+    Returns
+    -------
+    FrictionState
+    """
     relax, mu, nb = case.relaxation, case.friction, case.n_beyond
     x, dv = patch.x, patch.sections.vert_deflection
     dh_imp, w_patch = patch.sections.horz_deflection, patch.x_weights
@@ -270,17 +393,18 @@ def friction_iteration(patch: ContactPatch, case: LoadCase) -> FrictionState:
     ratio, history = 1.0, []
     for it in range(1, tol.max_iter + 1):
         demand = np.abs(dS * ratio)
-        sliding = demand > mu * dN + 1e-12 * (1.0 + demand)  # Eq. 5-27
+        sliding = demand > mu * dN + 1e-12 * (1.0 + demand)
         dh = dh_free + slide(dh_imp - dh_free, sliding, x, relax)
         dS, dN = section_forces(patch, dv, dh)
         f_patch = float(np.sum(w_patch * dS))
-        beyond = beyond_both(patch, dv, dh, relax, nb)
+        beyond = beyond_both(patch, dv, dh, relax=relax, n=nb)
         total = f_patch + sum(b.force for b in beyond)
         history.append(total)
         if len(history) >= 2 and abs(history[-1] - history[-2]) <= tol.friction_rtol * (
             1.0 + abs(total)
         ):
-            return FrictionState(dh, dS, dN, sliding, beyond, it, float(ratio))
+            share = total / f_patch if f_patch else 1.0
+            return FrictionState(dh, dS, dN, share * dS, sliding, beyond, it, float(ratio))
         if len(history) >= 3 and (history[-1] - history[-2]) * (history[-2] - history[-3]) < 0:
             total = 0.5 * (history[-1] + history[-2])  # oscillating: damp by averaging
         ratio = total / f_patch if f_patch else 1.0
@@ -321,15 +445,10 @@ def solve_lateral(case: LoadCase | TireGeometry, /, **fields) -> LateralResult:
     """
     case = as_case(case, fields)
     patch = solve(case)
-    x, dv = patch.x, patch.sections.vert_deflection
-    if math.isfinite(case.friction):
-        st = friction_iteration(patch, case)
-    else:
-        dh = patch.sections.horz_deflection
-        dS, dN = section_forces(patch, dv, dh)
-        beyond = beyond_both(patch, dv, dh, case.relaxation, case.n_beyond)
-        st = FrictionState(dh, dS, dN, np.zeros(x.shape, bool), beyond, 0, 1.0)
-    return _assemble(patch, st)
+    if not math.isfinite(case.friction):
+        return _assemble(patch, grip_state(patch, case))
+    model = {"coulomb": coulomb_friction, "appendix": appendix_friction}[case.friction_model]
+    return _assemble(patch, model(patch, case))
 
 
 def _assemble(patch: ContactPatch, st: FrictionState) -> LateralResult:
@@ -341,6 +460,7 @@ def _assemble(patch: ContactPatch, st: FrictionState) -> LateralResult:
     w_patch = patch.x_weights
     f_patch = float(np.sum(w_patch * st.dS))
     f_beyond = trail.force + lead.force
+    fy = float(np.sum(w_patch * st.reaction))  # the ground reaction: own + beyond in grip
     return LateralResult(
         patch=patch,
         s=np.concatenate([x[0] - trail.s[::-1], x, x[-1] + lead.s]),
@@ -351,7 +471,7 @@ def _assemble(patch: ContactPatch, st: FrictionState) -> LateralResult:
         dS=cat(trail.dS, st.dS, lead.dS),
         dN=cat(np.zeros_like(trail.s), st.dN, np.zeros_like(lead.s)),
         weights=cat(trail.weights, w_patch, lead.weights),
-        lateral_force=f_patch + f_beyond,
+        lateral_force=fy,
         patch_lateral_force=f_patch,
         beyond_lateral_force=f_beyond,
         vertical_force=patch.vertical_force,
@@ -359,6 +479,7 @@ def _assemble(patch: ContactPatch, st: FrictionState) -> LateralResult:
         relaxation_length=(relaxation_length(trail), relaxation_length(lead)),
         iterations=st.iterations,
         friction_share=st.share,
+        reaction=st.reaction,
     )
 
 

@@ -28,7 +28,7 @@ from typing import ClassVar, Literal, Protocol, runtime_checkable
 
 import numpy as np
 
-from . import _validate as v
+from . import validate as v
 from .errors import InvalidParameter
 
 SURFACE_FORMS = "flat | drum:DIAMETER_MM | disk:DIAMETER_MM[:toward|away]"
@@ -119,9 +119,41 @@ def curvature_drop(phi, wheel_radius, curvature):
 
 
 class SurfaceBase:
-    """Flat ground; subclass and override what a new surface changes."""
+    """Flat ground; subclass and override what a new surface changes.
+
+    A subclass whose methods are plain numpy expressions of its fields can also
+    stand for many cases at once (:meth:`stack`), so that cases on, say, drums of
+    different diameters are solved in one vectorized group.
+    """
 
     kind: ClassVar[str] = "flat"
+    stack_fields: ClassVar[tuple[str, ...]] = ()
+
+    @classmethod
+    def stack(cls, surfaces) -> SurfaceBase | None:
+        """One surface standing for ``surfaces`` (all of this class), one per case.
+
+        Parameters
+        ----------
+        surfaces : sequence of SurfaceBase
+            One per case, all ``type(s) is cls``.
+
+        Returns
+        -------
+        SurfaceBase or None
+            The common surface when all are equal; else, for classes listing
+            ``stack_fields``, an instance whose fields are (m, 1) arrays (its methods
+            then broadcast over cases); else None (the solver groups equal ones).
+        """
+        first = surfaces[0]
+        if all(s == first for s in surfaces):
+            return first
+        if not cls.stack_fields:
+            return None
+        stacked = object.__new__(cls)
+        for f in cls.stack_fields:
+            object.__setattr__(stacked, f, np.array([getattr(s, f) for s in surfaces])[:, None])
+        return stacked
 
     @property
     def spec(self) -> str:
@@ -160,7 +192,18 @@ _REGISTRY: dict[str, type] = {}
 
 def register_surface(name: str):
     """Class decorator: make ``name[:args]`` parseable by :func:`parse_surface`.
-    The class needs a classmethod ``from_spec(args: list[str])``."""
+
+    Parameters
+    ----------
+    name : str
+        Lower-case keyword of the command-line form (``"drum"``).
+
+    Returns
+    -------
+    decorator : callable
+        Registers the class and returns it unchanged. The class needs a classmethod
+        ``from_spec(args: list[str])`` (``args`` the ``:``-separated rest).
+    """
 
     def deco(cls):
         _REGISTRY[name] = cls
@@ -200,6 +243,7 @@ class Drum(SurfaceBase):
 
     diameter: float
     kind: ClassVar[str] = "drum"
+    stack_fields: ClassVar[tuple[str, ...]] = ("diameter",)
 
     def __post_init__(self) -> None:
         d = float(v.positive("drum diameter", self.diameter, unit="mm"))
@@ -271,6 +315,7 @@ class Disk(SurfaceBase):
     diameter: float
     curving: Literal["toward", "away"] = "toward"
     kind: ClassVar[str] = "disk"
+    stack_fields: ClassVar[tuple[str, ...]] = ("diameter", "curving")
 
     def __post_init__(self) -> None:
         d = float(v.positive("disk diameter", self.diameter, unit="mm"))
@@ -296,7 +341,7 @@ class Disk(SurfaceBase):
     def center_side(self, camber):
         """+1 where the track centre is on ``+y``, -1 where on ``-y`` (per camber)."""
         lean = np.where(np.asarray(camber, float) >= 0, 1.0, -1.0)
-        return lean if self.curving == "toward" else -lean
+        return np.where(np.asarray(self.curving) == "toward", lean, -lean)
 
     def shift(self, phi, wheel_radius, camber):
         k = self.center_side(camber) * 2.0 / self.diameter

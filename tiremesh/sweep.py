@@ -69,6 +69,10 @@ def check_keys(cases) -> None:
     cases : iterable of dict
         Sweep rows (or a grid's axes as one dict).
 
+    Returns
+    -------
+    None
+
     Raises
     ------
     InvalidParameter
@@ -87,11 +91,17 @@ def check_keys(cases) -> None:
                 )
 
 
-def grid(**axes) -> list[dict]:
+MAX_CASES = 1_000_000
+"""Largest sweep :func:`grid` / :func:`parse_grid` build without ``max_cases=``."""
+
+
+def grid(*, max_cases: int = MAX_CASES, **axes) -> list[dict]:
     """All combinations of the given value lists.
 
     Parameters
     ----------
+    max_cases : int
+        Refuse (before building anything) a grid of more cases than this.
     **axes
         Case keys (:data:`CASE_KEYS`) with a value or a list of values each.
 
@@ -103,7 +113,7 @@ def grid(**axes) -> list[dict]:
     Raises
     ------
     InvalidParameter
-        An unknown key.
+        An unknown key, an empty axis, or more than ``max_cases`` cases.
 
     Examples
     --------
@@ -113,7 +123,20 @@ def grid(**axes) -> list[dict]:
     check_keys([axes])
     keys = list(axes)
     vals = [[_plain(x) for x in _values(axes[k])] for k in keys]
+    _check_size({k: len(x) for k, x in zip(keys, vals, strict=True)}, max_cases)
     return [dict(zip(keys, combo, strict=True)) for combo in itertools.product(*vals)]
+
+
+def _check_size(lengths: dict[str, int], max_cases: int) -> None:
+    for k, n in lengths.items():
+        if n < 1:
+            raise InvalidParameter(k, "[]", "at least one value")
+    total = math.prod(lengths.values())
+    if total > max_cases:
+        shape = " x ".join(f"{k}:{n}" for k, n in lengths.items())
+        raise InvalidParameter(
+            "grid", f"{total} cases ({shape})", f"at most max_cases = {max_cases} cases"
+        )
 
 
 def _values(axis) -> list:
@@ -128,11 +151,13 @@ def _plain(x):
     return x.item() if isinstance(x, np.generic) else x
 
 
-def parse_grid(spec: str) -> list[dict]:
+def parse_grid(spec: str, *, max_cases: int = MAX_CASES) -> list[dict]:
     """Cases from a command-line grid.
 
     Parameters
     ----------
+    max_cases : int
+        Refuse a grid of more cases than this (before building anything).
     spec : str
         Space-separated ``key=v1,v2,...`` or ``key=start:stop:count`` (a linspace),
         e.g. ``'tire=5,8 pressure_bar=2:11:10 load_N=304,500'``.
@@ -154,12 +179,14 @@ def parse_grid(spec: str) -> list[dict]:
         if val.count(":") == 2 and _is_number(val.split(":")[0]):
             a, b, n = val.split(":")
             try:
-                axes[k] = list(np.linspace(float(a), float(b), int(n)))
+                a, b, n = float(a), float(b), int(n)
             except ValueError as exc:
                 raise InvalidParameter(k, val, "start:stop:count (count an integer)") from exc
+            _check_size({k: n}, max_cases)  # before allocating the axis
+            axes[k] = list(np.linspace(a, b, n))
         else:
             axes[k] = [_auto(x) for x in val.split(",")]
-    return grid(**axes)
+    return grid(max_cases=max_cases, **axes)
 
 
 def read_cases(path) -> list[dict]:
@@ -290,8 +317,9 @@ def _result_row(row: dict, case: LoadCase, values: dict, extra=(), tail=()) -> d
     return out
 
 
-def _error_row(row: dict, exc: Exception) -> dict:
-    return {**row, "status": "error", "error": f"{type(exc).__name__}: {exc}"}
+def _error_row(row: dict, exc: Exception | str) -> dict:
+    msg = exc if isinstance(exc, str) else f"{type(exc).__name__}: {exc}"
+    return {**row, "status": "error", "error": msg}
 
 
 def solve_case(row: dict) -> dict:
@@ -342,14 +370,12 @@ def _solve_vector(cases: list[LoadCase]) -> list:
     from .case import CaseTable
     from .solver import solve_many
 
-    try:
-        out = solve_many(CaseTable.from_cases(cases), n_sections=VECTOR_SECTIONS)
-    except (TireModelError, ValueError) as exc:
-        if len(cases) == 1:
-            return [exc]
-        mid = len(cases) // 2
-        return _solve_vector(cases[:mid]) + _solve_vector(cases[mid:])
-    return [{k: float(v[i]) for k, v in out.items()} for i in range(len(cases))]
+    out = solve_many(CaseTable.from_cases(cases), n_sections=VECTOR_SECTIONS, errors="flag")
+    keys = [k for k in out if k not in ("ok", "error")]
+    return [
+        {k: float(out[k][i]) for k in keys} if out["ok"][i] else str(out["error"][i])
+        for i in range(len(cases))
+    ]
 
 
 def _vector_rows(rows: list[dict]) -> list[dict]:
@@ -363,7 +389,7 @@ def _vector_rows(rows: list[dict]) -> list[dict]:
             out[i] = _error_row(row, exc)
     idx = list(cases)
     for i, got in zip(idx, _solve_vector([cases[i] for i in idx]), strict=True):
-        if isinstance(got, Exception):
+        if isinstance(got, str):
             out[i] = _error_row(rows[i], got)
         else:
             out[i] = _result_row(rows[i], cases[i], got)

@@ -9,12 +9,18 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .. import _validate as v
+from .. import validate as v
 from .._tol import tol
 from ..case import MAX_SECTIONS, CaseTable, LoadCase
-from ..errors import InvalidParameter, NotConverged
+from ..errors import BulgeLimit, InvalidParameter, LoadTooHigh, NotConverged, TireModelError
 from ..geometry import TireGeometry
-from .arrays import CaseArrays, case_arrays, group_by_surface, single_case_arrays
+from .arrays import (
+    CaseArrays,
+    case_arrays,
+    group_by_surface,
+    single_case_arrays,
+    stack_surfaces,
+)
 from .evaluate import evaluate
 from .kinematics import displacements
 from .load import find_deflection, max_load_arrays
@@ -74,7 +80,34 @@ class Solved:
         return evaluate(self.cs, self.dw, n, ends=self.ends, offset=self.track_offset)
 
 
+def check_room(cs: CaseArrays) -> None:
+    """Raise :class:`BulgeLimit` if a case leaves no deflection room at all: its
+    camber and lateral displacement already use up a side bulge's carcass.
+
+    Parameters
+    ----------
+    cs : CaseArrays
+
+    Returns
+    -------
+    None
+    """
+    dmax = cs.max_deflection()
+    bad = ~(dmax > 0)
+    if np.any(bad):
+        i = int(np.argmax(bad.ravel()))
+        name = "lateral" if cs.lateral[i, 0] else "camber"
+        value = float((cs.lateral if name == "lateral" else cs.gamma)[i, 0])
+        raise BulgeLimit(
+            name,
+            value,
+            "a value that leaves a side bulge carcass to deflect with",
+            {"case": i, "largest_deflection_mm": float(dmax[i, 0])},
+        )
+
+
 def _deflection(cs: CaseArrays, load, deflection):
+    check_room(cs)
     if load is not None:
         return find_deflection(cs, load)
     return check_deflection(deflection, cs), None, None
@@ -215,8 +248,8 @@ RESULT_KEYS = (
 )
 
 
-def _solve_group(table: CaseTable, surface, n: int) -> dict[str, np.ndarray]:
-    cs = case_arrays(table, surface)
+def _solve_group(table: CaseTable, n: int) -> dict[str, np.ndarray]:
+    cs = case_arrays(table, stack_surfaces(table.surface))
     col = lambda a: a.reshape(-1, 1)
     by_load = not np.all(np.isnan(table.load))
     load = col(table.load) if by_load else None
@@ -237,8 +270,63 @@ def _solve_group(table: CaseTable, surface, n: int) -> dict[str, np.ndarray]:
     }
 
 
+def _prescreen(table: CaseTable) -> dict[int, str]:
+    """Flag, vectorized and before any search, the cases that cannot solve: no
+    deflection room (camber or lateral displacement use up a bulge) and loads
+    beyond what the tire carries. Returns ``{row: message}``."""
+    cs = case_arrays(table, stack_surfaces(table.surface))
+    flagged: dict[int, str] = {}
+    for i in np.nonzero(~(cs.max_deflection()[:, 0] > 0))[0]:
+        try:
+            check_room(cs.take(np.array([i])))
+        except BulgeLimit as exc:
+            flagged[int(i)] = f"BulgeLimit: {exc}"
+    rest = np.array([i for i in range(len(table)) if i not in flagged], int)
+    if rest.size == 0 or np.all(np.isnan(table.load)):
+        return flagged
+    try:
+        fmax, _ = max_load_arrays(cs.take(rest), tol.search_sections)
+    except TireModelError:
+        return flagged  # the isolating solve finds the culprits
+    for j in np.nonzero(table.load[rest] > fmax[:, 0])[0]:
+        i = int(rest[j])
+        flagged[i] = f"LoadTooHigh: {LoadTooHigh('load', float(table.load[i]), float(fmax[j, 0]))}"
+    return flagged
+
+
+def _solve_isolating(table: CaseTable, n: int, out: dict, rows, errors: dict) -> None:
+    """Solve ``table`` as one vectorized group. Cases the solver names as failed
+    (``case_errors``) are recorded and the rest solved again; an error that names no
+    case splits the group in halves until the failing case is alone. A case's result
+    never depends on its companions, and the good cases stay vectorized."""
+    try:
+        got = _solve_group(table, n)
+    except TireModelError as exc:
+        named = getattr(exc, "case_errors", None) or {}
+        if len(table) == 1:
+            named = {0: exc}
+        if named:
+            for i, err in named.items():
+                errors[int(rows[i])] = f"{type(err).__name__}: {err}"
+            keep = np.setdiff1d(np.arange(len(table)), list(named))
+            if keep.size:
+                _solve_isolating(table.take(keep), n, out, rows[keep], errors)
+            return
+        half = len(table) // 2
+        for part in (np.arange(half), np.arange(half, len(table))):
+            _solve_isolating(table.take(part), n, out, rows[part], errors)
+        return
+    for k in RESULT_KEYS:
+        out[k][rows] = got[k]
+
+
 def solve_many(
-    cases: CaseTable | Sequence[LoadCase] | None = None, *, n_sections: int = 65, **columns
+    cases: CaseTable | Sequence[LoadCase] | None = None,
+    *,
+    n_sections: int = 65,
+    errors: str = "raise",
+    chunk_size: int = 2048,
+    **columns,
 ) -> dict[str, np.ndarray]:
     """Solve many load cases at once, vectorized.
 
@@ -251,30 +339,57 @@ def solve_many(
         ``bead_seat_diameter``, ``surface``), broadcast together like numpy.
     n_sections : int
         Sections per patch (Clenshaw-Curtis), 9 .. 20001.
+    errors : {'raise', 'flag'}
+        ``'raise'``: the first case outside the model's domain raises its
+        :class:`TireModelError`. ``'flag'``: such cases get NaN results, their
+        message in ``error`` and ``ok = False``; the others are solved as if alone.
+    chunk_size : int
+        Cases solved together at most (bounds the memory: about 50 kB per case at
+        65 sections).
 
     Returns
     -------
-    dict of (m,) float arrays
+    dict of (m,) arrays
         ``deflection [mm], length [mm], width [mm], area [mm^2], vertical_force [N],
-        lateral_force [N], net_force_orientation [rad], sinkage [-]``.
+        lateral_force [N], net_force_orientation [rad], sinkage [-]``; with
+        ``errors='flag'`` also ``ok`` (bool) and ``error`` (str, empty when ok).
     """
     n = v.integer("n_sections", n_sections, 9, MAX_SECTIONS)
+    chunk = v.integer("chunk_size", chunk_size, 1, 10**7)
+    if errors not in ("raise", "flag"):
+        raise InvalidParameter("errors", errors, "'raise' or 'flag'")
     if cases is None:
         table = CaseTable.from_columns(**columns)
     elif isinstance(cases, CaseTable):
         table = cases
     else:
         table = CaseTable.from_cases(list(cases))
-    by_load = ~np.isnan(table.load)
-    if np.any(by_load) and not np.all(by_load):
-        parts = [(np.nonzero(by_load)[0]), np.nonzero(~by_load)[0]]
-    else:
-        parts = [np.arange(len(table))]
     result = {k: np.full(len(table), np.nan) for k in RESULT_KEYS}
-    for idx in parts:
-        sub = table.take(idx)
-        for surface, rows in group_by_surface(sub):
-            got = _solve_group(sub.take(rows), surface, n)
-            for k in RESULT_KEYS:
-                result[k][idx[rows]] = got[k]
+    messages: dict[int, str] = {}
+    by_load = ~np.isnan(table.load)
+    for kind in (by_load, ~by_load):  # load cases and deflection cases apart
+        sub_idx = np.nonzero(kind)[0]
+        for rows in group_by_surface(table.take(sub_idx)):
+            rows = sub_idx[rows]
+            for start in range(0, rows.size, chunk):
+                _solve_chunk(table, rows[start : start + chunk], n, errors, result, messages)
+    if errors == "flag":
+        result["ok"] = np.ones(len(table), bool)
+        result["error"] = np.full(len(table), "", dtype=object)
+        for i, msg in messages.items():
+            result["ok"][i], result["error"][i] = False, msg
     return result
+
+
+def _solve_chunk(table, rows, n, errors, result, messages) -> None:
+    sub = table.take(rows)
+    if errors == "raise":
+        got = _solve_group(sub, n)
+        for k in RESULT_KEYS:
+            result[k][rows] = got[k]
+        return
+    flagged = _prescreen(sub)
+    messages.update({int(rows[i]): msg for i, msg in flagged.items()})
+    keep = np.array([i for i in range(len(sub)) if i not in flagged], int)
+    if keep.size:
+        _solve_isolating(sub.take(keep), n, result, rows[keep], messages)

@@ -45,6 +45,7 @@ class CaseArrays:
 
     @property
     def m(self) -> int:
+        """Number of cases."""
         return self.r0.shape[0]
 
     @property
@@ -66,7 +67,7 @@ class CaseArrays:
                 pick(getattr(self, f))
                 for f in ("r0", "w", "R", "gamma", "slip", "lateral", "pressure")
             ),
-            self.surface,
+            take_surface(self.surface, index),
         )
 
     def max_deflection(self) -> np.ndarray:
@@ -86,7 +87,19 @@ class CaseArrays:
 
 
 def case_arrays(table: CaseTable, surface: Surface) -> CaseArrays:
-    """(m, 1) arrays of all rows of ``table`` (which must share ``surface``)."""
+    """Solver arrays of all rows of ``table``.
+
+    Parameters
+    ----------
+    table : CaseTable
+        m load cases (columns (m,)), all on ``surface``.
+    surface : Surface
+
+    Returns
+    -------
+    CaseArrays
+        Each parameter (m, 1); ``R = D_bead / 2 + h`` [mm] with ``h`` of equation 5-3.
+    """
     r0, w = table.tire_radius, table.rim_width
     R = 0.5 * table.bead_seat_diameter + r0 + np.sqrt(r0**2 - 0.25 * w**2)
     col = lambda a: np.asarray(a, float).reshape(-1, 1)
@@ -103,13 +116,71 @@ def case_arrays(table: CaseTable, surface: Surface) -> CaseArrays:
 
 
 def single_case_arrays(case: LoadCase) -> CaseArrays:
-    """(1, 1) arrays of one load case."""
+    """Solver arrays of one load case.
+
+    Parameters
+    ----------
+    case : LoadCase
+
+    Returns
+    -------
+    CaseArrays
+        Each parameter (1, 1).
+    """
     return case_arrays(CaseTable.from_cases([case]), case.surface)
 
 
-def group_by_surface(table: CaseTable) -> list[tuple[Surface, np.ndarray]]:
-    """Row indices of ``table`` grouped by (equal) surface, in first-seen order."""
+def group_by_surface(table: CaseTable) -> list[np.ndarray]:
+    """Row indices of ``table`` in groups that one vectorized solve can take:
+    cases on surfaces of one class that stacks (:meth:`SurfaceBase.stack`), else on
+    equal surfaces; in first-seen order."""
     groups: dict = {}
     for i, s in enumerate(table.surface):
-        groups.setdefault(s, []).append(i)
-    return [(s, np.asarray(idx)) for s, idx in groups.items()]
+        key = type(s) if getattr(type(s), "stack_fields", ()) else s
+        groups.setdefault(key, []).append(i)
+    return [np.asarray(idx) for idx in groups.values()]
+
+
+def take_surface(surface: Surface, index) -> Surface:
+    """The cases ``index`` of a stacked surface (fields (m, 1) arrays); a plain
+    surface is shared by all cases and returned as is.
+
+    Parameters
+    ----------
+    surface : Surface
+    index : (k,) int
+
+    Returns
+    -------
+    Surface
+    """
+    fields = getattr(type(surface), "stack_fields", ())
+    if not fields or np.ndim(getattr(surface, fields[0])) == 0:
+        return surface
+    out = object.__new__(type(surface))
+    for f in fields:
+        object.__setattr__(out, f, getattr(surface, f)[index])
+    return out
+
+
+def stack_surfaces(surfaces) -> Surface:
+    """One surface for a group from :func:`group_by_surface` (see
+    :meth:`SurfaceBase.stack`).
+
+    Parameters
+    ----------
+    surfaces : sequence of Surface
+        One per case.
+
+    Returns
+    -------
+    Surface
+    """
+    first = surfaces[0]
+    stack = getattr(type(first), "stack", None)
+    stacked = stack(list(surfaces)) if stack is not None else None
+    if stacked is None:
+        if any(s != first for s in surfaces):
+            raise ValueError("surfaces of one group must stack or be equal")
+        return first
+    return stacked

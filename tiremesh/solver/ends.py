@@ -11,45 +11,78 @@ import numpy as np
 
 from .._roots import newton_bracketed
 from .._tol import tol
-from ..errors import NoContact, NotConverged, TireModelError
+from ..errors import NoContact, NotConverged, PatchEndLimit, TireModelError
 from .arrays import CaseArrays
-from .kinematics import sections_at
+from .kinematics import raise_case_errors, sections_at
 
 
 def flat_end_angle(dw, cs: CaseArrays) -> np.ndarray:
     """End angle of the patch on flat ground without camber, ``acos((R - dw) / R)``
-    (where equation 5-14 gives zero deflection)."""
+    (where equation 5-14 gives zero deflection).
+
+    Parameters
+    ----------
+    dw : (m, 1) float [mm]
+        Wheel deflection.
+    cs : CaseArrays
+
+    Returns
+    -------
+    phi : (m, 1) float [rad]
+    """
     return np.arccos(np.clip((cs.R - dw) / cs.R, -1.0, 1.0))
 
 
 def patch_ends(dw, cs: CaseArrays, offset, guess=None):
-    """Angles (rear, front) of the patch ends, each (m, 1) [rad].
+    """Angles of the patch ends: the roots of the section width ``e2 - e1`` along the
+    wheel (section 5.2).
 
     Bracketed by the central section (in contact) and 1.05 x the flat-ground end,
     where the surface no longer reaches the tire.
+
+    Parameters
+    ----------
+    dw : (m, 1) float [mm]
+        Wheel deflection.
+    cs : CaseArrays
+    offset : (m, 1) float [mm]
+        Track offset (section 5.3.2; 0 on a straight track).
+    guess : (rear, front) of (m, 1) float [rad], optional
+        Warm start (default the flat-ground ends).
+
+    Returns
+    -------
+    rear, front : (m, 1) float [rad]
 
     Raises
     ------
     NoContact
         The central section of a case does not touch.
+    PatchEndLimit
+        A section beyond the flat-ground end still touches (end not bracketed).
+
     """
     phi_flat = flat_end_angle(dw, cs)
     outer = np.minimum(1.05 * phi_flat + 1e-9, 1.2)
     zero = np.zeros_like(outer)
     probe, _ = sections_at(np.stack([zero, outer, -outer]), dw, cs, offset)
     width0 = probe.width[0]
-    if np.any(width0 <= 0):
-        i = int(np.argmax(width0.ravel() <= 0))
-        raise NoContact(
-            f"no contact: the central section's edges cross (width {width0.flat[i]:.4g} mm) "
-            f"at deflection {np.broadcast_to(dw, cs.r0.shape)[i, 0]:.6g} mm; increase the "
-            "deflection or load, or reduce the lateral displacement"
+    dwb = np.broadcast_to(dw, cs.r0.shape)
+    errors: dict[int, TireModelError] = {}
+    for i in np.nonzero(width0[:, 0] <= 0)[0]:
+        errors[int(i)] = NoContact(
+            f"no contact: the central section's edges cross (width {width0[i, 0]:.4g} mm) "
+            f"at deflection {dwb[i, 0]:.6g} mm (case {int(i)}); increase the deflection or "
+            "load, or reduce the lateral displacement"
         )
-    if np.any(probe.width[1:] > 0):
-        raise TireModelError(
-            "contact patch end not bracketed: a section beyond the flat-ground end "
-            "(where the surface no longer reaches it) still has positive width"
+    beyond = np.any(probe.width[1:] > 0, axis=0)[:, 0]
+    for i in np.nonzero(beyond & (width0[:, 0] > 0))[0]:
+        errors[int(i)] = PatchEndLimit(
+            *driving_input(cs, i),
+            "a value for which the patch ends where the surface leaves the tire",
+            {"case": int(i), "deflection_mm": float(dwb[i, 0])},
         )
+    raise_case_errors(errors)
 
     def fun(phi):
         sol, d = sections_at(phi, dw, cs, offset)
@@ -65,9 +98,45 @@ def patch_ends(dw, cs: CaseArrays, offset, guess=None):
     return ends[0], ends[1]
 
 
+def driving_input(cs: CaseArrays, i: int) -> tuple[str, float]:
+    """The input that displaces case ``i``'s sections sideways (named in errors).
+
+    Parameters
+    ----------
+    cs : CaseArrays
+    i : int
+        Case index.
+
+    Returns
+    -------
+    name : str
+        ``'slip'``, ``'lateral'`` or ``'camber'``.
+    value : float [rad or mm]
+    """
+    name = "slip" if cs.slip[i, 0] else "lateral" if cs.lateral[i, 0] else "camber"
+    return name, float({"slip": cs.slip, "lateral": cs.lateral, "camber": cs.gamma}[name][i, 0])
+
+
 def touching_patch_ends(dw, cs: CaseArrays, offset, guess=None):
     """Like :func:`patch_ends`, but cases whose central section is out of contact do
-    not raise: their ends are 0. Returns ``(rear, front, touching)``."""
+    not raise: their ends are 0.
+
+    Parameters
+    ----------
+    dw : (m, 1) float [mm]
+        Wheel deflection.
+    cs : CaseArrays
+    offset : (m, 1) float [mm]
+        Track offset (section 5.3.2).
+    guess : (rear, front) of (m, 1) float [rad], optional
+        Warm start, used when every case touches.
+
+    Returns
+    -------
+    rear, front : (m, 1) float [rad]
+    touching : (m, 1) bool
+        Whether the central section is in contact.
+    """
     zero = np.zeros_like(np.broadcast_to(dw, cs.r0.shape))
     probe, _ = sections_at(zero, dw, cs, offset)
     touching = probe.width > 0
@@ -80,7 +149,16 @@ def touching_patch_ends(dw, cs: CaseArrays, offset, guess=None):
 
 
 def has_track_shift(cs: CaseArrays) -> bool:
-    """Whether the surface shifts sections sideways (a curved track, 5.3.2)."""
+    """Whether the surface shifts sections sideways (a curved track, section 5.3.2).
+
+    Parameters
+    ----------
+    cs : CaseArrays
+
+    Returns
+    -------
+    bool
+    """
     probe = np.array([[0.1, -0.1]])
     return bool(np.any(cs.surface.shift(probe, cs.R, cs.gamma)[0]))
 
@@ -93,10 +171,21 @@ def track_offset(dw, cs: CaseArrays):
     entire contact patch needs to be offset ... so that the ends of the contact
     patches are located where they would be if there were not a disk curvature").
 
+    Parameters
+    ----------
+    dw : (m, 1) float [mm]
+        Wheel deflection.
+    cs : CaseArrays
+
     Returns
     -------
     offset : (m, 1) float [mm]
     ends : (rear, front) of (m, 1) float [rad], or None when the track is straight
+
+    Raises
+    ------
+    NotConverged
+        The offset still moves after ``tol.max_iter`` iterations.
     """
     if not has_track_shift(cs):
         return np.zeros_like(cs.r0), None

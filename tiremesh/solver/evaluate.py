@@ -64,13 +64,35 @@ class PatchArrays:
     surface_z: np.ndarray
 
     def ends_and_offset(self):
-        """``((rear, front), offset)`` with the offset as (m, 1), for re-evaluation."""
+        """``((rear, front), offset)`` with the offset as (m, 1), for re-evaluation.
+
+        Returns
+        -------
+        ends : (rear, front) of (m, 1) float [rad]
+        offset : (m, 1) float [mm]
+        """
         return (self.rear, self.front), self.offset[:, None]
 
 
 def refined_extreme(phi, f, sign):
     """Max (sign=+1) or min (sign=-1) over nodes along the last axis, refined by a
-    parabola through the extreme node and its neighbours."""
+    parabola through the extreme node and its neighbours (used for the patch width).
+
+    Parameters
+    ----------
+    phi : (m, n) float [rad]
+        Node positions, ascending, n >= 3.
+    f : (m, n) float [any unit]
+        Values at the nodes.
+    sign : {+1, -1}
+        Maximum or minimum.
+
+    Returns
+    -------
+    extreme : (m,) float [unit of ``f``]
+        The parabola's vertex where it lies between the neighbours and beats the
+        best node, else the best node.
+    """
     g = sign * f
     k = np.clip(np.argmax(g, axis=-1), 1, f.shape[-1] - 2)[..., None]
     x0, x1, x2 = (np.take_along_axis(phi, k + d, -1)[..., 0] for d in (-1, 0, 1))
@@ -102,10 +124,26 @@ def _ground_outline(sol: SectionSolution, phi, dw, cs: CaseArrays):
 
 
 def evaluate(cs: CaseArrays, dw, n: int, *, ends=None, offset=None) -> PatchArrays:
-    """Solve m patches at wheel deflections ``dw`` (m, 1) [mm] with ``n`` sections;
-    ``ends`` (rear, front) [rad] and the track ``offset`` (m, 1) [mm] are
-    already-converged values when the caller has them (both, or the ends alone on a
-    straight track).
+    """Solve m patches at given wheel deflections with ``n`` sections each.
+
+    Parameters
+    ----------
+    cs : CaseArrays
+        m load cases, parameters (m, 1).
+    dw : (m, 1) float [mm]
+        Wheel deflection.
+    n : int
+        Sections (Clenshaw-Curtis nodes) between the exact patch ends, >= 3.
+    ends : (rear, front) of (m, 1) float [rad], optional
+        Already-converged patch ends (found here if not given).
+    offset : (m, 1) float [mm], optional
+        Already-converged track offset (section 5.3.2); give it with ``ends``, or
+        give ``ends`` alone on a straight track.
+
+    Returns
+    -------
+    PatchArrays
+        Per-section arrays (m, n), per-case results (m,).
 
     Notes
     -----

@@ -32,7 +32,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..errors import InvalidParameter
+from ..errors import BulgeLimit, RimBottoms, TireModelError
 from ..section import SectionSolution, section_arrays
 from .arrays import CaseArrays
 
@@ -64,8 +64,22 @@ class Displacements:
 
 
 def displacements(phi, dw, cs: CaseArrays, offset) -> Displacements:
-    """Section displacements at angles ``phi`` (m, n) for wheel deflections ``dw``
-    (m, 1) [mm] and track offsets ``offset`` (m, 1) [mm].
+    """Section displacements around the wheel.
+
+    Parameters
+    ----------
+    phi : (m, n) or (k, m, n) float [rad]
+        Section angles from bottom dead centre.
+    dw : (m, 1) float [mm]
+        Wheel deflection in the wheel plane.
+    cs : CaseArrays
+    offset : (m, 1) float [mm]
+        Track offset (section 5.3.2; 0 on a straight track).
+
+    Returns
+    -------
+    Displacements
+        ``dv``, ``dh``, ``x`` and their ``phi`` derivatives, shaped like ``phi``.
 
     Notes
     -----
@@ -88,7 +102,20 @@ def displacements(phi, dw, cs: CaseArrays, offset) -> Displacements:
 
 
 def first_bad_case(bad, m: int) -> int:
-    """Index of the first case (axis -2 of ``bad``, length ``m``) with a True entry."""
+    """Index of the first case with a True entry (for error messages).
+
+    Parameters
+    ----------
+    bad : (m, n) or (k, m, n) bool
+        Flags per section; axis -2 is the case.
+    m : int
+        Number of cases.
+
+    Returns
+    -------
+    int
+        The first flagged case, 0 if none.
+    """
     rows = np.any(
         np.reshape(np.broadcast_to(bad, np.shape(bad)), (-1, m, np.shape(bad)[-1])), (0, 2)
     )
@@ -96,41 +123,121 @@ def first_bad_case(bad, m: int) -> int:
 
 
 def sections_at(phi, dw, cs: CaseArrays, offset, broadcast=False):
-    """Rotta sections at ``phi`` (m, n) or (k, m, n): ``(SectionSolution, Displacements)``.
+    """Rotta sections (section 5.1) at angles around the wheel (sections 5.2, 5.3).
+
+    Parameters
+    ----------
+    phi : (m, n) or (k, m, n) float [rad]
+        Section angles from bottom dead centre.
+    dw : (m, 1) float [mm]
+        Wheel deflection.
+    cs : CaseArrays
+    offset : (m, 1) float [mm]
+        Track offset (section 5.3.2).
+    broadcast : bool
+        Broadcast every field of the solution to the shape of ``phi``.
+
+    Returns
+    -------
+    sol : SectionSolution
+        Arrays shaped like ``phi`` (or broadcastable to it).
+    d : Displacements
+        The section displacements (:func:`displacements`).
 
     Raises
     ------
-    InvalidParameter
+    RimBottoms, BulgeLimit
         A bead reaches the surface, or a side bulge would need more carcass than it
         has (the displacement ``dh`` is beyond Rotta's construction); the message
-        names the input that drives ``dh`` in the first such case.
+        names the input that drives ``dh``; ``.case_errors`` holds every failed case.
     """
     d = displacements(phi, dw, cs, offset)
     sol, bad_h, bad_c = section_arrays(
         cs.r0, cs.w, d.dv, d.dh, cs.gamma, cs.r0 * cs.gamma, broadcast
     )
-    if np.any(bad_h):
-        raise InvalidParameter(
-            "deflection",
-            float(np.max(np.broadcast_to(dw, np.shape(bad_h))[bad_h])),
-            "small enough that no bead reaches the support surface",
-        )
-    if np.any(bad_c):
-        i = first_bad_case(bad_c, cs.m)
-        name = "slip" if cs.slip[i, 0] else "lateral" if cs.lateral[i, 0] else "camber"
-        value = {"slip": cs.slip, "lateral": cs.lateral, "camber": cs.gamma}[name][i, 0]
-        raise InvalidParameter(
-            name,
-            float(value),
-            "a value for which every side bulge keeps more carcass than its chord",
-            "the section displacement dh reached the limit of Rotta's construction",
-        )
+    if np.any(bad_h) or np.any(bad_c):
+        raise_case_errors(limit_errors(cs, _per_case(bad_h, cs.m), _per_case(bad_c, cs.m), dw))
     return sol, d
+
+
+def _per_case(bad, m: int) -> np.ndarray:
+    """(m, 1) bool: any True of ``bad`` (..., m, n) for each case."""
+    b = np.broadcast_to(bad, np.shape(bad))
+    return np.any(b.reshape(-1, m, b.shape[-1]), axis=(0, 2))[:, None]
+
+
+def limit_errors(cs: CaseArrays, bad_h, bad_c, dw) -> dict[int, TireModelError]:
+    """The limit of Rotta's construction each failed case ran into.
+
+    Parameters
+    ----------
+    cs : CaseArrays
+    bad_h, bad_c : (m, k) bool
+        Sections whose bead reaches the surface / whose bulge runs out of carcass.
+    dw : (m, 1) float [mm]
+        Wheel deflection reached.
+
+    Returns
+    -------
+    dict of int -> TireModelError
+        :class:`RimBottoms` or :class:`BulgeLimit` per failed case, with its state.
+    """
+    out: dict[int, TireModelError] = {}
+    dw = np.broadcast_to(dw, cs.r0.shape)
+    for i in np.nonzero(np.any(bad_h, -1) | np.any(bad_c, -1))[0]:
+        state = {"case": int(i), "deflection_mm": float(dw[i, 0])}
+        if np.any(bad_h[i]):
+            out[int(i)] = RimBottoms(
+                "deflection",
+                float(dw[i, 0]),
+                "small enough that no bead reaches the support surface",
+                state,
+            )
+            continue
+        name = "slip" if cs.slip[i, 0] else "lateral" if cs.lateral[i, 0] else "camber"
+        value = float({"slip": cs.slip, "lateral": cs.lateral, "camber": cs.gamma}[name][i, 0])
+        out[int(i)] = BulgeLimit(
+            name,
+            value,
+            "a value for which every side bulge keeps more carcass than its chord",
+            state,
+        )
+    return out
+
+
+def raise_case_errors(errors: dict[int, TireModelError]) -> None:
+    """Raise the first case's error carrying all of them as ``.case_errors``
+    (``{case index: error}``), so a batch can set exactly those cases aside.
+
+    Parameters
+    ----------
+    errors : dict of int -> TireModelError
+
+    Returns
+    -------
+    None
+        Returns only when ``errors`` is empty.
+    """
+    if errors:
+        exc = errors[min(errors)]
+        exc.case_errors = dict(errors)
+        raise exc
 
 
 def dw_sensitivities(phi, cs: CaseArrays):
     """d dv / d dw and d dh / d dw of each section (equation 5-15 and equation 5-17
-    with the slip term, ``x = (R - dv) sin phi``; the track offset held fixed)."""
+    with the slip term, ``x = (R - dv) sin phi``; the track offset held fixed).
+
+    Parameters
+    ----------
+    phi : (m, n) float [rad]
+        Section angles.
+    cs : CaseArrays
+
+    Returns
+    -------
+    ddv_ddw, ddh_ddw : (m, n) float [-]
+    """
     cg = np.cos(cs.gamma)
     ddv_ddw = cg / np.cos(phi)
     return ddv_ddw, np.tan(cs.gamma) * ddv_ddw - np.tan(cs.slip) * cg * np.tan(phi)
@@ -174,6 +281,23 @@ def area_jacobian(sol: SectionSolution, dv, ddv, phi, cs: CaseArrays, xm=None):
     tilted, which makes its ground footprint slightly smaller (the appendix, which
     takes ``polyarea`` of the projected outline, includes this too). On a curved
     surface the area is measured along the surface (unrolled), as an ink print is.
+
+    Parameters
+    ----------
+    sol : SectionSolution
+        Sections at ``phi``, arrays (m, n).
+    dv : (m, n) float [mm]
+        Vertical deflection of each section.
+    ddv : (m, n) float [mm/rad]
+        ``d dv / d phi``.
+    phi : (m, n) float [rad]
+    cs : CaseArrays
+    xm : (m, n) float [mm], optional
+        Section-frame ``x`` where ``J`` is taken (default the contact midpoint).
+
+    Returns
+    -------
+    jac : (m, n) float [mm/rad]
     """
     c, s = np.cos(cs.gamma), np.sin(cs.gamma)
     zs, dzs = -cs.r0 + dv, ddv
@@ -191,7 +315,25 @@ def area_jacobian(sol: SectionSolution, dv, ddv, phi, cs: CaseArrays, xm=None):
 def djac_ddw(sol: SectionSolution, dv, ddv_dphi, phi, cs: CaseArrays, jac, dw):
     """d(area Jacobian)/d(wheel deflection): a directional difference along the exact
     d dv/d dw = cos(camber)/cos(phi), moving the section midpoints by their analytic
-    sensitivities."""
+    sensitivities (for the load search's ``dA/ddw``).
+
+    Parameters
+    ----------
+    sol : SectionSolution
+        Sections at ``phi``, arrays (m, n).
+    dv : (m, n) float [mm]
+    ddv_dphi : (m, n) float [mm/rad]
+    phi : (m, n) float [rad]
+    cs : CaseArrays
+    jac : (m, n) float [mm/rad]
+        :func:`area_jacobian` at ``dw``.
+    dw : (m, 1) float [mm]
+        Wheel deflection (sets the step).
+
+    Returns
+    -------
+    djac : (m, n) float [1/rad]
+    """
     h = _DIFF_STEP * dw
     cg, cp = np.cos(cs.gamma), np.cos(phi)
     ddv_ddw, ddh_ddw = dw_sensitivities(phi, cs)

@@ -11,15 +11,32 @@ in ``log dw`` is the fallback.
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 import numpy as np
 
 from .._roots import newton_bracketed
 from .._tol import tol
-from ..errors import LoadTooHigh, NotConverged, TireModelError
+from ..errors import LoadTooHigh, NoContact, NotConverged, PatchEndLimit, TireModelError
+from ..section import section_arrays
 from ..units import MPA_PER_BAR
 from .arrays import CaseArrays
-from .ends import has_track_shift, patch_ends, touching_patch_ends, track_offset
-from .kinematics import area_jacobian, djac_ddw, dw_sensitivities, sections_at
+from .ends import (
+    driving_input,
+    has_track_shift,
+    patch_ends,
+    touching_patch_ends,
+    track_offset,
+)
+from .kinematics import (
+    area_jacobian,
+    displacements,
+    djac_ddw,
+    dw_sensitivities,
+    limit_errors,
+    raise_case_errors,
+    sections_at,
+)
 from .quadrature import clenshaw_curtis
 
 
@@ -56,6 +73,37 @@ def max_load_arrays(cs: CaseArrays, n: int):
     return cs.pressure * area, dmax
 
 
+@dataclass
+class _NewtonState:
+    """Per-case iterate of the joint Newton: deflection, end angles and step damping."""
+
+    dw: np.ndarray
+    rear: np.ndarray
+    front: np.ndarray
+    damp: np.ndarray
+
+    def copy(self) -> _NewtonState:
+        return _NewtonState(self.dw.copy(), self.rear.copy(), self.front.copy(), self.damp.copy())
+
+    def take(self, index) -> _NewtonState:
+        return _NewtonState(self.dw[index], self.rear[index], self.front[index], self.damp[index])
+
+    def assign(self, index, other: _NewtonState) -> None:
+        for f in ("dw", "rear", "front", "damp"):
+            getattr(self, f)[index] = getattr(other, f)[index]
+
+
+def _start(cs: CaseArrays, load, dmax, start) -> _NewtonState:
+    if start is None:
+        dw = np.clip(
+            (load / (cs.pressure * 3.7 * np.sqrt(cs.R))) ** (2.0 / 3.0), 1e-3 * dmax, 0.9 * dmax
+        )
+        phi_f = np.arccos((cs.R - dw) / cs.R)
+        return _NewtonState(dw, -phi_f, phi_f, np.ones_like(dw))
+    dw, (rear, front) = start
+    return _NewtonState(dw.copy(), rear.copy(), front.copy(), np.ones_like(dw))
+
+
 def joint_newton(cs: CaseArrays, load, n: int, offset=0.0, start=None):
     """Deflection and patch ends together: one section solve per Newton step.
 
@@ -64,94 +112,194 @@ def joint_newton(cs: CaseArrays, load, n: int, offset=0.0, start=None):
     The Clenshaw-Curtis nodes span [phi_r, phi_f], so every step evaluates the end
     widths and the area in one call. The Jacobian is nearly triangular
     (``dA/dphi_end = +-width_end * dx/dphi``, which vanishes at the solution), so the
-    3 x 3 step is solved in closed form.
+    3 x 3 step is solved in closed form. A case whose step leaves Rotta's
+    construction goes back to its last valid iterate with half the step; after five
+    halvings it has met a limit of the model (its message is returned). Cases are
+    independent: one case's failure never changes another's iterate.
 
-    ``offset`` is a fixed track offset (m, 1) [mm]; ``start`` an optional warm start
-    ``(dw, (rear, front))``. Returns ``(dw, (rear, front), converged)`` with a
-    per-case mask of converged cases (the caller solves the others by the nested,
-    fully bracketed search), or ``None`` if a step left the model's domain.
+    Parameters
+    ----------
+    cs : CaseArrays
+    load : (m, 1) float [N]
+    n : int
+        Clenshaw-Curtis sections per patch.
+    offset : (m, 1) float [mm]
+        Fixed track offset (section 5.3.2).
+    start : (dw, (rear, front)), optional
+        Warm start.
+
+    Returns
+    -------
+    dw : (m, 1) float [mm]
+    ends : (rear, front) of (m, 1) float [rad]
+    converged : (m, 1) bool
+    failed : dict of int -> TireModelError
+        Cases that met a limit of the model, with the error naming it.
     """
     t, wts = clenshaw_curtis(n)
     dmax = cs.max_deflection()
-    if start is None:
-        dw = np.clip(
-            (load / (cs.pressure * 3.7 * np.sqrt(cs.R))) ** (2.0 / 3.0), 1e-3 * dmax, 0.9 * dmax
-        )
-        phi_f = np.arccos((cs.R - dw) / cs.R)
-        phi_r = -phi_f
-    else:
-        dw, (phi_r, phi_f) = start
-    target = np.log(load)
-    at_limit = 0
+    st = _start(cs, load, dmax, start)
+    good = st.copy()
+    offset = np.broadcast_to(np.asarray(offset, float), cs.r0.shape)
+    failed: dict[int, TireModelError] = {}
+    dead = np.zeros(cs.m, bool)
+    done = np.zeros(cs.m, bool)
+    over = np.zeros(cs.m, int)
     for _ in range(tol.max_iter):
-        half = 0.5 * (phi_f - phi_r)
-        phi = 0.5 * (phi_f + phi_r) + half * t
-        try:
-            sol, d = sections_at(phi, dw, cs, offset)
-        except TireModelError:
-            return None
-        dv, ddv, ddh = d.dv, d.ddv, d.ddh
-        jac = area_jacobian(sol, dv, ddv, phi, cs)
-        width = sol.width
-        dv_dw, dh_dw = dw_sensitivities(phi, cs)
-        dwid_dw = sol.dwidth_ddv * dv_dw + sol.dwidth_ddh * dh_dw
-        dwid_dphi = sol.dwidth_ddv * ddv + sol.dwidth_ddh * ddh
-        area = half * (wts * width * jac).sum(-1, keepdims=True)
-        if np.any(area <= 0):
-            return None
-        djac = djac_ddw(sol, dv, ddv, phi, cs, jac, dw)
-        slope = half * (wts * (dwid_dw * jac + width * djac)).sum(-1, keepdims=True)
-        f1, f2 = width[:, :1], width[:, -1:]
-        a1, a2 = dwid_dphi[:, :1], dwid_dphi[:, -1:]
-        b1, b2 = dwid_dw[:, :1], dwid_dw[:, -1:]
+        act = np.nonzero(~done & ~dead)[0]  # only the cases still iterating cost a step
+        if act.size == 0:
+            break
+        cs_a, s_a = cs.take(act), st.take(act)
+        step = _newton_step(cs_a, s_a, offset[act], np.log(load[act]), (t, wts))
+        if step.bad is not None:  # back to the last valid iterate, half the step
+            bad = act[step.bad[:, 0]]
+            st.damp[bad] *= 0.5
+            newly = bad[st.damp[bad, 0] < 1 / 32]
+            errs = limit_errors(cs_a, step.bad_h, step.bad_c, s_a.dw)
+            for i in newly:
+                j = int(np.nonzero(act == i)[0][0])
+                err = errs.get(j) or NoContact(
+                    f"no contact patch at deflection {float(st.dw[i, 0]):.6g} mm; increase "
+                    "the load or reduce the lateral displacement"
+                )
+                if hasattr(err, "state"):
+                    err.state["case"] = int(i)
+                failed[int(i)] = err
+            dead[newly] = True
+            for f in ("dw", "rear", "front"):
+                cur, prev = getattr(st, f), getattr(good, f)
+                cur[bad] = prev[bad] + st.damp[bad] * (cur[bad] - prev[bad])
+            continue
+        good.assign(act, st)
+        # converged, but the surface still reaches sections beyond the ends: patch_ends
+        # would refuse this deflection (equation-free check, same probe)
+        for i in act[(step.done & step.reach)[:, 0]]:
+            failed[int(i)] = PatchEndLimit(
+                *driving_input(cs, i),
+                "a value for which the patch ends where the surface leaves the tire",
+                {"case": int(i), "deflection_mm": float(st.dw[i, 0])},
+            )
+            dead[i] = True
+        over[act] = np.where(((s_a.dw >= dmax[act]) & (step.f3 < 0))[:, 0], over[act] + 1, 0)
+        dead[act] |= over[act] >= 3  # the load is beyond what the tire carries
+        done[act] = step.done[:, 0]
+        live = act[~step.done[:, 0] & step.finite[:, 0] & ~dead[act]]
+        dead[act[~step.done[:, 0] & ~step.finite[:, 0]]] = True
+        k = np.isin(act, live)
+        dw_new = np.minimum(s_a.dw[k] + step.dw[k], dmax[live])
+        outer = np.arccos(np.clip((cs.R[live] - dw_new) / cs.R[live], -1.0, 1.0)) * 1.05 + 1e-9
+        st.rear[live] = np.clip(s_a.rear[k] + step.rear[k], -outer, -1e-9)
+        st.front[live] = np.clip(s_a.front[k] + step.front[k], 1e-9, outer)
+        st.dw[live] = dw_new
+        st.damp[live] = np.minimum(1.0, 2.0 * st.damp[live])
+    return st.dw, (st.rear, st.front), (done & ~dead)[:, None], failed
+
+
+@dataclass(frozen=True)
+class _Step:
+    """One joint Newton step of the active cases (see :func:`joint_newton`)."""
+
+    bad: np.ndarray | None
+    bad_h: np.ndarray | None = None
+    bad_c: np.ndarray | None = None
+    dw: np.ndarray | None = None
+    rear: np.ndarray | None = None
+    front: np.ndarray | None = None
+    f3: np.ndarray | None = None
+    done: np.ndarray | None = None
+    finite: np.ndarray | None = None
+    reach: np.ndarray | None = None
+
+
+def _newton_step(cs: CaseArrays, st: _NewtonState, offset, target, quad) -> _Step:
+    t, wts = quad
+    half = 0.5 * (st.front - st.rear)
+    phi = 0.5 * (st.front + st.rear) + half * t
+    d = displacements(phi, st.dw, cs, offset)
+    sol, bad_h, bad_c = section_arrays(
+        cs.r0, cs.w, d.dv, d.dh, cs.gamma, cs.r0 * cs.gamma, broadcast=True
+    )
+    jac = area_jacobian(sol, d.dv, d.ddv, phi, cs)
+    width = sol.width
+    area = half * (wts * width * jac).sum(-1, keepdims=True)
+    bad = np.any(bad_h | bad_c, -1, keepdims=True) | ~(area > 0)
+    if np.any(bad):
+        return _Step(bad, bad_h & bad, bad_c & bad)
+    outer = np.minimum(1.05 * np.arccos(np.clip((cs.R - st.dw) / cs.R, -1, 1)) + 1e-9, 1.2)
+    d_o = displacements(np.concatenate([-outer, outer], 1), st.dw, cs, offset)
+    sol_o, bh_o, bc_o = section_arrays(cs.r0, cs.w, d_o.dv, d_o.dh, cs.gamma, cs.r0 * cs.gamma)
+    reach = np.any((sol_o.width > 0) & ~bh_o & ~bc_o, -1, keepdims=True)
+    dv_dw, dh_dw = dw_sensitivities(phi, cs)
+    dwid_dw = sol.dwidth_ddv * dv_dw + sol.dwidth_ddh * dh_dw
+    dwid_dphi = sol.dwidth_ddv * d.ddv + sol.dwidth_ddh * d.ddh
+    djac = djac_ddw(sol, d.dv, d.ddv, phi, cs, jac, st.dw)
+    slope = half * (wts * (dwid_dw * jac + width * djac)).sum(-1, keepdims=True)
+    f1, f2 = width[:, :1], width[:, -1:]
+    a1, a2 = dwid_dphi[:, :1], dwid_dphi[:, -1:]
+    b1, b2 = dwid_dw[:, :1], dwid_dw[:, -1:]
+    with np.errstate(all="ignore"):
         c1, c2 = -f1 * jac[:, :1] / area, f2 * jac[:, -1:] / area
         f3 = np.log(cs.pressure * area) - target
         s = slope / area
         step_dw = (-f3 + c1 * f1 / a1 + c2 * f2 / a2) / (s - c1 * b1 / a1 - c2 * b2 / a2)
-        step_dw = np.clip(step_dw, -0.5 * dw, dw)  # damped: at most halve or double
+        step_dw = np.clip(step_dw, -0.5 * st.dw, st.dw) * st.damp  # damped: halve or double
         step_r = (-f1 - b1 * step_dw) / a1
         step_f = (-f2 - b2 * step_dw) / a2
-        dw_new = np.minimum(dw + step_dw, dmax)
-        at_limit = at_limit + 1 if np.any((dw >= dmax) & (f3 < 0)) else 0
-        if at_limit >= 3:  # the load is beyond what the tire carries: let the caller say so
-            return None
-        outer = np.arccos(np.clip((cs.R - dw_new) / cs.R, -1.0, 1.0)) * 1.05 + 1e-9
-        phi_r = np.clip(phi_r + step_r, -outer, -1e-9)
-        phi_f = np.clip(phi_f + step_f, 1e-9, outer)
-        dw = dw_new
-        if not np.all(np.isfinite(dw)):
-            return None
-        done = (
-            (np.abs(f3) <= tol.load_rtol)
-            & (np.abs(f1) <= tol.end_width_atol)
-            & (np.abs(f2) <= tol.end_width_atol)
-            & (np.abs(step_dw) <= tol.load_rtol * dw)
-        )
-        if np.all(done):
-            break
-    return dw, (phi_r, phi_f), done
+    done = (
+        (np.abs(f3) <= tol.load_rtol)
+        & (np.abs(f1) <= tol.end_width_atol)
+        & (np.abs(f2) <= tol.end_width_atol)
+        & (np.abs(step_dw) <= tol.load_rtol * st.dw)
+    )
+    finite = np.isfinite(step_dw) & np.isfinite(step_r) & np.isfinite(step_f)
+    return _Step(
+        None, dw=step_dw, rear=step_r, front=step_f, f3=f3, done=done, finite=finite, reach=reach
+    )
 
 
 def _joint_with_offset(cs: CaseArrays, load, n: int):
     """Joint Newton inside a fixed point on the track offset (section 5.3.2): each
     outer step solves deflection and ends for a fixed offset, then moves the offset
-    to the mean track shift at the new ends (a few outer steps; warm-started)."""
+    to the mean track shift at the new ends; only the cases whose offset still
+    moves take another (warm-started) step."""
     if not has_track_shift(cs):
-        found = joint_newton(cs, load, n)
-        return None if found is None else (*found, np.zeros_like(cs.r0))
-    shift = lambda phi: cs.surface.shift(phi, cs.R, cs.gamma)[0]
-    offset, start = np.zeros_like(cs.r0), None
+        dw, ends, done, failed = joint_newton(cs, load, n)
+        return dw, ends, done, np.zeros_like(cs.r0), failed
+    dw, rear, front = np.zeros_like(cs.r0), np.zeros_like(cs.r0), np.zeros_like(cs.r0)
+    offset, done, failed = np.zeros_like(cs.r0), np.zeros(cs.r0.shape, bool), {}
+    active, start = np.arange(cs.m), None
     for _ in range(tol.max_iter):
-        found = joint_newton(cs, load, n, offset, start)
-        if found is None:
-            return None
-        dw, (rear, front), done = found
-        new = 0.5 * (shift(rear) + shift(front))  # the offset that follows equation 5-24
-        moved = np.abs(new - offset) > tol.disk_offset_atol
-        if not np.any(moved & done):
-            return dw, (rear, front), done, offset
-        offset, start = np.where(done, new, offset), (dw, (rear, front))
-    return None
+        sub = cs.take(active)
+        dw_a, (r_a, f_a), ok_a, failed_a = joint_newton(
+            sub, load[active], n, offset[active], start
+        )
+        failed.update({int(active[i]): err for i, err in failed_a.items()})
+        dw[active], rear[active], front[active] = dw_a, r_a, f_a
+        shift = lambda phi: sub.surface.shift(phi, sub.R, sub.gamma)[0]  # noqa: B023
+        new = 0.5 * (shift(r_a) + shift(f_a))  # the offset that follows equation 5-24
+        moved = np.abs(new - offset[active]) > tol.disk_offset_atol
+        done[active] = ok_a & ~moved
+        offset[active] = np.where(ok_a, new, offset[active])
+        again = (ok_a & moved)[:, 0]
+        active = active[again]
+        if active.size == 0:
+            break
+        start = (dw_a[again], (r_a[again], f_a[again]))
+    return dw, (rear, front), done, offset, failed
+
+
+def _nested_each(sub: CaseArrays, load, n: int, idx) -> tuple[np.ndarray, dict]:
+    """Nested search on a subset; if it fails as a whole, case by case."""
+    try:
+        return nested_search(sub, load, n)[0], {}
+    except TireModelError as exc:
+        if sub.m == 1:
+            return np.full((1, 1), np.nan), {int(idx[0]): exc}
+    dw, errors = np.full((sub.m, 1), np.nan), {}
+    for j in range(sub.m):
+        got, err = _nested_each(sub.take(np.array([j])), load[j : j + 1], n, idx[j : j + 1])
+        dw[j], errors = got[0], {**errors, **err}
+    return dw, errors
 
 
 def find_deflection(cs: CaseArrays, load, n: int | None = None):
@@ -159,25 +307,29 @@ def find_deflection(cs: CaseArrays, load, n: int | None = None):
     (rear, front) and the track offset (m, 1) [mm].
 
     The joint Newton solves every case it can; the cases it does not converge on
-    (and only those) go to the nested, fully bracketed search.
+    (and only those) go to the nested, fully bracketed search. Cases that meet a
+    limit of the model raise the first one's error, with every failed case's error
+    in its ``case_errors`` (``{case index: error}``).
     """
     n = tol.search_sections if n is None else n
-    found = _joint_with_offset(cs, load, n)
-    if found is None:
-        done = np.zeros(cs.r0.shape, bool)
-        dw, ends, offset = np.zeros_like(cs.r0), (cs.r0 * 0, cs.r0 * 0), np.zeros_like(cs.r0)
-    else:
-        dw, ends, done, offset = found
-    if np.all(done):
-        return dw, ends, offset
-    idx = np.nonzero(~done[:, 0])[0]
-    sub = cs.take(idx)
-    dw_s, _ = nested_search(sub, load[idx], n)
-    off_s, _ = track_offset(dw_s, sub)
-    rear_s, front_s = patch_ends(dw_s, sub, off_s)
-    dw, rear, front, offset = dw.copy(), ends[0].copy(), ends[1].copy(), offset.copy()
-    dw[idx], rear[idx], front[idx], offset[idx] = dw_s, rear_s, front_s, off_s
-    return dw, (rear, front), offset
+    dw, ends, done, offset, failed = _joint_with_offset(cs, load, n)
+    rest = ~done[:, 0] & ~np.isin(np.arange(cs.m), list(failed))
+    if np.any(rest):
+        idx = np.nonzero(rest)[0]
+        sub = cs.take(idx)
+        dw_s, errors = _nested_each(sub, load[idx], n, idx)
+        failed.update(errors)
+        ok = np.isfinite(dw_s[:, 0])
+        if np.any(ok):
+            sub_ok, dw_ok = sub.take(np.nonzero(ok)[0]), dw_s[ok]
+            off_s, _ = track_offset(dw_ok, sub_ok)
+            rear_s, front_s = patch_ends(dw_ok, sub_ok, off_s)
+            dw, rear, front, offset = dw.copy(), ends[0].copy(), ends[1].copy(), offset.copy()
+            k = idx[ok]
+            dw[k], rear[k], front[k], offset[k] = dw_ok, rear_s, front_s, off_s
+            ends = (rear, front)
+    raise_case_errors(failed)
+    return dw, ends, offset
 
 
 def nested_search(cs: CaseArrays, load, n: int):

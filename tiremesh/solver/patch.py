@@ -186,7 +186,26 @@ def _row(sol: SectionSolution, i: int, shape) -> SectionSolution:
 def patch_from_arrays(
     case: LoadCase, out: PatchArrays, i: int, deflection: float, slip_offset: float
 ) -> ContactPatch:
-    """The :class:`ContactPatch` of row ``i`` of solved ``out``."""
+    """The :class:`ContactPatch` of one case of a vectorized solve.
+
+    Parameters
+    ----------
+    case : LoadCase
+        The load case of row ``i``.
+    out : PatchArrays
+        Solved patches, arrays (m, n) and (m,).
+    i : int
+        Row of ``out``.
+    deflection : float [mm]
+        Wheel deflection of the case.
+    slip_offset : float [mm]
+        Lateral shift of the slip anchor (``ContactPatch.slip_offset``).
+
+    Returns
+    -------
+    ContactPatch
+        Arrays (n,); the outline a closed (2n + 1, 2) polygon [mm].
+    """
     x1, y1 = (a[i] for a in out.edge1_xy)
     x2, y2 = (a[i] for a in out.edge2_xy)
     ring = np.concatenate([np.column_stack([x1, y1]), np.column_stack([x2, y2])[::-1]])
