@@ -27,6 +27,8 @@ From mesh : patch_from_mesh, contact_faces, surface_coordinates
 Model     : patch_polygon, appendix_points, appendix_ellipse
 Study     : case_of, pair_prints, trend_table, sign_agreement, drum_plate_ratios,
             build_report
+Validation: validate, report_section (the model vs the measurements of Dressel 2013,
+            :mod:`contactpatch.study.validate`)
 Errors    : ContactPatchError, InvalidInput, NoPatch (also the module ``errors``)
 Tolerances: tol (numerical epsilons only)
 """
@@ -60,6 +62,7 @@ from .study import (
     sign_agreement,
     trend_table,
 )
+from .study.validate import report_section, validate
 
 __all__ = [
     "ContactPatchError",
@@ -83,8 +86,10 @@ __all__ = [
     "pair_prints",
     "patch_from_mesh",
     "patch_polygon",
+    "report_section",
     "sign_agreement",
     "surface_coordinates",
     "tol",
     "trend_table",
+    "validate",
 ]

@@ -1,11 +1,12 @@
 """Grey scan -> ink mask (section 4.1.1: "converted from grey-scale to black-and-white").
 
 Methods: ``otsu`` (default; global, from the grey histogram), ``fixed`` (a given
-threshold) and ``sauvola`` (local, for unevenly lit or inked scans). Ink is darker
-than the threshold. The threshold used is kept in the result (for Sauvola, the local
-threshold map's median). Specks (paper grain, dust) stay in the sheet's mask: they
-are removed per print with :func:`remove_specks` (``speck_area_mm2`` of
-:class:`inkprint.AnalysisOptions`).
+threshold) and ``sauvola`` (local). Uneven light is flattened before thresholding
+(:func:`inkprint.light.prepare_page`), so the global threshold holds under a
+gradient or a shadow. Ink is darker than the threshold. The work is done on 8-bit
+grey (levels 0..255); the threshold is reported as a grey level in [0, 1] (for
+Sauvola, the local threshold map's median). Specks (paper grain, dust) stay in the
+sheet's mask: they are sorted out with the other marks (:mod:`inkprint.marks`).
 """
 
 from __future__ import annotations
@@ -16,9 +17,12 @@ import numpy as np
 
 from .coords import mm_to_px_length
 from .errors import AllInk, InvalidInput, NoInk
+from .light import to_uint8
 from .options import AnalysisOptions, resolve_options
 
 METHODS = ("otsu", "fixed", "sauvola")
+#: the two Otsu classes must differ by this much of the paper's level to be ink
+MIN_CONTRAST = 0.25
 
 
 @dataclass(frozen=True)
@@ -33,14 +37,38 @@ class Binarization:
         Grey level used (median of the local map for Sauvola).
     method : str
         'otsu', 'fixed' or 'sauvola'.
-    level : float or (rows, cols) float32
-        The threshold itself (scalar, or the local map), for re-thresholding.
+    level : float or (rows, cols) float32 [0..255]
+        The threshold itself on the 8-bit grey (scalar, or the local map), for
+        re-thresholding.
     """
 
     mask: np.ndarray
     threshold: float
     method: str
     level: object
+
+
+def _otsu(work: np.ndarray) -> float:
+    """Otsu's level on 8-bit grey [0..255] (ink is below it); a page without two
+    distinct grey classes (blank, uniform, faint grain) raises NoInk."""
+    import cv2
+
+    hist = cv2.calcHist([work], [0], None, [256], [0, 256]).ravel().astype(float)
+    if np.count_nonzero(hist) < 2:
+        raise NoInk("no ink on the sheet (blank page: a single grey level)")
+    levels = np.arange(256.0)
+    w, m = np.cumsum(hist)[:-1], np.cumsum(hist * levels)[:-1]
+    total, msum = hist.sum(), float(hist @ levels)
+    mu0 = np.divide(m, w, out=np.zeros(255), where=w > 0)
+    mu1 = np.divide(msum - m, total - w, out=np.zeros(255), where=total > w)
+    t = int(np.argmax(w * (total - w) * (mu0 - mu1) ** 2))  # between-class variance
+    ink, paper = float(mu0[t]), float(mu1[t])
+    if paper - ink < MIN_CONTRAST * paper:
+        raise NoInk(
+            f"no print found: nothing on the sheet is much darker than the paper "
+            f"(darkest class {ink / 255:.2f} vs paper {paper / 255:.2f})"
+        )
+    return float(t + 1)  # ink: grey <= t, i.e. grey < t + 1
 
 
 def threshold_level(
@@ -55,8 +83,8 @@ def threshold_level(
 
     Parameters
     ----------
-    grey : (rows, cols) float in [0, 1]
-        1 = paper, 0 = ink.
+    grey : (rows, cols) uint8 [0..255], or float in [0, 1]
+        Light paper, dark ink.
     method : {'otsu', 'fixed', 'sauvola'}
     threshold : float, optional
         Grey level in (0, 1) for ``method='fixed'``.
@@ -67,26 +95,31 @@ def threshold_level(
 
     Returns
     -------
-    float or (rows, cols) float32
-        Grey level below which a pixel is ink.
+    float or (rows, cols) float32 [0..255]
+        8-bit grey level below which a pixel is ink.
+
+    Raises
+    ------
+    NoInk
+        (Otsu) No two distinct grey classes: a blank or uniform page.
+    InvalidInput
+        Unknown method, or a fixed threshold outside (0, 1).
     """
     if method not in METHODS:
         raise InvalidInput("method", method, " | ".join(METHODS))
+    work = to_uint8(grey)
     if method == "fixed":
         if threshold is None or not (0.0 < float(threshold) < 1.0):
             raise InvalidInput("threshold", threshold, "(0, 1) grey level with method='fixed'")
-        return float(threshold)
+        return 255.0 * float(threshold)
     if method == "otsu":
-        from skimage.filters import threshold_otsu
-
-        sample = grey[::2, ::2] if grey.size > 4_000_000 else grey
-        if float(sample.max()) - float(sample.min()) < 1e-3:
-            return float(sample.min()) - 1.0  # uniform page: nothing is ink
-        return float(threshold_otsu(sample, nbins=256))
+        return _otsu(work)
     from skimage.filters import threshold_sauvola
 
     w = int(window_px) | 1
-    return threshold_sauvola(grey, window_size=max(w, 3), k=float(k)).astype(np.float32)
+    return 255.0 * threshold_sauvola(work / 255.0, window_size=max(w, 3), k=float(k)).astype(
+        np.float32
+    )
 
 
 def remove_specks(mask, min_pixels: int) -> np.ndarray:
@@ -124,15 +157,12 @@ def binarize(
     scale_level: float = 1.0,
     options: AnalysisOptions | None = None,
 ) -> Binarization:
-    """Binarize a grey scan (1 = paper, 0 = ink).
-
-    Specks are removed per print later (:func:`remove_specks` on each group's box):
-    cheaper than on the whole sheet, and a speck far from any print only forms a
-    group too small to be a print.
+    """Binarize a grey scan (light paper, dark ink).
 
     Parameters
     ----------
-    grey : (rows, cols) float in [0, 1]
+    grey : (rows, cols) uint8 [0..255], or float in [0, 1]
+        E.g. :attr:`inkprint.light.Page.work`.
     mm_per_px : float [mm / px]
         Scale (the Sauvola window is physical).
     method : {'otsu', 'fixed', 'sauvola'}
@@ -158,16 +188,17 @@ def binarize(
     opts = resolve_options(options)
     if not (np.isfinite(window_mm) and window_mm > 0):
         raise InvalidInput("window_mm", window_mm, "> 0 mm (the Sauvola window)")
+    work = to_uint8(grey)
     level = threshold_level(
-        grey,
+        work,
         method=method,
         threshold=threshold,
         window_px=round(mm_to_px_length(window_mm, mm_per_px)),
         k=k,
     )
     level = level * scale_level
-    mask = grey < level
-    frac = float(mask.mean())
+    mask = work < level
+    frac = float(np.count_nonzero(mask)) / mask.size
     if frac > opts.max_ink_fraction:
         raise AllInk(
             f"{100 * frac:.0f} % of the sheet is darker than the threshold: no paper to measure against"
@@ -175,4 +206,4 @@ def binarize(
     if frac < opts.min_ink_fraction:
         raise NoInk("no ink on the sheet (blank page)")
     med = float(level) if np.ndim(level) == 0 else float(np.median(level))
-    return Binarization(mask=mask, threshold=med, method=method, level=level)
+    return Binarization(mask=mask, threshold=med / 255.0, method=method, level=level)

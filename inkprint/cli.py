@@ -172,7 +172,7 @@ def _cmd_batch(a) -> int:
     for path in res.outputs:
         print(f"wrote {path}")
     if a.report:
-        from contactpatch.report import build_report
+        from contactpatch import build_report
 
         index = build_report(
             res.rows, a.report, renders=not a.no_renders, source=str(res.outputs[0])

@@ -34,9 +34,18 @@ class ScaleMissing(InkPrintError):
     ``--mm-per-px``), and pixels were not asked for."""
 
 
+class ScaleUntrusted(ScaleMissing):
+    """The file's DPI is 72 or 96, the default of cameras and screen software, not a
+    scanner's resolution: give ``--dpi`` (or ``--trust-dpi`` if it is right)."""
+
+
 class NoInk(InkPrintError):
     """No print found on the sheet (blank page, or only specks and marks)."""
 
 
 class AllInk(InkPrintError):
     """The sheet is (nearly) all ink: no paper to threshold against."""
+
+
+class OutputLocked(InkPrintError):
+    """Another batch is writing the same output table (its lock file is held)."""

@@ -27,11 +27,22 @@ def _finite(v) -> bool:
 # field -> (accepts the value, allowed range as told in the error)
 _RULES = {
     "group_distance_mm": (lambda v: v > 0, "> 0 mm"),
-    "min_patch_area_mm2": (lambda v: v >= 0, ">= 0 mm^2"),
+    "group_mm": (lambda v: v > 0, "> 0 mm, or None for the footprint rule"),
+    "group_size_factor": (lambda v: v >= 0, ">= 0 (times the smaller element's width)"),
+    "group_pattern_factor": (lambda v: v >= 0, ">= 0 (times the tread pattern's gap)"),
+    "min_patch_area_mm2": (lambda v: v >= 0, ">= 0 mm^2, or None to scale with the sheet"),
+    "min_patch_sheet_fraction": (lambda v: 0 <= v < 1, "a fraction of the sheet in [0, 1)"),
+    "min_patch_fraction": (lambda v: 0 <= v <= 1, "a fraction of the largest print in [0, 1]"),
     "min_patch_width_mm": (lambda v: v >= 0, ">= 0 mm"),
     "min_net_to_gross": (lambda v: 0 <= v <= 1, "a fraction in [0, 1]"),
     "max_patch_aspect": (lambda v: v >= 1, ">= 1 (length over width)"),
     "speck_area_mm2": (lambda v: v >= 0, ">= 0 mm^2"),
+    "stroke_width_mm": (lambda v: v > 0, "> 0 mm"),
+    "line_length_mm": (lambda v: v > 0, "> 0 mm"),
+    "mark_overhang_mm": (lambda v: v >= 0, ">= 0 mm"),
+    "light_tolerance": (lambda v: 0 <= v < 1, "a relative variation in [0, 1)"),
+    "light_scale_mm": (lambda v: v > 0, "> 0 mm"),
+    "perspective_tolerance_deg": (lambda v: 0 < v < 45, "an angle in (0, 45) degrees"),
     "edge_spot_area_mm2": (lambda v: v >= 0, ">= 0 mm^2"),
     "edge_spot_faintness": (lambda v: 0 <= v <= 1, "a fraction in [0, 1]"),
     "edge_spot_distance_mm": (lambda v: v >= 0, ">= 0 mm"),
@@ -44,6 +55,8 @@ _RULES = {
     "max_dpi": (lambda v: v > 0, "> 0 dots per inch"),
     "pdf_dpi": (lambda v: v > 0, "> 0 dots per inch"),
 }
+#: fields that may be None (the rule then applies to a given value only)
+_OPTIONAL = ("group_mm", "min_patch_area_mm2")
 
 
 @dataclass(frozen=True)
@@ -57,21 +70,47 @@ class AnalysisOptions:
     Parameters
     ----------
     group_distance_mm : float [mm]
-        Ink blobs closer than this belong to the same print (joins the knobs and
-        ribs of a tread; two prints on a sheet are further apart).
-    min_patch_area_mm2 : float [mm^2]
-        A group with less ink is a label, dust or a mark, not a print.
+        Tread elements closer than this always belong to the same print.
+    group_mm : float or None [mm]
+        Override of the footprint rule: elements belong to one print exactly when
+        closer than this (``--group-mm``, manifest column ``group_mm``). None: the
+        footprint rule of :func:`inkprint.group_blobs` (grooves narrower than
+        ``group_size_factor`` x the blocks' width, or than ``group_pattern_factor``
+        x the tread pattern's own gaps, are inside a print).
+    group_size_factor : float [-]
+        A gap narrower than this fraction of the smaller element's width is a
+        groove (car ribs, blocks).
+    group_pattern_factor : float [-]
+        A gap within this many times the gaps around the two elements continues
+        the tread pattern (wide-groove knobs).
+    min_patch_area_mm2 : float or None [mm^2]
+        A group with less ink is dust or a mark, not a print; None (default):
+        ``min_patch_sheet_fraction`` of the sheet's area.
+    min_patch_sheet_fraction : float [-]
+        The automatic ink-area floor as a fraction of the sheet (1e-4: 6 mm^2 on a
+        letter sheet, 0.7 mm^2 on a 10 x 7 cm card).
+    min_patch_fraction : float [-]
+        A group with less ink than this fraction of the largest print's is a
+        fragment or a mark beside the prints.
     min_patch_width_mm : float [mm]
-        A group narrower than this across its axis is a line or handwriting (a
-        ruler, a pen stroke, a label's text line); bicycle prints are >= ~7 mm wide
-        (section 4.1.1).
+        A group narrower than this across its axis is a line or a mark.
     min_net_to_gross : float [-]
-        A group whose ink covers less of its hull than this fraction is writing,
-        not a print.
+        A group whose ink covers less of its hull than this fraction is writing or
+        marks, not a print (wide-groove knobby prints ink ~12 % of their hull).
     max_patch_aspect : float [-]
         A group longer than this many widths is a line, not a contact patch.
     speck_area_mm2 : float [mm^2]
         Ink blobs smaller than this are paper grain or dust and are removed.
+    stroke_width_mm : float [mm]
+        Marks thinner than this (pen writing, ruler lines, gridlines) are told from
+        tread elements, which are wider: ink that vanishes under an opening with a
+        disk this wide is a thin mark.
+    line_length_mm : float [mm]
+        A thin mark this long, mostly outside the prints, is a line, gridlines or
+        writing, and is set aside (never merged into a print).
+    mark_overhang_mm : float [mm]
+        A thin mark reaching farther than this out of a print's outline (a label
+        touching the print) is set aside; nearer, it is the print's own edge.
     edge_spot_area_mm2 : float [mm^2]
         Section 7.1.1 rule: blobs at least this large (and dark) form the print's
         core.
@@ -83,6 +122,15 @@ class AnalysisOptions:
     edge_window_mm : float [mm]
         Window of the local paper and ink levels whose mean defines the print's
         edge (half contrast) for the outline.
+    light_tolerance : float [-]
+        When the paper's brightness varies by more than this fraction over the
+        sheet (a gradient, a shadow), the light is flattened before thresholding.
+    light_scale_mm : float [mm]
+        Scale of the paper-brightness estimate (ink narrower than twice this is not
+        mistaken for shade).
+    perspective_tolerance_deg : float [deg]
+        A photographed page whose corners depart from right angles by more than
+        this is not flat-on: its prints are flagged ``perspective``.
     sensitivity : float [-]
         Relative threshold change of the sensitivity band: each print is measured
         again at the threshold x (1 -+ ``sensitivity``).
@@ -102,15 +150,26 @@ class AnalysisOptions:
     """
 
     group_distance_mm: float = 3.0
-    min_patch_area_mm2: float = 100.0
-    min_patch_width_mm: float = 4.5
-    min_net_to_gross: float = 0.15
+    group_mm: float | None = None
+    group_size_factor: float = 0.75
+    group_pattern_factor: float = 2.5
+    min_patch_area_mm2: float | None = None
+    min_patch_sheet_fraction: float = 1e-4
+    min_patch_fraction: float = 0.05
+    min_patch_width_mm: float = 2.0
+    min_net_to_gross: float = 0.06
     max_patch_aspect: float = 30.0
     speck_area_mm2: float = 0.05
+    stroke_width_mm: float = 0.9
+    line_length_mm: float = 12.0
+    mark_overhang_mm: float = 2.0
     edge_spot_area_mm2: float = 1.5
     edge_spot_faintness: float = 0.6
     edge_spot_distance_mm: float = 2.0
     edge_window_mm: float = 0.6
+    light_tolerance: float = 0.1
+    light_scale_mm: float = 30.0
+    perspective_tolerance_deg: float = 1.5
     sensitivity: float = 0.10
     min_ink_fraction: float = 1e-5
     max_ink_fraction: float = 0.6
@@ -122,6 +181,8 @@ class AnalysisOptions:
     def __post_init__(self) -> None:
         for name, (ok, allowed) in _RULES.items():
             value = getattr(self, name)
+            if value is None and name in _OPTIONAL:
+                continue
             if not (_finite(value) and ok(value)):
                 raise InvalidInput(name, value, allowed)
         object.__setattr__(self, "max_pixels", int(self.max_pixels))
@@ -162,6 +223,22 @@ class AnalysisOptions:
             if name not in names:
                 raise InvalidInput(name, value, "a field of AnalysisOptions")
         return dataclasses.replace(self, **changes)
+
+    def patch_area_floor(self, sheet_area_mm2: float) -> float:
+        """The ink-area floor of a print on a sheet of this area [mm^2].
+
+        Parameters
+        ----------
+        sheet_area_mm2 : float [mm^2]
+
+        Returns
+        -------
+        float [mm^2]
+            ``min_patch_area_mm2``, or ``min_patch_sheet_fraction`` x the sheet.
+        """
+        if self.min_patch_area_mm2 is not None:
+            return float(self.min_patch_area_mm2)
+        return self.min_patch_sheet_fraction * float(sheet_area_mm2)
 
 
 DEFAULT_OPTIONS = AnalysisOptions()

@@ -12,17 +12,21 @@ rolling direction, ``n`` = 2.4: blunter than an ellipse, like real prints) whose
   (Table 4-1 means).
 
 Tread styles fill the outline: ``slick``, ``ribbed`` (longitudinal grooves),
-``file`` (a lattice of small voids) and ``knobby`` (staggered knobs clipped by the
-outline). Ground truth is the exact ink geometry (shapely): its convex hull's
+``file`` (a lattice of small voids), ``knobby`` (staggered knobs clipped by the
+outline), ``mtb`` (wide-groove knobs: gaps as wide as the knobs or wider) and ``car``
+(ribs between circumferential grooves several mm wide, cut into blocks by lateral
+grooves). Ground truth is the exact ink geometry (shapely): its convex hull's
 length, width and area and its net area. The sheet adds uneven ink, halo spots near
 the edges that bore no load (section 7.1.1, not in the truth), paper grain and a
 background gradient, specks, a pen label, a ruler, rotation, two prints per sheet,
-150 to 600 dpi, and optional JPEG artefacts.
+150 to 600 dpi, and optional JPEG artefacts. :mod:`inkprint.synth_effects` adds
+what real sheets carry (rulers and gridlines across prints, labels touching them,
+uneven light and shadows, photos, noise pages) and :mod:`inkprint.synth_cases` the
+failure classes with their expected outcome.
 """
 
 from __future__ import annotations
 
-import csv
 import math
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -33,8 +37,19 @@ from tiremesh.units import MPA_PER_BAR
 
 from .coords import dpi_to_mm_per_px, mm_to_px, mm_to_px_length, px_to_mm_length
 from .errors import InvalidInput
+from .synth_effects import (
+    Grid,
+    Line,
+    Text,
+    draw_grid,
+    draw_line,
+    draw_text,
+    illumination,
+    photograph,
+    texture_page,
+)
 
-TREADS = ("slick", "ribbed", "file", "knobby")
+TREADS = ("slick", "ribbed", "file", "knobby", "mtb", "car")
 LETTER = (215.9, 279.4)  # mm
 SUPERELLIPSE_N = 2.4
 KAPPA = 1.03
@@ -122,6 +137,11 @@ class PrintSpec:
         in the truth).
     exponent : float
         Superellipse exponent.
+    block, gap : float, optional [mm]
+        ``mtb``: knob size and the groove between knobs (default 5 and 6);
+        ``car``: rib width and circumferential groove width (default 28 and 10).
+    halo_touching : int
+        Faint specks touching the outline (bore no load; not in the truth).
     """
 
     length: float
@@ -133,6 +153,9 @@ class PrintSpec:
     unevenness: float = 0.15
     halo_spots: int = 0
     exponent: float = SUPERELLIPSE_N
+    block: float | None = None
+    gap: float | None = None
+    halo_touching: int = 0
 
 
 @dataclass(frozen=True)
@@ -158,6 +181,14 @@ class SheetSpec:
         A ruler along the right edge.
     seed : int
         Random seed (same seed, same image).
+    marks : tuple
+        :class:`~inkprint.synth_effects.Line`, ``Text`` and ``Grid`` marks.
+    light : synth_effects.Light, optional
+        Uneven illumination (multiplies the whole image).
+    photo : synth_effects.Photo, optional
+        The sheet photographed on a table (border, perspective).
+    texture : {'noise', 'texture'}, optional
+        A page of noise or texture (the prints, if any, are drawn over it).
     """
 
     prints: tuple[PrintSpec, ...]
@@ -169,6 +200,10 @@ class SheetSpec:
     label: str | None = None
     ruler: bool = False
     seed: int = 0
+    marks: tuple = ()
+    light: object = None
+    photo: object = None
+    texture: str | None = None
 
 
 @dataclass(frozen=True)
@@ -233,7 +268,48 @@ def _tread(spec: PrintSpec, rng):
         # drop slivers a real knob edge would not print
         parts = [p for p in shapely.get_parts(ink) if p.area > 0.6]
         return shapely.union_all(parts)
+    if spec.tread == "mtb":
+        return _mtb(spec, outline)
+    if spec.tread == "car":
+        return _car(spec, outline)
     raise InvalidInput("tread", spec.tread, " | ".join(TREADS))
+
+
+def _mtb(spec: PrintSpec, outline):
+    """Wide-groove knobs: staggered square knobs, grooves as wide as the knobs."""
+    import shapely
+
+    b = spec.block or 5.0
+    g = spec.gap if spec.gap is not None else 6.0
+    pitch, L, W = b + g, spec.length, spec.width
+    knobs = []
+    for i, u in enumerate(np.arange(-L / 2 - pitch, L / 2 + pitch, pitch)):
+        off = 0.5 * pitch * (i % 2)
+        for v in np.arange(-W / 2 - pitch + off, W / 2 + pitch, pitch):
+            knobs.append(shapely.box(u - b / 2, v - 0.45 * b, u + b / 2, v + 0.45 * b))
+    ink = outline.intersection(shapely.union_all(knobs))
+    # a knob that barely touched prints a part; keep parts of at least a quarter knob
+    return shapely.union_all([p for p in shapely.get_parts(ink) if p.area >= 0.25 * b * b])
+
+
+def _car(spec: PrintSpec, outline):
+    """Car-like tread: ribs between wide circumferential grooves, cut into blocks."""
+    import shapely
+
+    rib = spec.block or 28.0
+    g = spec.gap if spec.gap is not None else 10.0
+    L, W = spec.length, spec.width
+    n = max(2, round((W + g) / (rib + g)))
+    rib = (W - (n - 1) * g) / n
+    lateral, pitch = 0.4 * g, 1.2 * rib
+    blocks = []
+    for k in range(n):
+        v0 = -W / 2 + k * (rib + g)
+        off = 0.5 * pitch * (k % 2)
+        for u in np.arange(-L / 2 - pitch + off, L / 2 + pitch, pitch):
+            blocks.append(shapely.box(u, v0, u + pitch - lateral, v0 + rib))
+    ink = outline.intersection(shapely.union_all(blocks))
+    return shapely.union_all([p for p in shapely.get_parts(ink) if p.area >= 4.0])
 
 
 def _place(geom, spec: PrintSpec):
@@ -338,6 +414,9 @@ def _halo(p: PrintSpec, rng) -> list:
         normal = np.array([q.x / (0.5 * p.length) ** 2, q.y / (0.5 * p.width) ** 2])
         u, v = np.array([q.x, q.y]) + normal / np.hypot(*normal) * rng.uniform(0.6, 2.5)
         halo.append(shapely.Point(u, v).buffer(rng.uniform(0.2, 0.45), quad_segs=6))
+    for _ in range(p.halo_touching):  # specks right on the edge (rng used only if asked)
+        q = ring.interpolate(rng.uniform(0, 1), normalized=True)
+        halo.append(shapely.Point(q.x, q.y).buffer(rng.uniform(0.25, 0.4), quad_segs=6))
     return [_place(h, p) for h in halo]
 
 
@@ -415,7 +494,8 @@ def render_sheet(spec: SheetSpec) -> tuple[np.ndarray, list[PrintTruth]]:
     image : (rows, cols) uint8
         The grey scan (255 = white), ``spec.dpi`` dots per inch.
     truths : list of PrintTruth
-        One per print, ordered as the prints are found: top to bottom.
+        One per print, ordered as the prints are found: top to bottom. With a
+        ``spec.photo``, in the photo's mm (the sheet shifted by the border).
     """
     if not 50 <= spec.dpi <= 1200:
         raise InvalidInput("dpi", spec.dpi, "[50, 1200]")
@@ -425,33 +505,73 @@ def render_sheet(spec: SheetSpec) -> tuple[np.ndarray, list[PrintTruth]]:
     grid = _Raster(mm, rows, cols, 3 if spec.dpi <= 300 else 2)  # supersampling for anti-aliasing
     paper = _paper(spec, grid, rng)
     dark = np.zeros((rows, cols), np.float32)
+    extra = np.random.default_rng([spec.seed, 1])  # the effects' own stream
+    if spec.texture:
+        dark = texture_page(spec.texture, grid, extra)
     truths = []
     for p in spec.prints:
         ink = _place(_tread(p, rng), p)
-        truths.append(truth_of(ink, p.angle))
+        truths.append(truth_of(_clip_to_sheet(ink, spec), p.angle))
         _draw_print(dark, ink, _halo(p, rng), p, grid, rng)
     _add_specks(dark, spec.specks, rng)
+    if spec.marks:
+        _draw_marks(dark, spec, grid)
     img = np.clip(paper * (1.0 - dark), 0, 1)
+    if spec.light is not None:
+        img = img * illumination(spec.light, grid)
     out = (img * 255).astype(np.uint8)
     if spec.label:
         _draw_label(out, spec.label, grid)
     if spec.ruler:
         _draw_ruler(out, grid)
+    if spec.photo is not None:
+        out = photograph(out, spec.photo, grid, extra)
+        b = spec.photo.border
+        truths = [_shift_truth(t, b, b) for t in truths]
     order = np.argsort([-t.ink.centroid.y for t in truths])
     return out, [truths[i] for i in order]
 
 
-def save_scan(image: np.ndarray, path, *, dpi: float, jpeg_quality: int | None = None) -> Path:
+def _clip_to_sheet(ink, spec: SheetSpec):
+    """The ink that lands on the sheet (a print running off the edge is cut)."""
+    import shapely
+
+    sheet = shapely.box(0.0, 0.0, *spec.size)
+    return ink if sheet.contains(ink) else ink.intersection(sheet)
+
+
+def _shift_truth(t: PrintTruth, dx: float, dy: float) -> PrintTruth:
+    from shapely import affinity
+
+    return truth_of(affinity.translate(t.ink, dx, dy), t.angle)
+
+
+def _draw_marks(dark, spec: SheetSpec, grid: _Raster) -> None:
+    """Lines, gridlines and pen labels (anti-aliased) into the darkness map."""
+    canvas = np.zeros(dark.shape, np.uint8)
+    for m in spec.marks:
+        if isinstance(m, Line):
+            draw_line(canvas, m, grid)
+        elif isinstance(m, Grid):
+            draw_grid(canvas, m, spec.size, grid)
+        elif isinstance(m, Text):
+            draw_text(canvas, m, grid)
+        else:
+            raise InvalidInput("marks", type(m).__name__, "Line | Grid | Text")
+    np.maximum(dark, canvas.astype(np.float32) / 255.0, out=dark)
+
+
+def save_scan(image, path, *, dpi: float | None, jpeg_quality: int | None = None) -> Path:
     """Write a grey scan with its DPI, atomically.
 
     Parameters
     ----------
-    image : (rows, cols) uint8
-        Grey scan (255 = white).
+    image : (rows, cols) uint8, or a list of them
+        Grey scan (255 = white); a list writes a multi-page PDF (one page each).
     path : str or PathLike
         .png, .jpg / .jpeg, .tif / .tiff or .pdf: the suffix sets the format.
-    dpi : float [dots per inch]
-        Stored in the file (PDF: the page size).
+    dpi : float or None [dots per inch]
+        Stored in the file (PDF: the page size); None stores no DPI (not for PDF).
     jpeg_quality : int, optional
         JPEG quality (default 90).
 
@@ -465,16 +585,22 @@ def save_scan(image: np.ndarray, path, *, dpi: float, jpeg_quality: int | None =
 
     path = Path(path)
     suffix = path.suffix.lower()
-    im = Image.fromarray(image)
+    pages = [Image.fromarray(a) for a in (image if isinstance(image, list | tuple) else [image])]
+    if len(pages) > 1 and suffix != ".pdf":
+        raise InvalidInput("image", f"{len(pages)} pages", "one image unless the path is a .pdf")
+    if dpi is None and suffix == ".pdf":
+        raise InvalidInput("dpi", dpi, "a resolution (a PDF page needs a size)")
+    kw = {} if dpi is None else {"dpi": (dpi, dpi)}
+    im = pages[0]
     with atomic_path(path) as tmp:
         if suffix in (".jpg", ".jpeg"):
-            im.save(tmp, format="JPEG", quality=jpeg_quality or 90, dpi=(dpi, dpi))
+            im.save(tmp, format="JPEG", quality=jpeg_quality or 90, **kw)
         elif suffix in (".tif", ".tiff"):
-            im.save(tmp, format="TIFF", dpi=(dpi, dpi), compression="tiff_lzw")
+            im.save(tmp, format="TIFF", compression="tiff_lzw", **kw)
         elif suffix == ".pdf":
-            im.save(tmp, format="PDF", resolution=dpi)
+            im.save(tmp, format="PDF", resolution=dpi, save_all=True, append_images=pages[1:])
         elif suffix == ".png":
-            im.save(tmp, format="PNG", dpi=(dpi, dpi))
+            im.save(tmp, format="PNG", compress_level=1, **kw)
         else:
             raise InvalidInput("path", str(path), "a .png, .jpg, .tif or .pdf file")
     return path
@@ -653,14 +779,11 @@ def make_sample_set(out_dir, *, dpi: float = 150.0, jpeg_quality: int = 88) -> P
 
 def _write_csv(rows: list[dict], path: Path) -> Path:
     """CSV with the csv module's CRLF line ends, as the bundled ``assets/prints`` have
-    (a regenerated sample set is byte-identical), atomically."""
-    from tiremesh.io import atomic_path
+    (a regenerated sample set is byte-identical), atomically and spreadsheet-safe
+    (:mod:`inkprint.csvsafe`)."""
+    from .csvsafe import write_csv
 
-    with atomic_path(path) as tmp, tmp.open("w", newline="") as fh:
-        w = csv.DictWriter(fh, fieldnames=list(rows[0]))
-        w.writeheader()
-        w.writerows(rows)
-    return path
+    return write_csv(rows, path)
 
 
 __all__ = [

@@ -6,11 +6,19 @@
 * a cambered sweep with friction and deflection beyond the patch (one
   solve_lateral per case), on 1 and on 2 local workers.
 
+* solve_many scaling: 1k / 10k / 100k cases, cases per second and peak memory (each
+  size in a fresh process, peak RSS from getrusage), chunked (chunk_size=2048);
+* a 1,000-case batch with 10 % infeasible cases (loads beyond capacity, laterals
+  beyond the construction) against the same batch without them, side by side
+  (errors="flag"): the ratio of the two times.
+
 Run: python scripts/bench_sweep.py
 """
 
 from __future__ import annotations
 
+import json
+import subprocess
 import sys
 import time
 from pathlib import Path
@@ -23,7 +31,71 @@ import tiremesh as tm
 from tiremesh.sweep import VECTOR_SECTIONS, case_from_row, grid, run_sweep
 
 
+def _columns(m: int, seed: int = 0) -> dict:
+    rng = np.random.default_rng(seed)
+    return dict(
+        tire_radius=rng.uniform(10, 23, m),
+        rim_width=rng.uniform(13.4, 18.7, m),
+        pressure=rng.uniform(0.2, 1.1, m),
+        load=rng.uniform(304, 731, m),
+        camber=rng.uniform(-0.5, 0.5, m),
+    )
+
+
+def _one_size(m: int) -> dict:
+    """Run in a fresh process: cases/s and peak RSS of solve_many on m cases."""
+    import resource
+
+    cols = _columns(m)
+    t0 = time.perf_counter()
+    out = tm.solve_many(errors="flag", **cols)
+    dt = time.perf_counter() - t0
+    peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0
+    return {"m": m, "seconds": dt, "cases_per_s": m / dt, "peak_MB": peak, "ok": int(out["ok"].sum())}
+
+
+def scaling() -> None:
+    base = None
+    for m in (1_000, 10_000, 100_000):
+        got = subprocess.run(
+            [sys.executable, __file__, "--one", str(m)], capture_output=True, text=True, check=True
+        )
+        r = json.loads(got.stdout.strip().splitlines()[-1])
+        base = base or r["cases_per_s"]
+        print(
+            f"solve_many {m:>7,} cases: {r['seconds']:6.2f} s, {r['cases_per_s']:6,.0f} cases/s "
+            f"({r['cases_per_s'] / base:.2f}x of 1k), peak RSS {r['peak_MB']:.0f} MB, {r['ok']:,} ok"
+        )
+
+
+def infeasible() -> None:
+    cols = _columns(1000, seed=1)
+    bad = np.random.default_rng(2).random(1000) < 0.10
+    mixed = {k: v.copy() for k, v in cols.items()}
+    mixed["load"][bad[:]] = np.where(np.arange(bad.sum()) % 2, 50_000.0, mixed["load"][bad])
+    lateral = np.zeros(1000)
+    lateral[bad] = np.where(np.arange(bad.sum()) % 2, 0.0, 60.0)
+    mixed["lateral"] = lateral
+    times = {"clean": [], "10% infeasible": []}
+    for _ in range(3):  # interleaved, best of 3
+        for name, c in (("clean", cols), ("10% infeasible", mixed)):
+            t0 = time.perf_counter()
+            out = tm.solve_many(errors="flag", **c)
+            times[name].append(time.perf_counter() - t0)
+    flagged = int((~out["ok"]).sum())
+    a, b = min(times["clean"]), min(times["10% infeasible"])
+    print(
+        f"1,000 cases: clean {a:.3f} s, with 10 % infeasible {b:.3f} s ({flagged} flagged): "
+        f"ratio {b / a:.2f} (target <= 1.5)"
+    )
+
+
 def main() -> None:
+    if len(sys.argv) == 3 and sys.argv[1] == "--one":
+        print(json.dumps(_one_size(int(sys.argv[2]))))
+        return
+    scaling()
+    infeasible()
     rng = np.random.default_rng(0)
     cases = [
         {

@@ -1,7 +1,16 @@
 """``tiremesh`` command line: a thin layer over the library.
 
-Units at this edge carry their names: ``--pressure 4bar`` / ``60psi`` / ``400kPa``,
-``--load 400N`` / ``40kg``, angles in degrees, lengths in mm.
+Units at this edge carry their names and are never guessed: ``--pressure 4bar`` /
+``60psi`` / ``400kPa`` / ``0.4MPa`` and ``--load 400N`` / ``40kg`` need their unit (a
+bare ``60`` is refused with the accepted forms); angles in degrees, lengths in mm.
+
+Conventions, for every command: ``--version``; ``-q`` (only results and errors) and
+``-v`` (more detail; tracebacks of internal errors); errors on stderr, never a
+traceback. Outputs are checked before any work (format, writable place, mesh size)
+and written atomically. Exit status: 0 all good, 1 some sweep cases failed (the count
+on stderr; the table is written with an ``error`` column), 2 a usage or input error
+(bad value, unknown format, unwritable output, unreachable scheduler), 3 an internal
+error (a bug: please report it with the ``-v`` output).
 """
 
 from __future__ import annotations
@@ -21,11 +30,41 @@ from .case import SLIP_KINEMATICS, LoadCase
 from .catalog import get_tire
 from .errors import InvalidParameter, TireModelError
 from .geometry import TireGeometry
-from .units import parse_force, parse_length, parse_pressure
+from .parallel import DEFAULT_SCHEDULER_TIMEOUT
+from .units import FORCE_FORMS, PRESSURE_FORMS, parse_force, parse_length, parse_pressure
+
+EXIT_OK, EXIT_FAILED_ROWS, EXIT_USAGE, EXIT_INTERNAL = 0, 1, 2, 3
+"""Exit statuses (module docstring)."""
+MAX_MESH_VERTICES = 5_000_000
+"""Largest mesh ``mesh`` and ``render`` build without ``--max-vertices`` (about 2.5 GB
+while building; refused before any work, the count and the limit in the message)."""
+DPI_RANGE = (10, 1200)
+"""Resolutions ``section --dpi`` accepts (a 6 x 5.5 in figure: up to 7200 x 6600 px)."""
+IMAGE_SIZE_RANGE = (16, 8192)
+"""Pixel widths and heights ``render --image-size`` accepts."""
+_MESH_OPTIONS = {
+    "n_around": "--around",
+    "n_patch": "--patch-sections",
+    "bulge_points": "--bulge-points",
+    "contact_points": "--contact-points",
+}
 
 
 def add_tire_options(p: argparse.ArgumentParser) -> None:
-    """Tire and load-case options shared by every subcommand that solves the model."""
+    """Add the tire and load-case options shared by every subcommand that solves the
+    model (``--tire``/``--size``/``--arc-length``, ``--pressure``, ``--load`` or
+    ``--deflection``, angles in degrees, lengths in mm). Pressure and load need their
+    unit (``4bar``, ``400N``).
+
+    Parameters
+    ----------
+    p : argparse.ArgumentParser
+        The (sub)command parser to extend.
+
+    Returns
+    -------
+    None
+    """
     g = p.add_argument_group("tire")
     g.add_argument("--tire", help="catalogue tire id or name (Table 3-2), e.g. 8 or 'big apple'")
     g.add_argument("--size", help="nominal size = carcass diameter [mm] (Table 5-1)")
@@ -36,11 +75,15 @@ def add_tire_options(p: argparse.ArgumentParser) -> None:
     g.add_argument("--bead-seat", default="622", help="bead seat diameter [mm] (default 622)")
     c = p.add_argument_group("load case")
     c.add_argument(
-        "--pressure", required=True, help="inflation pressure, e.g. 4bar, 60psi, 400kPa"
+        "--pressure",
+        required=True,
+        help=f"inflation pressure with its unit: {PRESSURE_FORMS} (a bare number is refused)",
     )
     m = c.add_mutually_exclusive_group(required=True)
-    m.add_argument("--load", help="vertical load, e.g. 400N or 40kg")
-    m.add_argument("--deflection", help="wheel deflection in the wheel plane [mm]")
+    m.add_argument(
+        "--load", help=f"vertical load with its unit: {FORCE_FORMS} (a bare number is refused)"
+    )
+    m.add_argument("--deflection", help="wheel deflection in the wheel plane [mm], > 0")
     c.add_argument("--camber", type=float, default=0.0, help="camber angle [deg]")
     c.add_argument("--slip", type=float, default=0.0, help="slip angle [deg]")
     c.add_argument("--lateral", default="0", help="lateral displacement of the patch [mm]")
@@ -62,15 +105,38 @@ def add_tire_options(p: argparse.ArgumentParser) -> None:
 
 
 def tire_from_args(a: argparse.Namespace) -> TireGeometry:
+    """The tire the options describe: a catalogue tire (``--tire``), or a size
+    (Table 5-1) or measured arc length (Table 5-2, equation 5-6) on ``--rim-width``.
+
+    Parameters
+    ----------
+    a : argparse.Namespace
+        Parsed options of :func:`add_tire_options` (lengths as text, default mm).
+
+    Returns
+    -------
+    TireGeometry
+
+    Raises
+    ------
+    InvalidParameter
+        Not exactly one of ``--tire``, ``--size``, ``--arc-length``, or no
+        ``--rim-width`` with ``--size`` / ``--arc-length`` (and the model's own checks).
+    """
     rim = None if a.rim_width is None else parse_length(a.rim_width, name="--rim-width")
     bead = parse_length(a.bead_seat, name="--bead-seat")
     given = [x for x in (a.tire, a.size, a.arc_length) if x is not None]
     if len(given) != 1:
-        raise SystemExit("error: give exactly one of --tire, --size, --arc-length")
+        shown = " ".join(x for x in given) or "none"
+        raise InvalidParameter(
+            "--tire/--size/--arc-length", shown, "exactly one of --tire, --size, --arc-length"
+        )
     if a.tire is not None:
         return get_tire(a.tire, rim_width=rim)
     if rim is None:
-        raise SystemExit("error: --rim-width is required with --size or --arc-length")
+        raise InvalidParameter(
+            "--rim-width", None, "a rim width (e.g. 19mm), required with --size or --arc-length"
+        )
     if a.size is not None:
         size = parse_length(a.size, name="--size")
         return TireGeometry.from_size(
@@ -95,13 +161,24 @@ def case_from_args(a: argparse.Namespace) -> LoadCase:
     -------
     LoadCase
         Relaxation 0 (no deflection beyond the patch) unless ``--relaxation`` is given.
+
+    Raises
+    ------
+    InvalidParameter
+        A pressure or load without its unit or <= 0, a deflection <= 0, or any value
+        the model refuses (the message names the option and the accepted forms).
     """
-    load = None if a.load is None else parse_force(a.load, name="--load")
-    deflection = None if a.deflection is None else parse_length(a.deflection, name="--deflection")
+    strict = {"require_unit": True, "positive": True}
+    load = None if a.load is None else parse_force(a.load, name="--load", **strict)
+    deflection = (
+        None
+        if a.deflection is None
+        else parse_length(a.deflection, name="--deflection", positive=True)
+    )
     relaxation = getattr(a, "relaxation", None)
     return LoadCase(
         tire_from_args(a),
-        pressure=parse_pressure(a.pressure, name="--pressure"),
+        pressure=parse_pressure(a.pressure, name="--pressure", **strict),
         load=load,
         deflection=deflection,
         camber=math.radians(a.camber),
@@ -116,7 +193,17 @@ def case_from_args(a: argparse.Namespace) -> LoadCase:
 
 
 def solve_from_args(a: argparse.Namespace):
-    """Solve the load case the options describe; returns a ContactPatch."""
+    """Solve the load case the options describe (:func:`case_from_args`).
+
+    Parameters
+    ----------
+    a : argparse.Namespace
+        Parsed options of :func:`add_tire_options`.
+
+    Returns
+    -------
+    ContactPatch
+    """
     from .solver import solve
 
     return solve(case_from_args(a))
@@ -138,14 +225,6 @@ def _human(patch) -> str:
             f"net force {s['net_force_orientation_deg']:.4g} deg from vertical",
         ]
     )
-
-
-def _csv(rows: list[dict]) -> str:
-    buf = io.StringIO()
-    w = csv.DictWriter(buf, fieldnames=list(rows[0]), lineterminator="\n")
-    w.writeheader()
-    w.writerows(rows)
-    return buf.getvalue()
 
 
 def _section_rows(patch) -> list[dict]:
@@ -182,41 +261,6 @@ def _slip_note(case: LoadCase) -> str:
     )
 
 
-def _print_summary(a: argparse.Namespace, patch, summary: dict, extra: dict) -> None:
-    if a.json:
-        print(json.dumps(summary, indent=2))
-        return
-    if a.csv:
-        print(_csv([summary]), end="")
-        return
-    print(_human(patch))
-    for k, v in extra.items():
-        print(f"{k}: {v:.6g}" if isinstance(v, float) else f"{k}: {v}")
-    if patch.slip and not extra:
-        print(_slip_note(patch.case))
-
-
-def _cmd_solve(a: argparse.Namespace) -> int:
-    from .io import write_text_atomic
-    from .lateral import solve_lateral
-    from .solver import solve
-
-    case = case_from_args(a)
-    if a.relaxation is not None or math.isfinite(a.friction):
-        result = solve_lateral(case)
-        patch, extra = result.patch, _lateral_summary(result)
-    else:
-        patch, extra = solve(case), {}
-    summary = {**patch.summary(), **extra}
-    _print_summary(a, patch, summary, extra)
-    if a.sections_csv:
-        write_text_atomic(a.sections_csv, _csv(_section_rows(patch)))
-    if a.outline_csv:
-        rows = [{"x_mm": float(x), "y_mm": float(y)} for x, y in patch.outline]
-        write_text_atomic(a.outline_csv, _csv(rows))
-    return 0
-
-
 def _lateral_summary(r) -> dict:
     """Results of :func:`solve_lateral` beyond the patch summary (unit-carrying names)."""
     from .lateral import stiffnesses
@@ -236,6 +280,68 @@ def _lateral_summary(r) -> dict:
     return out
 
 
+def _verbosity(a: argparse.Namespace) -> int:
+    return getattr(a, "verbose", 0) - getattr(a, "quiet", 0)
+
+
+def _info(a: argparse.Namespace, message: str) -> None:
+    """Informational line on stdout (``wrote ...``), silenced by ``-q``."""
+    if _verbosity(a) >= 0:
+        print(message)
+
+
+def _warn(message: str) -> None:
+    print(f"warning: {message}", file=sys.stderr)
+
+
+def _csv(rows: list[dict]) -> str:
+    from .io import csv_cell
+
+    buf = io.StringIO()
+    w = csv.writer(buf, lineterminator="\n")
+    w.writerow([csv_cell(k) for k in rows[0]])
+    w.writerows([csv_cell(v) for v in r.values()] for r in rows)
+    return buf.getvalue()
+
+
+def _print_summary(a: argparse.Namespace, patch, summary: dict, extra: dict) -> None:
+    if a.json:
+        print(json.dumps(summary, indent=2))
+        return
+    if a.csv:
+        print(_csv([summary]), end="")
+        return
+    print(_human(patch))
+    for k, v in extra.items():
+        print(f"{k}: {v:.6g}" if isinstance(v, float) else f"{k}: {v}")
+    if patch.slip and not extra and _verbosity(a) >= 0:
+        print(_slip_note(patch.case))
+
+
+def _cmd_solve(a: argparse.Namespace) -> int:
+    from .io import check_table_path, write_table
+    from .lateral import solve_lateral
+    from .solver import solve
+
+    for option, path in (("--sections-csv", a.sections_csv), ("--outline-csv", a.outline_csv)):
+        if path:
+            check_table_path(path, option=option)
+    case = case_from_args(a)
+    if a.relaxation is not None or math.isfinite(a.friction):
+        result = solve_lateral(case)
+        patch, extra = result.patch, _lateral_summary(result)
+    else:
+        patch, extra = solve(case), {}
+    summary = {**patch.summary(), **extra}
+    _print_summary(a, patch, summary, extra)
+    if a.sections_csv:
+        write_table(_section_rows(patch), a.sections_csv)
+    if a.outline_csv:
+        rows = [{"x_mm": float(x), "y_mm": float(y)} for x, y in patch.outline]
+        write_table(rows, a.outline_csv)
+    return EXIT_OK
+
+
 def _mesh_options(p: argparse.ArgumentParser) -> None:
     g = p.add_argument_group("mesh resolution")
     g.add_argument(
@@ -250,52 +356,173 @@ def _mesh_options(p: argparse.ArgumentParser) -> None:
     g.add_argument(
         "--contact-points", type=int, default=12, help="segments across the patch (default 12)"
     )
+    g.add_argument(
+        "--max-vertices",
+        type=_int_at_least(1),
+        default=MAX_MESH_VERTICES,
+        help=f"refuse a larger mesh before building it (default {MAX_MESH_VERTICES:,})",
+    )
 
 
-def _mesh_from_args(a: argparse.Namespace):
+def mesh_vertex_count(res) -> int:
+    """Vertices of the mesh :func:`tiremesh.mesh.build_mesh` builds at a resolution
+    (an upper bound, exact to a few vertices).
+
+    Parameters
+    ----------
+    res : tiremesh.mesh.MeshResolution
+        From :func:`tiremesh.mesh.mesh_resolution`.
+
+    Returns
+    -------
+    int
+        ``n_patch (2 K + kc + 1) + (n_around - n_patch)(2 K + 1)`` for ``K`` bulge and
+        ``kc`` contact segments.
+    """
+    k, kc = res.bulge_points, res.contact_points
+    return res.n_patch * (2 * k + kc + 1) + (res.n_around - res.n_patch) * (2 * k + 1)
+
+
+def _mesh_resolution(a: argparse.Namespace):
+    """The checked resolution, refused before any work above ``--max-vertices``."""
+    from .mesh import mesh_resolution
+
+    try:
+        res = mesh_resolution(a.around, a.patch_sections, a.bulge_points, a.contact_points)
+    except InvalidParameter as exc:  # name the command-line option
+        raise InvalidParameter(
+            _MESH_OPTIONS.get(exc.name, exc.name), exc.value, exc.allowed
+        ) from None
+    n = mesh_vertex_count(res)
+    if n > a.max_vertices:
+        raise InvalidParameter(
+            "mesh size",
+            f"{n:,} vertices (--around {res.n_around}, --bulge-points {res.bulge_points}, "
+            f"--contact-points {res.contact_points})",
+            f"at most {a.max_vertices:,} vertices (--max-vertices); lower --around, "
+            "--bulge-points or --contact-points",
+        )
+    return res
+
+
+def _mesh_from_args(a: argparse.Namespace, res):
     from .mesh import build_mesh
 
     return build_mesh(
         case_from_args(a),
-        n_around=a.around,
-        n_patch=a.patch_sections,
-        bulge_points=a.bulge_points,
-        contact_points=a.contact_points,
+        n_around=res.n_around,
+        n_patch=res.n_patch,
+        bulge_points=res.bulge_points,
+        contact_points=res.contact_points,
         close_rim=getattr(a, "close_rim", False),
     )
 
 
 def _cmd_mesh(a: argparse.Namespace) -> int:
-    from .export import export_mesh
+    from .export import LOSSY, check_mesh_path, export_mesh
 
-    tire_mesh = _mesh_from_args(a)
-    for path in export_mesh(tire_mesh, a.output, patch=not a.no_patch):
-        print(f"wrote {path}")
-    print(f"{len(tire_mesh.mesh.vertices)} vertices, {tire_mesh.n_faces} faces")
-    return 0
+    suffix = check_mesh_path(a.output, option="--output")
+    res = _mesh_resolution(a)
+    tire_mesh = _mesh_from_args(a, res)
+    for path in export_mesh(tire_mesh, a.output, patch=not a.no_patch, surface=a.with_surface):
+        _info(a, f"wrote {path}")
+    _info(a, f"{len(tire_mesh.mesh.vertices)} vertices, {tire_mesh.n_faces} faces")
+    if suffix in LOSSY:
+        _warn(f"{suffix} {LOSSY[suffix]}; use .vtp, .ply or .glb to keep the scalars")
+    return EXIT_OK
+
+
+def _int_at_least(lo: int):
+    def parse(text: str) -> int:
+        try:
+            n = int(text)
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"{text!r} is not an integer") from None
+        if n < lo:
+            raise argparse.ArgumentTypeError(f"{n} is invalid: allowed an integer >= {lo}")
+        return n
+
+    return parse
+
+
+def _positive_seconds(text: str) -> float:
+    try:
+        t = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text!r} is not a number of seconds") from None
+    if not (math.isfinite(t) and t > 0):
+        raise argparse.ArgumentTypeError(f"{text} is invalid: allowed seconds > 0")
+    return t
 
 
 def _parse_size(text: str) -> tuple[int, int]:
+    lo, hi = IMAGE_SIZE_RANGE
+    allowed = f"WIDTHxHEIGHT in pixels, each {lo} .. {hi}, e.g. 1200x900"
     try:
         w, h = (int(t) for t in text.lower().split("x"))
-    except ValueError as exc:
-        raise InvalidParameter(
-            "--image-size", text, "WIDTHxHEIGHT in pixels, e.g. 1200x900"
-        ) from exc
+    except ValueError:
+        raise InvalidParameter("--image-size", text, allowed) from None
+    if not (lo <= w <= hi and lo <= h <= hi):
+        raise InvalidParameter("--image-size", text, allowed)
     return w, h
 
 
-def _cmd_render(a: argparse.Namespace) -> int:
-    from .render import render
+def _parse_camera(text: str) -> tuple[float, float, float]:
+    allowed = "AZIMUTH,ELEVATION,ZOOM: degrees, degrees in -90 .. 90, a factor > 0; e.g. 30,20,1.2"
+    try:
+        az, el, zoom = (float(t) for t in text.split(","))
+    except ValueError:
+        raise InvalidParameter("--camera", text, allowed) from None
+    if not (math.isfinite(az) and -90 <= el <= 90 and math.isfinite(zoom) and zoom > 0):
+        raise InvalidParameter("--camera", text, allowed)
+    return az, el, zoom
 
-    size = _parse_size(a.image_size)
-    tire_mesh = _mesh_from_args(a)
+
+def _render_options(a: argparse.Namespace, render) -> dict:
+    """The keyword options of ``render()`` the flags ask for (only those given)."""
+    import inspect
+
+    opts = {}
+    if a.camera is not None:
+        opts["camera"] = _parse_camera(a.camera)
+    if a.background is not None:
+        opts["background"] = a.background
+    if a.no_title:
+        opts["title"] = False
+    params = inspect.signature(render).parameters
+    if opts and not {"title", "background"} <= set(params):
+        flags = {"camera": "--camera", "background": "--background", "title": "--no-title"}
+        raise InvalidParameter(
+            " ".join(flags[k] for k in opts),
+            "given",
+            "not yet: this tiremesh.render.render() does not take these options",
+        )
+    return opts
+
+
+def _cmd_render(a: argparse.Namespace) -> int:
+    from . import render as render_module
+    from .io import check_output_path
+
     scalars = {"radial": "radial_deformation", "lateral": "lateral_displacement"}.get(
         a.scalars, a.scalars
     )
-    render(tire_mesh, a.output, view=a.view, scalars=scalars, size=size)
-    print(f"wrote {a.output}")
-    return 0
+    if a.view not in render_module.VIEWS:
+        raise InvalidParameter("--view", a.view, " | ".join(render_module.VIEWS))
+    if scalars not in render_module.SCALARS:
+        allowed = "radial | lateral | " + " | ".join(render_module.SCALARS)
+        raise InvalidParameter("--scalars", a.scalars, allowed)
+    size = _parse_size(a.image_size)
+    opts = _render_options(a, render_module.render)
+    try:
+        render_module.output_format(a.output)
+    except InvalidParameter as exc:  # name the option
+        raise InvalidParameter("--output", a.output, exc.allowed) from None
+    check_output_path(a.output, option="--output")
+    tire_mesh = _mesh_from_args(a, _mesh_resolution(a))
+    render_module.render(tire_mesh, a.output, view=a.view, scalars=scalars, size=size, **opts)
+    _info(a, f"wrote {a.output}")
+    return EXIT_OK
 
 
 def _cmd_section(a: argparse.Namespace) -> int:
@@ -304,47 +531,88 @@ def _cmd_section(a: argparse.Namespace) -> int:
     matplotlib.use("Agg")
     from matplotlib.backend_bases import FigureCanvasBase
 
-    from .io import save_figure
+    from .io import check_output_path, save_figure
     from .plot import plot_section
 
     suffix = Path(a.output).suffix.lower()
     formats = FigureCanvasBase.get_supported_filetypes()
     if suffix[1:] not in formats:
         raise InvalidParameter("--output", a.output, "a figure file: ." + ", .".join(formats))
+    lo, hi = DPI_RANGE
+    if not lo <= a.dpi <= hi:
+        raise InvalidParameter("--dpi", a.dpi, f"an integer {lo} .. {hi} (dots per inch)")
+    check_output_path(a.output, option="--output")
     ax = plot_section(case_from_args(a), math.radians(a.phi))
     ax.figure.tight_layout()
     save_figure(ax.figure, a.output, formats=(suffix,), dpi=a.dpi)
-    print(f"wrote {a.output}")
-    return 0
+    _info(a, f"wrote {a.output}")
+    return EXIT_OK
+
+
+def _check_folder(path: str, option: str) -> None:
+    """A folder for output files: created if missing, and writable."""
+    from .io import check_output_path
+
+    if Path(path).exists() and not Path(path).is_dir():
+        raise InvalidParameter(option, path, "a folder (this is a file)")
+    check_output_path(Path(path) / "probe", option=option)
 
 
 def _cmd_sweep(a: argparse.Namespace) -> int:
-    from .io import TABLE_FORMATS, write_table
+    from .io import check_table_path, write_table
+    from .parallel import connect_scheduler
     from .sweep import parse_grid, read_cases, run_sweep, sweep_plots
 
     if (a.grid is None) == (a.cases is None):
-        raise SystemExit("error: give exactly one of --grid and --cases")
-    if Path(a.output).suffix.lower() not in TABLE_FORMATS:
-        raise InvalidParameter("--output", a.output, "a .csv or .json file")
+        raise InvalidParameter("--grid/--cases", "both" if a.grid else "neither", "exactly one")
+    check_table_path(a.output, option="--output")
+    if a.plots:
+        _check_folder(a.plots, "--plots")
     cases = parse_grid(a.grid) if a.grid else read_cases(a.cases)
-    rows = run_sweep(cases, workers=a.workers, scheduler=a.scheduler, progress=a.progress)
+    client = None
+    if a.scheduler:
+        client = connect_scheduler(a.scheduler, timeout=a.scheduler_timeout)
+    try:
+        rows = run_sweep(cases, workers=a.workers, scheduler=client, progress=a.progress)
+    finally:
+        if client is not None:
+            client.close()
     write_table(rows, a.output)
     n_err = sum(r.get("status") != "ok" for r in rows)
-    print(f"{len(rows)} cases, {n_err} errors; wrote {a.output}")
+    _info(a, f"{len(rows)} cases, {n_err} errors; wrote {a.output}")
     if a.plots:
         for path in sweep_plots(rows, a.plots):
-            print(f"wrote {path}")
-    return 0
+            _info(a, f"wrote {path}")
+    if n_err:
+        print(
+            f"error: {n_err} of {len(rows)} cases failed; see the status and error "
+            f"columns of {a.output}",
+            file=sys.stderr,
+        )
+        return EXIT_FAILED_ROWS
+    return EXIT_OK
 
 
-def _add_solve(sub) -> None:
-    p = sub.add_parser("solve", help="solve one load case and print the contact patch and forces")
+def _add_solve(sub, common) -> None:
+    p = sub.add_parser(
+        "solve",
+        parents=[common],
+        help="solve one load case and print the contact patch and forces",
+    )
     add_tire_options(p)
     out = p.add_mutually_exclusive_group()
     out.add_argument("--json", action="store_true", help="print the summary as JSON")
     out.add_argument("--csv", action="store_true", help="print the summary as one CSV row")
-    p.add_argument("--sections-csv", metavar="FILE", help="write per-section arrays to FILE")
-    p.add_argument("--outline-csv", metavar="FILE", help="write the patch outline polygon to FILE")
+    p.add_argument(
+        "--sections-csv",
+        metavar="FILE",
+        help="write per-section arrays to FILE (.csv|.json|.parquet)",
+    )
+    p.add_argument(
+        "--outline-csv",
+        metavar="FILE",
+        help="write the patch outline to FILE (.csv|.json|.parquet)",
+    )
     lat = p.add_argument_group("lateral mechanics (sections 5.6 to 5.8)")
     lat.add_argument(
         "--relaxation", type=float, help="relaxation rate beyond the patch [1/mm], e.g. 0.993"
@@ -355,75 +623,208 @@ def _add_solve(sub) -> None:
     p.set_defaults(func=_cmd_solve)
 
 
-def _add_sweep(sub) -> None:
-    p = sub.add_parser("sweep", help="solve a grid or a CSV of cases into one table")
+def _add_sweep(sub, common) -> None:
+    p = sub.add_parser(
+        "sweep", parents=[common], help="solve a grid or a CSV of cases into one table"
+    )
     p.add_argument(
         "--grid", help='e.g. "tire=5,8 pressure_bar=2:11:10 load_N=304,500 camber_deg=10"'
     )
     p.add_argument("--cases", help="CSV of cases (columns as the --grid keys)")
-    p.add_argument("-o", "--output", required=True, help="sweep.csv | sweep.json")
+    p.add_argument(
+        "-o", "--output", required=True, help="sweep.csv | .json | .parquet (needs pyarrow)"
+    )
     p.add_argument("--plots", metavar="DIR", help="stiffness and tangent-rule plots to DIR")
-    p.add_argument("--workers", type=int, help="local processes for non-vectorizable cases")
-    p.add_argument("--scheduler", help="dask.distributed scheduler address")
+    p.add_argument(
+        "--workers", type=_int_at_least(1), help="local processes for non-vectorizable cases"
+    )
+    p.add_argument("--scheduler", help="dask.distributed scheduler address, tcp://HOST:8786")
+    p.add_argument(
+        "--scheduler-timeout",
+        type=_positive_seconds,
+        default=DEFAULT_SCHEDULER_TIMEOUT,
+        metavar="SECONDS",
+        help=f"wait this long for the scheduler to answer (default {DEFAULT_SCHEDULER_TIMEOUT:g})",
+    )
     p.add_argument("--progress", action="store_true", help="show a progress bar (stderr)")
     p.set_defaults(func=_cmd_sweep)
 
 
-def _add_mesh(sub) -> None:
-    p = sub.add_parser("mesh", help="build the deformed tire mesh and export it")
+def _add_mesh(sub, common) -> None:
+    p = sub.add_parser("mesh", parents=[common], help="build the deformed tire mesh and export it")
     add_tire_options(p)
     _mesh_options(p)
-    p.add_argument("-o", "--output", required=True, help="tire.vtp | .ply | .stl | .obj | .glb")
+    p.add_argument(
+        "-o",
+        "--output",
+        required=True,
+        help="tire.vtp | .ply | .glb (keep the scalars) | .obj | .stl (geometry)",
+    )
     p.add_argument("--close-rim", action="store_true", help="close the beads with a rim band")
     p.add_argument("--no-patch", action="store_true", help="do not write <stem>_patch.vtp")
+    p.add_argument(
+        "--with-surface",
+        action="store_true",
+        help="also export the ground, drum or disk (<stem>_surface.EXT; in a .glb, the same file)",
+    )
     p.set_defaults(func=_cmd_mesh)
 
 
-def _add_render(sub) -> None:
-    p = sub.add_parser("render", help="render the deformed tire to PNG (off-screen)")
+def _add_render(sub, common) -> None:
+    p = sub.add_parser(
+        "render", parents=[common], help="render the deformed tire to an image (off-screen)"
+    )
     add_tire_options(p)
     _mesh_options(p)
-    p.add_argument("-o", "--output", required=True, help="view.png")
-    p.add_argument("--view", choices=["iso", "side", "front", "bottom"], default="iso")
-    p.add_argument("--scalars", default="radial", help="radial | lateral | contact | section")
+    p.add_argument(
+        "-o", "--output", required=True, help="view.png | .jpg | .tif | .pdf | .svg | .eps"
+    )
+    p.add_argument("--view", default="iso", help="iso | side | front | bottom (default iso)")
+    p.add_argument(
+        "--scalars",
+        default="radial",
+        help="colouring: radial, lateral or a name of tiremesh.render.SCALARS (default radial)",
+    )
     p.add_argument("--image-size", default="1200x900", help="WIDTHxHEIGHT [px] (default 1200x900)")
+    p.add_argument("--camera", metavar="AZ,EL,ZOOM", help="camera azimuth, elevation [deg], zoom")
+    p.add_argument("--background", metavar="COLOUR", help="background colour (name or #hex)")
+    p.add_argument("--no-title", action="store_true", help="no title (load case) on the image")
     p.set_defaults(func=_cmd_render)
 
 
-def _add_section(sub) -> None:
-    p = sub.add_parser("section", help="plot one Rotta cross section (Figure 5-5)")
+def _add_section(sub, common) -> None:
+    p = sub.add_parser(
+        "section", parents=[common], help="plot one Rotta cross section (Figure 5-5)"
+    )
     add_tire_options(p)
     p.add_argument("-o", "--output", required=True, help="section.png | .svg | .pdf")
     p.add_argument(
         "--phi", type=float, default=0.0, help="section angle from bottom dead centre [deg]"
     )
-    p.add_argument("--dpi", type=int, default=150)
+    lo, hi = DPI_RANGE
+    p.add_argument("--dpi", type=int, default=150, help=f"raster resolution, {lo} .. {hi}")
     p.set_defaults(func=_cmd_section)
 
 
+def _common_options() -> argparse.ArgumentParser:
+    """``-q`` / ``-v`` for the program and every command (counted; not set unless given)."""
+    p = argparse.ArgumentParser(add_help=False)
+    g = p.add_argument_group("messages")
+    g.add_argument(
+        "-q", "--quiet", action="count", default=argparse.SUPPRESS, help="only results and errors"
+    )
+    g.add_argument(
+        "-v",
+        "--verbose",
+        action="count",
+        default=argparse.SUPPRESS,
+        help="more detail (-vv: debug log; tracebacks of internal errors)",
+    )
+    return p
+
+
 def build_parser() -> argparse.ArgumentParser:
-    """The ``tiremesh`` argument parser: subcommands solve, sweep, mesh, render, section."""
+    """The ``tiremesh`` argument parser: subcommands solve, sweep, mesh, render, section.
+
+    Returns
+    -------
+    argparse.ArgumentParser
+        Each subcommand sets ``func``, the handler :func:`main` calls; every one takes
+        ``-q`` / ``-v``, the program ``--version``.
+    """
+    from . import __version__
+
+    common = _common_options()
     parser = argparse.ArgumentParser(
         prog="tiremesh",
+        parents=[common],
         description="Rotta model of a bicycle tire pressed on a surface (Dressel 2013, ch. 5).",
+        epilog="exit status: 0 ok, 1 some sweep cases failed, 2 usage or input error, "
+        "3 internal error",
     )
+    parser.add_argument("--version", action="version", version=f"%(prog)s {__version__}")
     sub = parser.add_subparsers(dest="command", required=True)
     for add in (_add_solve, _add_sweep, _add_mesh, _add_render, _add_section):
-        add(sub)
+        add(sub, common)
     return parser
 
 
-def main(argv: Sequence[str] | None = None) -> int:
-    parser = build_parser()
-    a = parser.parse_args(argv)
+def _configure_messages(a: argparse.Namespace) -> None:
+    import logging
+    import warnings
+
+    level = _verbosity(a)
+    if level < 0:
+        warnings.simplefilter("ignore")
+    logging.basicConfig(
+        level=logging.DEBUG if level > 1 else logging.INFO if level == 1 else logging.WARNING,
+        format="%(levelname)s %(name)s: %(message)s",
+    )
+
+
+def _silence_stdout() -> None:
+    """After a closed pipe (``| head``): no second error when Python flushes stdout."""
+    import os
+
+    devnull = os.open(os.devnull, os.O_WRONLY)
+    os.dup2(devnull, sys.stdout.fileno())
+
+
+def _error(message: str) -> None:
+    print(f"error: {message}", file=sys.stderr)
+
+
+def _run(a: argparse.Namespace) -> int:
+    """Run the command, every failure a one-line message and an exit status."""
     try:
         return a.func(a)
-    except TireModelError as exc:
-        print(f"error: {exc}", file=sys.stderr)
-        return 2
+    except TireModelError as exc:  # bad values, unwritable outputs, scheduler
+        _error(str(exc))
     except BrokenPipeError:  # e.g. piped into `head`
-        sys.stderr.close()
-        return 0
+        _silence_stdout()
+        return EXIT_OK
+    except OSError as exc:  # an input that cannot be read
+        where = f"{exc.filename}: " if exc.filename else ""
+        _error(f"{where}{exc.strerror or exc}")
+    except MemoryError:
+        _error("out of memory: lower the mesh resolution or the number of cases")
+    except KeyboardInterrupt:
+        _error("interrupted")
+        return 130
+    except Exception as exc:
+        if _verbosity(a) > 0:
+            import traceback
+
+            traceback.print_exc()
+        hint = "" if _verbosity(a) > 0 else "; rerun with -v for the traceback"
+        _error(f"internal error {type(exc).__name__}: {exc} (a bug: please report it{hint})")
+        return EXIT_INTERNAL
+    return EXIT_USAGE
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    """Run the ``tiremesh`` command line.
+
+    Parameters
+    ----------
+    argv : sequence of str, optional
+        Arguments without the program name (default ``sys.argv[1:]``).
+
+    Returns
+    -------
+    int
+        Exit status: 0 all good (also when the output pipe closes early), 1 some sweep
+        cases failed (their count on stderr), 2 a usage or input error (the message on
+        stderr names the option and the accepted values, or the path and the reason),
+        3 an internal error.
+    """
+    parser = build_parser()
+    try:
+        a = parser.parse_args(argv)
+    except SystemExit as exc:  # usage error (2), --help or --version (0)
+        return exc.code if isinstance(exc.code, int) else EXIT_USAGE
+    _configure_messages(a)
+    return _run(a)
 
 
 if __name__ == "__main__":

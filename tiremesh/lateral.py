@@ -145,7 +145,7 @@ def section_forces(patch: ContactPatch, dv, dh):
     ``dN = p max(e2 - e1, 0)`` (equation 5-26), of sections at (dv, dh) [mm] [N/mm]."""
     t = patch.tire
     sol, bad_h, bad_c = section_arrays(
-        t.tire_radius, t.rim_width, dv, dh, patch.camber, t.tire_radius * patch.camber
+        t.tire_radius, t.rim_width, dv, dh, camber=patch.camber, delta=t.tire_radius * patch.camber
     )
     if np.any(bad_h) or np.any(bad_c):
         raise InvalidParameter(

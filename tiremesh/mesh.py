@@ -38,7 +38,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from . import _validate as v
+from . import validate as v
 from .case import LoadCase
 from .errors import InvalidParameter, TireModelError
 from .solver import ContactPatch
@@ -78,6 +78,7 @@ class TireMesh:
 
     @property
     def n_faces(self) -> int:
+        """Number of triangles."""
         return len(self.mesh.faces)
 
     def surface_gap(self, points=None) -> np.ndarray:
@@ -170,8 +171,23 @@ def _transition(contact_ring, tip_ring, K: int, kc: int, tip_after: bool):
 
 
 def as_patch(source) -> ContactPatch:
-    """The :class:`ContactPatch` to mesh: ``source`` itself, or the solution of a
-    :class:`LoadCase`."""
+    """The :class:`ContactPatch` to mesh.
+
+    Parameters
+    ----------
+    source : ContactPatch or LoadCase
+        A solved patch (returned as is) or a load case (solved with
+        :func:`tiremesh.solve`).
+
+    Returns
+    -------
+    ContactPatch
+
+    Raises
+    ------
+    InvalidParameter
+        ``source`` is neither.
+    """
     if isinstance(source, ContactPatch):
         return source
     if isinstance(source, LoadCase):
@@ -206,8 +222,29 @@ class MeshResolution:
 
 
 def mesh_resolution(n_around=720, n_patch=None, bulge_points=32, contact_points=12):
-    """Check the resolution arguments of :func:`build_mesh`; returns a
-    :class:`MeshResolution` (``n_patch`` defaults to ``n_around // 3``)."""
+    """Check the resolution arguments of :func:`build_mesh`.
+
+    Parameters
+    ----------
+    n_around : int [-]
+        Sections around the whole wheel, 16 .. 100000.
+    n_patch : int [-], optional
+        Of which between (and including) the patch ends, 3 .. ``n_around - 8``
+        (default ``n_around // 3``).
+    bulge_points : int [-]
+        Segments along each side bulge, 4 .. 10000.
+    contact_points : int [-]
+        Segments across the contact segment, 2 .. 10000.
+
+    Returns
+    -------
+    MeshResolution
+
+    Raises
+    ------
+    InvalidParameter
+        A value that is not an integer in its range.
+    """
     n_around = v.integer("n_around", n_around, 16, 100_000)
     n_patch = v.integer("n_patch", n_around // 3 if n_patch is None else n_patch, 3, n_around - 8)
     return MeshResolution(
@@ -220,9 +257,20 @@ def mesh_resolution(n_around=720, n_patch=None, bulge_points=32, contact_points=
 
 @dataclass(frozen=True)
 class SectionPlan:
-    """Section angles around the wheel [rad], in mesh order: the rear patch end,
-    the contact sections between the ends, the front end, then the free tire
-    (forward from the front end round to the rear end)."""
+    """Section angles around the wheel, in mesh order.
+
+    Attributes
+    ----------
+    rear : float [rad]
+        Rear patch end (a section of zero width).
+    contact : (n_patch - 2,) float [rad]
+        Contact sections strictly between the ends, uniformly spaced.
+    front : float [rad]
+        Front patch end.
+    free : (n_around - n_patch,) float [rad]
+        Free (undeformed) sections, forward from the front end round to the rear
+        end (``rear + 2 pi``).
+    """
 
     rear: float
     contact: np.ndarray = field(repr=False)
@@ -232,7 +280,18 @@ class SectionPlan:
 
 def plan_sections(patch: ContactPatch, res: MeshResolution) -> SectionPlan:
     """Place ``res.n_patch`` sections uniformly between the exact patch ends and the
-    others uniformly around the rest of the wheel."""
+    others uniformly around the rest of the wheel.
+
+    Parameters
+    ----------
+    patch : ContactPatch
+        Supplies the patch-end angles ``phi_ends`` [rad].
+    res : MeshResolution
+
+    Returns
+    -------
+    SectionPlan
+    """
     rear, front = patch.phi_ends
     contact = np.linspace(rear, front, res.n_patch)[1:-1]
     n_free = res.n_around - res.n_patch
@@ -265,7 +324,20 @@ class RingBlock:
 
 @dataclass(frozen=True)
 class SectionRings:
-    """The four ring blocks of the mesh, in vertex order."""
+    """The four ring blocks of the mesh, in vertex order (``K`` bulge and ``kc``
+    contact segments, :class:`MeshResolution`).
+
+    Attributes
+    ----------
+    rear : RingBlock
+        The rear end section, (1, 2K + 1): the bulges meet at the touching point.
+    contact : RingBlock
+        Sections between the ends, (n_patch - 2, 2K + kc + 1).
+    front : RingBlock
+        The front end section, (1, 2K + 1).
+    free : RingBlock
+        Undeformed sections beyond the patch, (n_around - n_patch, 2K + 1).
+    """
 
     rear: RingBlock
     contact: RingBlock
@@ -273,6 +345,7 @@ class SectionRings:
     free: RingBlock
 
     def blocks(self) -> tuple[RingBlock, RingBlock, RingBlock, RingBlock]:
+        """``(rear, contact, front, free)``, the order of the mesh vertices."""
         return self.rear, self.contact, self.front, self.free
 
 
@@ -280,7 +353,27 @@ def section_rings(
     patch: ContactPatch, plan: SectionPlan, res: MeshResolution, centreline=None
 ) -> SectionRings:
     """Section-frame rings: Rotta sections in the patch (ends of width zero), the
-    undeformed torus beyond it (shifted sideways by ``centreline`` if given)."""
+    undeformed torus beyond it (shifted sideways by ``centreline`` if given).
+
+    Parameters
+    ----------
+    patch : ContactPatch
+    plan : SectionPlan
+        Section angles [rad].
+    res : MeshResolution
+    centreline : (s, dh) of (k,) float [mm], optional
+        Lateral displacement ``dh`` of the tread centre line at arc length ``s``
+        along the wheel (section 5.8); 0 outside its range.
+
+    Returns
+    -------
+    SectionRings
+
+    Raises
+    ------
+    TireModelError
+        A section between the patch ends is out of contact (split patch).
+    """
     K, kc = res.bulge_points, res.contact_points
     tire = patch.tire
     ends, _ = patch.sections_at(np.array([plan.rear, plan.front]))
@@ -345,7 +438,20 @@ class PlacedVertices:
 def place_vertices(patch: ContactPatch, rings: SectionRings) -> PlacedVertices:
     """Map every ring to the ground frame; sections in contact are translated onto the
     support surface (by at most the patch ``flatness``) and their contact vertices
-    snapped to it."""
+    snapped to it.
+
+    Parameters
+    ----------
+    patch : ContactPatch
+        Supplies the ground map (:meth:`ContactPatch.to_ground`) and the surface.
+    rings : SectionRings
+
+    Returns
+    -------
+    PlacedVertices
+        Vertices (N, 3) [mm] and per-vertex radial deformation and lateral
+        displacement (N,) [mm].
+    """
     tire = patch.tire
     r0, s0, gam = tire.tire_radius, tire.arc_length, patch.camber
     surface = patch.surface
@@ -387,7 +493,20 @@ def place_vertices(patch: ContactPatch, rings: SectionRings) -> PlacedVertices:
 
 def tire_faces(patch: ContactPatch, placed: PlacedVertices, res: MeshResolution) -> np.ndarray:
     """Triangles of the tire surface, oriented outward (away from each section's
-    centre, the air side inside)."""
+    centre, the air side inside).
+
+    Parameters
+    ----------
+    patch : ContactPatch
+        Supplies the section centres in the ground frame.
+    placed : PlacedVertices
+    res : MeshResolution
+
+    Returns
+    -------
+    faces : (n_faces, 3) int
+        Vertex indices into ``placed.vertices``.
+    """
     K, kc = res.bulge_points, res.contact_points
     rt, rc, ft, rf = placed.rings[0][0], placed.rings[1], placed.rings[2][0], placed.rings[3]
     faces = np.concatenate(
@@ -411,7 +530,17 @@ def tire_faces(patch: ContactPatch, placed: PlacedVertices, res: MeshResolution)
 
 
 def bead_lines(placed: PlacedVertices) -> np.ndarray:
-    """(2, n_sections) vertex indices of the two bead lines, in order around the wheel."""
+    """Vertex indices of the two bead lines, in order around the wheel.
+
+    Parameters
+    ----------
+    placed : PlacedVertices
+
+    Returns
+    -------
+    beads : (2, n_sections) int
+        Row 0 the bead of side 1, row 1 that of side 2.
+    """
     rt, rc, ft, rf = placed.rings[0][0], placed.rings[1], placed.rings[2][0], placed.rings[3]
     first = np.concatenate([[rt[0]], rc[:, 0], [ft[0]], rf[:, 0]])
     last = np.concatenate([[rt[-1]], rc[:, -1], [ft[-1]], rf[:, -1]])
@@ -420,7 +549,20 @@ def bead_lines(placed: PlacedVertices) -> np.ndarray:
 
 def close_beads(vertices, faces, beads) -> np.ndarray:
     """Triangles of a rim band joining the two bead lines (winding consistent with
-    ``faces``), making the mesh watertight."""
+    ``faces``), making the mesh watertight.
+
+    Parameters
+    ----------
+    vertices : (N, 3) float [mm]
+    faces : (n_faces, 3) int
+        The tire surface (:func:`tire_faces`).
+    beads : (2, n_sections) int
+        Bead-line vertex indices (:func:`bead_lines`).
+
+    Returns
+    -------
+    band : (2 n_sections, 3) int
+    """
     import trimesh
 
     b1, b2 = beads[0], beads[1]
@@ -604,8 +746,20 @@ def _extrude_profile(prof, half_y: float, k: int):
 
 
 def rim_mesh(tire_mesh: TireMesh, *, depth: float = 12.0):
-    """A simple rim for renders: the bead lines joined by a rim bed sunk ``depth`` mm
-    toward the axle."""
+    """A simple rim for renders: the bead lines joined by a rim bed sunk toward the
+    axle.
+
+    Parameters
+    ----------
+    tire_mesh : TireMesh
+    depth : float [mm]
+        Depth of the rim bed below the bead lines.
+
+    Returns
+    -------
+    trimesh.Trimesh
+        Open band (4 n_sections vertices [mm]), ground frame.
+    """
     import trimesh
 
     v_ = tire_mesh.mesh.vertices

@@ -12,7 +12,23 @@ from .solver import ContactPatch, solve
 
 
 def section_curve(sections, index: int = 0, n: int = 200):
-    """(x, z) points of one solved section [mm]: bulge 1, flat contact, bulge 2."""
+    """Points of one solved Rotta section (section 5.1, Figure 5-5) in the section
+    frame: bulge 1 from its bead to edge ``e1``, then bulge 2 from edge ``e2`` to its
+    bead (the straight step between them is the flat contact).
+
+    Parameters
+    ----------
+    sections : SectionSolution
+        Solved sections (any shape).
+    index : int
+        Flat index of the section to draw.
+    n : int
+        Points per bulge.
+
+    Returns
+    -------
+    x, z : (2n,) float [mm]
+    """
     s = sections
     e1, e2, r1, r2 = (float(np.ravel(a)[index]) for a in (s.edge1, s.edge2, s.radius1, s.radius2))
     t1, t2 = float(np.ravel(s.angle1)[index]), float(np.ravel(s.angle2)[index])

@@ -1,41 +1,165 @@
 """Off-screen renders of the deformed tire (pyvista, no display needed).
 
-Views: ``iso`` (front-left, above the ground), ``side`` (along the axle),
-``front`` (against the rolling direction, showing the section bulges) and
-``bottom`` (from below through the support surface, showing the contact patch).
-The tire is coloured by a per-vertex quantity of :class:`tiremesh.mesh.TireMesh`
-with a scalar bar; a ruler gives the length scale in mm.
+Views: ``iso`` (front quarter, from slightly below through the ground grid, so the
+contact patch and a bulge show), ``side`` (along the axle), ``front`` (against the
+rolling direction, cut at the central section: the Rotta section of Figure 5-5)
+and ``bottom`` (straight up through the ground grid at the patch). The contact
+patch's outline is drawn in every view.
+
+The image is laid out in three parts that never overlap: a title block on top (tire,
+rim, pressure in bar, load, camber, slip, surface), the model, and a colour-bar
+column on the right with rounded ticks and the quantity's unit; an axis triad sits
+in the model's lower-left corner and a ruler gives the length scale in mm.
+
+The format follows the output's suffix: PNG, JPEG, TIFF (raster) or PDF, SVG, EPS
+(vector, through VTK's GL2PS exporter: text and lines as vectors, the shaded tire
+as an embedded raster).
 """
 
 from __future__ import annotations
 
+import math
+from dataclasses import dataclass
+from pathlib import Path
+
 import numpy as np
 
-from . import _validate as v
+from . import validate as v
 from .case import LoadCase
 from .errors import InvalidParameter
 from .mesh import TireMesh, build_mesh, rim_mesh, support_mesh
 from .solver import ContactPatch
+from .units import MPA_PER_BAR
 
 VIEWS = ("iso", "side", "front", "bottom")
+#: scalar name -> (label, unit) of the colour bar
 SCALARS = {
-    "radial_deformation": "radial deformation [mm]",
-    "lateral_displacement": "lateral displacement [mm]",
-    "contact": "contact",
-    "section": "section index",
+    "radial_deformation": ("radial deformation", "mm"),
+    "lateral_displacement": ("lateral displacement", "mm"),
+    "contact_pressure": ("contact pressure", "bar"),
+    "contact": ("contact (1: on the surface)", ""),
+}
+#: output suffix -> Pillow format (raster) or None (vector, GL2PS)
+FORMATS = {
+    ".png": "PNG",
+    ".jpg": "JPEG",
+    ".jpeg": "JPEG",
+    ".tif": "TIFF",
+    ".tiff": "TIFF",
+    ".pdf": None,
+    ".svg": None,
+    ".eps": None,
 }
 SURFACE_COLOR = (0.80, 0.80, 0.76)
+GRID_COLOR = (0.45, 0.45, 0.45)
+PATCH_COLOR = (0.85, 0.1, 0.1)
+RIM_COLOR = (0.7, 0.72, 0.75)
+INSIDE_COLOR = (0.62, 0.62, 0.62)
+#: fractions of the image: title band height, colour-bar column width
+TITLE_FRACTION = 0.13
+BAR_FRACTION = 0.17
+
+
+@dataclass(frozen=True)
+class ViewCamera:
+    """A parallel-projection camera looking at ``focal`` from a direction.
+
+    Attributes
+    ----------
+    focal : (3,) float [mm]
+    azimuth : float [deg]
+        Direction of the camera seen from above, from the forward axis ``+x``
+        toward ``+y``.
+    elevation : float [deg]
+        Above the ground plane (negative: from below, through the ground).
+    scale : float [mm]
+        Half the height the image shows (parallel scale).
+    """
+
+    focal: tuple[float, float, float]
+    azimuth: float
+    elevation: float
+    scale: float
+
+    def position(self, distance: float):
+        """``[position, focal point, view up]`` for pyvista, ``distance`` mm away."""
+        az, el = math.radians(self.azimuth), math.radians(self.elevation)
+        d = np.array([math.cos(el) * math.cos(az), math.cos(el) * math.sin(az), math.sin(el)])
+        up = (0.0, 0.0, 1.0)
+        if abs(math.cos(el)) < 1e-6:  # straight up or down: forward is up in the image
+            up = (1.0, 0.0, 0.0)
+        f = np.asarray(self.focal, float)
+        return [tuple(f + distance * d), tuple(f), up]
+
+
+def output_format(path) -> str | None:
+    """The image format of an output path, checked before any work.
+
+    Parameters
+    ----------
+    path : str or PathLike
+        Its suffix picks the format (case-insensitive).
+
+    Returns
+    -------
+    str or None
+        Pillow format name (``'PNG'``, ``'JPEG'``, ``'TIFF'``), or None for a vector
+        format (``.pdf``, ``.svg``, ``.eps``).
+
+    Raises
+    ------
+    InvalidParameter
+        (a ``ValueError``) for any other suffix, naming the supported ones.
+    """
+    suffix = Path(path).suffix.lower()
+    if suffix not in FORMATS:
+        raise InvalidParameter("path", str(path), "a file ending in " + " | ".join(FORMATS))
+    return FORMATS[suffix]
+
+
+def _check_camera(camera):
+    """None, an (azimuth, elevation, zoom) tuple, or a pyvista camera position."""
+    if camera is None:
+        return None
+    seq = list(camera)
+    if len(seq) == 3 and all(isinstance(c, int | float) for c in seq):
+        az, el, zoom = (float(c) for c in seq)
+        if not all(math.isfinite(c) for c in (az, el, zoom)) or zoom <= 0 or abs(el) > 90:
+            raise InvalidParameter(
+                "camera", camera, "(azimuth deg, elevation deg in [-90, 90], zoom > 0)"
+            )
+        return (az, el, zoom)
+    if len(seq) == 3 and all(len(c) == 3 for c in seq):
+        return [tuple(float(x) for x in c) for c in seq]
+    raise InvalidParameter(
+        "camera", camera, "(azimuth deg, elevation deg, zoom) or [position, focal, view up]"
+    )
 
 
 def to_polydata(tire_mesh: TireMesh):
-    """The mesh as ``pyvista.PolyData`` with its point data arrays."""
+    """The mesh as a pyvista surface.
+
+    Parameters
+    ----------
+    tire_mesh : TireMesh
+
+    Returns
+    -------
+    pyvista.PolyData
+        Vertices [mm] in the ground frame, triangle cells, the point data of
+        ``tire_mesh.point_data`` and the cell data ``contact`` (0/1) and
+        ``contact_pressure`` [bar] (the inflation pressure on the faces lying on the
+        support surface, where the Rotta model carries the load; 0 elsewhere).
+    """
     import pyvista as pv
 
     faces = np.column_stack([np.full(len(tire_mesh.mesh.faces), 3), tire_mesh.mesh.faces])
     poly = pv.PolyData(np.asarray(tire_mesh.mesh.vertices, float), faces.ravel())
     for name, arr in tire_mesh.point_data.items():
         poly.point_data[name] = np.asarray(arr)
+    bar = tire_mesh.patch.pressure / MPA_PER_BAR
     poly.cell_data["contact"] = tire_mesh.face_contact.astype(np.uint8)
+    poly.cell_data["contact_pressure"] = tire_mesh.face_contact * bar
     return poly
 
 
@@ -46,28 +170,29 @@ def _trimesh_to_pv(mesh):
     return pv.PolyData(np.asarray(mesh.vertices, float), faces.ravel())
 
 
-def _camera(view: str, tire_mesh: TireMesh):
-    """Camera ``[position, focal point, view up]`` and parallel scale (None: perspective)."""
+def view_camera(view: str, tire_mesh: TireMesh) -> ViewCamera:
+    """The default camera of a view, framed on the tire and its patch.
+
+    Parameters
+    ----------
+    view : {'iso', 'side', 'front', 'bottom'}
+    tire_mesh : TireMesh
+
+    Returns
+    -------
+    ViewCamera
+    """
     p = tire_mesh.patch
-    R, r0 = p.tire.wheel_radius, p.tire.tire_radius
+    r0 = p.tire.tire_radius
     side = -1.0 if p.camber >= 0 else 1.0  # look from the side the wheel leans away from
+    span = max(p.length, 5 * r0)
     if view == "iso":
-        focal = np.array([0.0, 0.0, 1.0 * r0])
-        span = max(p.length, 5 * r0)
-        pos = focal + np.array([1.0, 1.1 * side, 0.75]) * 1.9 * span
-        return [tuple(pos), tuple(focal), (0, 0, 1)], None
+        return ViewCamera((0.0, 0.0, 0.6 * r0), -40.0 * side, -22.0, 0.58 * span)
     if view == "side":
-        focal = np.array([0.0, 0.0, 1.6 * r0])
-        pos = focal + np.array([0.0, side, 0.0]) * 4.0 * R
-        return [tuple(pos), tuple(focal), (0, 0, 1)], 0.45 * max(p.length, 6 * r0)
+        return ViewCamera((0.0, 0.0, 1.6 * r0), 90.0 * side, 0.0, 0.5 * max(p.length, 6 * r0))
     if view == "front":
-        focal = np.array([0.0, 0.0, 1.3 * r0])
-        pos = focal + np.array([1.0, 0.0, 0.0]) * 4.0 * R
-        return [tuple(pos), tuple(focal), (0, 0, 1)], 1.6 * r0
-    # bottom: looking up through the (translucent) surface, forward = up in the image
-    focal = np.array([0.0, 0.0, 0.0])
-    pos = focal + np.array([0.0, 0.0, -1.0]) * 4.0 * R
-    return [tuple(pos), tuple(focal), (1, 0, 0)], 0.6 * p.length + 2 * r0
+        return ViewCamera((0.0, 0.0, 1.05 * r0), 0.0, 0.0, 1.9 * r0)
+    return ViewCamera((0.0, 0.0, 0.0), 0.0, -90.0, 0.55 * p.length + 1.6 * r0)
 
 
 def render(
@@ -78,10 +203,13 @@ def render(
     scalars: str = "radial_deformation",
     size: tuple[int, int] = (1200, 900),
     camera=None,
+    background="white",
+    title: bool = True,
     show_surface: bool = True,
     show_rim: bool = True,
     scalar_bar: bool = True,
     ruler: bool = True,
+    axes: bool = True,
     cmap: str = "viridis",
 ):
     """Render the deformed tire off-screen.
@@ -92,113 +220,461 @@ def render(
         The mesh; a patch or a load case (solved first) is meshed with the defaults
         of :func:`tiremesh.mesh.build_mesh`.
     path : str or Path, optional
-        PNG file to write (atomically); the image array is returned either way.
+        File to write (atomically); its suffix picks the format (:data:`FORMATS`):
+        ``.png``, ``.jpg``/``.jpeg``, ``.tif``/``.tiff``, or vector ``.pdf``,
+        ``.svg``, ``.eps``. The image array is returned either way.
     view : {'iso', 'side', 'front', 'bottom'}
-    scalars : {'radial_deformation', 'lateral_displacement', 'contact', 'section'}
+    scalars : {'radial_deformation', 'lateral_displacement', 'contact_pressure', 'contact'}
+        The colouring quantity (:data:`SCALARS`).
     size : (width, height) [px]
-    camera : pyvista camera position ``[position, focal point, view up]``, optional
-        Overrides ``view``.
-    show_surface, show_rim, scalar_bar, ruler : bool
+    camera : (azimuth, elevation, zoom), optional
+        Look at the view's focal point from ``azimuth`` [deg] (seen from above, from
+        the forward axis ``+x`` toward ``+y``; 0 = from the front, 90 = from the
+        ``+y`` side) and ``elevation`` [deg] (above the ground; negative: from below,
+        through the ground), magnified by ``zoom`` (1: the view's framing). A
+        pyvista camera position ``[position, focal point, view up]`` is accepted too.
+    background : color
+        Any pyvista colour (``'white'``, ``'black'``, ``'#202020'``, an RGB tuple);
+        the text turns white on a dark background.
+    title : bool
+        Title block: tire, rim, pressure [bar], load, camber, slip, surface.
+    show_surface, show_rim, scalar_bar, ruler, axes : bool
+        The support surface (a solid slab in the side and front views, a grid and
+        outline in the views from below), the rim, the colour bar, the mm ruler and
+        the x/y/z axis triad.
+    cmap : str
+        Colour map.
 
     Returns
     -------
     image : (height, width, 3) uint8
-    """
-    _headless()
-    import pyvista as pv
 
+    Raises
+    ------
+    InvalidParameter
+        (a ``ValueError``) for an unknown view, scalar, size, camera or suffix,
+        before any work.
+    """
+    fmt = None if path is None else output_format(path)
+    opts = _check_options(view, scalars, size, camera)
+    _headless()
+    if not isinstance(tire_mesh, TireMesh):
+        tire_mesh = build_mesh(tire_mesh)
+    parts = dict(surface=show_surface, rim=show_rim, bar=scalar_bar, ruler=ruler, axes=axes)
+    pl = _scene(tire_mesh, opts, background, title, cmap, parts)
+    try:
+        image = pl.screenshot(return_img=True)
+        if path is not None and fmt is None:
+            _save_vector(pl, path)
+    finally:
+        pl.close()
+    if path is not None and fmt is not None:
+        _write_image(path, image, fmt)
+    return image
+
+
+@dataclass(frozen=True)
+class _Options:
+    view: str
+    scalars: str
+    size: tuple[int, int]
+    camera: object
+
+
+def _check_options(view, scalars, size, camera) -> _Options:
     if view not in VIEWS:
         raise InvalidParameter("view", view, " | ".join(VIEWS))
     if scalars not in SCALARS:
         raise InvalidParameter("scalars", scalars, " | ".join(SCALARS))
     w = v.integer("size[0] (width)", int(size[0]), 16, 8192)
     h = v.integer("size[1] (height)", int(size[1]), 16, 8192)
-    if not isinstance(tire_mesh, TireMesh):
-        tire_mesh = build_mesh(tire_mesh)
+    return _Options(view, scalars, (w, h), _check_camera(camera))
 
-    poly = to_polydata(tire_mesh)
-    if view == "front" and camera is None:
-        # cut at the central section: the cut edge is the Rotta section (Figure 5-5)
-        poly = poly.clip(normal=(1.0, 0.0, 0.0), origin=(0.0, 0.0, 0.0), invert=True)
+
+def _scene(tire_mesh: TireMesh, o: _Options, background, title: bool, cmap, parts: dict):
+    """The plotter with the tire, surface, rim, overlays and camera set."""
+    import pyvista as pv
+
+    w, h = o.size
     pl = pv.Plotter(off_screen=True, window_size=(w, h))
     try:
-        pl.set_background("white")
-        _add_tire(pl, poly, scalars, cmap, scalar_bar)
-        if show_surface:
-            ground = _trimesh_to_pv(support_mesh(tire_mesh.patch, sink=0.3))
-            opacity = 0.25 if view == "bottom" else 1.0
-            pl.add_mesh(ground, color=SURFACE_COLOR, opacity=opacity, smooth_shading=False)
-        if show_rim:
-            pl.add_mesh(_trimesh_to_pv(rim_mesh(tire_mesh)), color=(0.7, 0.72, 0.75), metallic=0.5)
-        if ruler:
-            _add_ruler(pl, tire_mesh, view)
-        _set_camera(pl, camera, view, tire_mesh)
-        image = pl.screenshot(return_img=True)
-    finally:
+        pl.set_background(background)
+        ink = _ink(pl.background_color)
+        top = TITLE_FRACTION if title else 0.0
+        right = BAR_FRACTION if parts["bar"] else 0.0
+        pl.renderer.SetViewport(0.0, 0.0, 1.0 - right, 1.0 - top)
+        # the front view is cut at the central section: the edge is the Rotta section
+        cut = o.view == "front" and not isinstance(o.camera, list)
+        poly = _cut(to_polydata(tire_mesh), cut)
+        colour = _add_tire(pl, poly, o.scalars, cmap)
+        if cut:
+            section = to_polydata(tire_mesh).slice(normal="x", origin=(0.0, 0.0, 0.0))
+            pl.add_mesh(section, color=ink, line_width=3)
+        below = _from_below(o, tire_mesh)
+        if parts["surface"]:
+            _add_surface(pl, tire_mesh, grid=below)
+        _add_patch_outline(pl, tire_mesh, lifted=-0.2 if below else 0.2)
+        if parts["rim"]:
+            rim = _cut(_trimesh_to_pv(rim_mesh(tire_mesh)), cut)
+            pl.add_mesh(rim, color=RIM_COLOR, metallic=0.5)
+        if parts["ruler"]:
+            _add_ruler(pl, tire_mesh, o.view, ink)
+        _set_camera(pl, o.camera, o.view, tire_mesh)
+        if title:
+            _overlay_title(pl, title_lines(tire_mesh), (0.0, 1.0 - top, 1.0, 1.0), ink, h)
+        if parts["bar"]:
+            _overlay_bar(pl, o.scalars, colour, (1.0 - right, 0.0, 1.0, 1.0 - top), ink, h)
+        if parts["axes"]:
+            _overlay_triad(pl, (0.0, 0.0, 0.13 * h / w * 1.33, 0.17 * (1 - top)), ink)
+    except BaseException:
         pl.close()
-    if path is not None:
-        _write_png(path, image)
-    return image
+        raise
+    return pl
 
 
-def _add_tire(pl, poly, scalars: str, cmap: str, scalar_bar: bool) -> None:
-    bar = dict(
-        title=SCALARS[scalars],
-        color="black",
-        vertical=False,
-        position_x=0.2,
-        position_y=0.87,
-        width=0.6,
-        height=0.06,
-        fmt="%.2f",
-    )
-    pl.add_mesh(
+def _cut(poly, cut: bool):
+    """The part behind the central section (x <= 0) when ``cut``."""
+    if not cut:
+        return poly
+    return poly.clip(normal=(1.0, 0.0, 0.0), origin=(0.0, 0.0, 0.0), invert=True)
+
+
+def _from_below(o: _Options, tire_mesh: TireMesh) -> bool:
+    """Whether the camera looks from below the ground (then the ground is a grid)."""
+    if isinstance(o.camera, tuple):
+        return o.camera[1] < 0
+    if isinstance(o.camera, list):
+        return o.camera[0][2] < o.camera[1][2]
+    return view_camera(o.view, tire_mesh).elevation < 0
+
+
+def _ink(background) -> tuple[float, float, float]:
+    """Black text on a light background, white on a dark one."""
+    r, g, b = (float(c) for c in tuple(background)[:3])
+    return (0.0, 0.0, 0.0) if 0.299 * r + 0.587 * g + 0.114 * b > 0.5 else (1.0, 1.0, 1.0)
+
+
+def title_lines(tire_mesh: TireMesh) -> list[str]:
+    """The title block: tire and rim; load case; patch size.
+
+    Parameters
+    ----------
+    tire_mesh : TireMesh
+
+    Returns
+    -------
+    list of str
+        E.g. ``['Schwalbe Big Apple 55-622 on a 18.7 mm rim', '4 bar, 400 N,
+        camber 20 deg, slip 0 deg, drum 2.5 m', ...]``.
+    """
+    p = tire_mesh.patch
+    name = p.tire.name or f"tire r0 = {p.tire.tire_radius:.1f} mm"
+    return [
+        f"{name} on a {p.tire.rim_width:.1f} mm rim",
+        f"{p.pressure / MPA_PER_BAR:.3g} bar, {p.vertical_force:.0f} N, "
+        f"camber {math.degrees(p.camber):.3g} deg, slip {math.degrees(p.slip):.3g} deg, "
+        f"{surface_label(p.surface)}",
+        f"patch {p.length:.1f} x {p.width:.1f} mm, {p.area:.0f} mm2; "
+        f"deflection {p.deflection:.1f} mm",
+    ]
+
+
+def surface_label(surface) -> str:
+    """'flat ground', 'drum 2.5 m', 'disk 3 m (toward)' ...
+
+    Parameters
+    ----------
+    surface : tiremesh surface
+
+    Returns
+    -------
+    str
+    """
+    name = type(surface).__name__.lower()
+    d = getattr(surface, "diameter", None)
+    if d is None:
+        return "flat ground"
+    extra = getattr(surface, "curving", None)
+    return f"{name} {d / 1000:g} m" + (f" ({extra})" if isinstance(extra, str) else "")
+
+
+def nice_ticks(lo: float, hi: float, n: int = 6):
+    """Rounded colour-bar ticks covering ``[lo, hi]``.
+
+    Parameters
+    ----------
+    lo, hi : float
+        Data range (``lo == hi`` is widened by one unit).
+    n : int
+        About this many ticks.
+
+    Returns
+    -------
+    (lo, hi) : float
+        The range widened to whole steps.
+    ticks : (k,) float
+        Multiples of a 1-2-5 step from ``lo`` to ``hi``.
+    decimals : int
+        Decimals that show the step exactly.
+    """
+    if not (math.isfinite(lo) and math.isfinite(hi)):
+        raise InvalidParameter("range", (lo, hi), "finite numbers")
+    if hi - lo < 1e-12 * max(1.0, abs(lo), abs(hi)):
+        lo, hi = lo - 0.5, hi + 0.5
+    raw = (hi - lo) / max(n - 1, 1)
+    mag = 10.0 ** math.floor(math.log10(raw))
+    step = next(s * mag for s in (1, 2, 5, 10) if s * mag >= raw * 0.999)
+    decimals = next(d for d in range(7) if abs(step * 10**d - round(step * 10**d)) < 1e-6)
+    k0, k1 = math.floor(lo / step + 1e-9), math.ceil(hi / step - 1e-9)
+    ticks = np.round(np.arange(k0, k1 + 1) * step, decimals) + 0.0  # + 0.0: no "-0"
+    a, b = ticks[0], ticks[-1]
+    return (float(a), float(b)), ticks, decimals
+
+
+def _add_tire(pl, poly, scalars: str, cmap: str):
+    """The tire coloured by ``scalars`` over a rounded range; returns its lookup
+    table and the ``ticks, decimals`` of :func:`nice_ticks`."""
+    cell = scalars in ("contact", "contact_pressure")
+    data = np.asarray(poly.cell_data[scalars] if cell else poly.point_data[scalars])
+    lo = 0.0 if scalars in ("contact_pressure", "contact") else float(data.min())
+    (lo, hi), ticks, decimals = nice_ticks(lo, float(data.max()))
+    actor = pl.add_mesh(
         poly,
         scalars=scalars,
+        preference="cell" if cell else "point",
         cmap=cmap,
+        clim=(lo, hi),
         smooth_shading=True,
-        show_scalar_bar=scalar_bar,
-        scalar_bar_args=bar,
+        show_scalar_bar=False,
         specular=0.2,
     )
+    actor.mapper.scalar_range = (lo, hi)
+    actor.prop.culling = "back"  # the outside coloured; the inside (seen through
+    pl.add_mesh(poly, color=INSIDE_COLOR, culling="front", smooth_shading=True)  # a cut) grey
+    return actor.mapper.lookup_table, ticks, decimals
+
+
+def _add_surface(pl, tire_mesh: TireMesh, *, grid: bool) -> None:
+    """A solid slab, or (seen from below) the surface as a grid with its outline."""
+    if not grid:
+        ground = _trimesh_to_pv(support_mesh(tire_mesh.patch, sink=0.3))
+        pl.add_mesh(ground, color=SURFACE_COLOR, smooth_shading=False)
+        return
+    pl.add_mesh(ground_grid(tire_mesh), color=GRID_COLOR, line_width=1, opacity=0.6)
+
+
+def ground_grid(tire_mesh: TireMesh, *, spacing: float = 10.0):
+    """The support surface under the tire as grid lines (``spacing`` mm apart) and an
+    outline, lying on the surface (a drum's lines follow its curve).
+
+    Parameters
+    ----------
+    tire_mesh : TireMesh
+    spacing : float [mm]
+
+    Returns
+    -------
+    pyvista.PolyData
+        Line cells.
+    """
+    import pyvista as pv
+
+    p = tire_mesh.patch
+    r0 = p.tire.tire_radius
+    half_x = spacing * math.ceil((0.5 * p.length + 2.5 * r0) / spacing)
+    half_y = spacing * math.ceil(2.5 * r0 / spacing)
+    xs = np.arange(-half_x, half_x + 0.5 * spacing, spacing)
+    ys = np.arange(-half_y, half_y + 0.5 * spacing, spacing)
+    s_fine = np.linspace(-half_x, half_x, 4 * len(xs))
+    pts, lines = [], []
+
+    def add(s, y):
+        x = p.surface.roll(s)
+        start = sum(len(q) for q in pts)
+        pts.append(np.column_stack([x, y, p.surface.height(x) - 0.05]))
+        lines.append(np.concatenate([[len(x)], start + np.arange(len(x))]))
+
+    for y in ys:
+        add(s_fine, np.full(len(s_fine), y))
+    for s in xs:
+        add(np.full(2, s), np.array([-half_y, half_y]))
+    return pv.PolyData(np.concatenate(pts), lines=np.concatenate(lines))
+
+
+def _add_patch_outline(pl, tire_mesh: TireMesh, *, lifted: float) -> None:
+    """The solver's patch outline on the surface, ``lifted`` mm toward the camera."""
+    import pyvista as pv
+
+    p = tire_mesh.patch
+    xy = p.outline
+    x = p.surface.roll(xy[:, 0])
+    pts = np.column_stack([x, xy[:, 1], p.surface.height(x) + lifted])
+    line = pv.PolyData(pts, lines=np.concatenate([[len(pts)], np.arange(len(pts))]))
+    pl.add_mesh(line, color=PATCH_COLOR, line_width=3)
 
 
 def _set_camera(pl, camera, view: str, tire_mesh: TireMesh) -> None:
-    if camera is not None:
+    if isinstance(camera, list):
         pl.camera_position = camera
         return
-    position, scale = _camera(view, tire_mesh)
-    pl.camera_position = position
-    if scale is not None:
-        pl.enable_parallel_projection()
-        pl.camera.parallel_scale = scale
-    else:
-        pl.camera.view_angle = 30.0
+    c = view_camera(view, tire_mesh)
+    if camera is not None:
+        az, el, zoom = camera
+        c = ViewCamera(c.focal, az, el, c.scale / zoom)
+    pl.camera_position = c.position(8.0 * tire_mesh.patch.tire.wheel_radius)
+    pl.enable_parallel_projection()
+    pl.camera.parallel_scale = c.scale
+    pl.renderer.ResetCameraClippingRange()
 
 
-def _add_ruler(pl, tire_mesh: TireMesh, view: str) -> None:
+def _overlay_renderer(pl, viewport, layer: int = 0):
+    """A 2D renderer over part of the window, with the window's background."""
+    import vtk
+
+    ren = vtk.vtkRenderer()
+    ren.SetViewport(*viewport)
+    ren.SetBackground(*pl.background_color[:3])
+    ren.SetLayer(layer)
+    ren.InteractiveOff()
+    if layer:
+        ren.SetPreserveColorBuffer(1)
+        ren.SetPreserveDepthBuffer(0)
+        pl.ren_win.SetNumberOfLayers(max(pl.ren_win.GetNumberOfLayers(), layer + 1))
+    pl.ren_win.AddRenderer(ren)
+    return ren
+
+
+def _text(ren, text: str, x: float, y: float, size: int, ink, *, bold=False, align="left"):
+    import vtk
+
+    t = vtk.vtkTextActor()
+    t.SetInput(text)
+    prop = t.GetTextProperty()
+    prop.SetFontSize(size)
+    prop.SetColor(*ink)
+    prop.SetBold(bold)
+    prop.SetFontFamilyToArial()
+    prop.SetJustification({"left": 0, "center": 1, "right": 2}[align])
+    prop.SetVerticalJustificationToCentered()
+    t.GetPositionCoordinate().SetCoordinateSystemToNormalizedViewport()
+    t.SetPosition(x, y)
+    ren.AddViewProp(t)
+    return t
+
+
+def _overlay_title(pl, lines: list[str], viewport, ink, h: int) -> None:
+    ren = _overlay_renderer(pl, viewport)
+    n = len(lines)
+    size = max(9, round(h * TITLE_FRACTION / (n + 1.6)))
+    for i, line in enumerate(lines):
+        y = 1.0 - (i + 0.8) / (n + 0.6)
+        _text(ren, line, 0.015, y, size if i else round(size * 1.1), ink, bold=i == 0)
+
+
+def _overlay_bar(pl, scalars: str, colour, viewport, ink, h: int) -> None:
+    """Vertical colour bar in its own column: label and unit on top, rounded ticks."""
+    import textwrap
+
+    import vtk
+
+    ren = _overlay_renderer(pl, viewport)
+    label, unit = SCALARS[scalars]
+    lines = textwrap.wrap(label, 12) + ([f"[{unit}]"] if unit else [])
+    col_px = (viewport[2] - viewport[0]) * pl.window_size[0]
+    # the label fits its column (a glyph is at most ~0.75 font sizes wide)
+    size = max(6, min(round(h / 48), int(0.9 * col_px / (0.75 * max(map(len, lines))))))
+    rows_h = (viewport[3] - viewport[1]) * h
+    for i, line in enumerate(lines):
+        _text(ren, line, 0.5, 0.97 - 1.3 * size * (i + 0.5) / rows_h, size, ink, align="center")
+    lut, ticks, decimals = colour
+    bar = vtk.vtkScalarBarActor()
+    bar.SetLookupTable(lut)
+    bar.SetOrientationToVertical()
+    bar.SetNumberOfLabels(len(ticks))
+    labels = vtk.vtkDoubleArray()
+    for t in ticks:
+        labels.InsertNextValue(float(t))
+    bar.SetUseCustomLabels(True)
+    bar.SetCustomLabels(labels)
+    bar.SetLabelFormat(f"%.{decimals}f")
+    bar.SetTitle("")
+    bar.SetTextPositionToSucceedScalarBar()
+    bar.GetPositionCoordinate().SetCoordinateSystemToNormalizedViewport()
+    bar.SetPosition(0.18, 0.05)
+    bar.SetWidth(0.62)
+    bar.SetHeight(0.9 - 1.3 * size * (len(lines) + 0.5) / rows_h)
+    bar.SetBarRatio(0.3)
+    bar.UnconstrainedFontSizeOn()
+    tp = bar.GetLabelTextProperty()
+    tp.SetFontSize(size)
+    tp.SetColor(*ink)
+    tp.SetItalic(False)
+    tp.SetShadow(False)
+    tp.SetBold(False)
+    ren.AddViewProp(bar)
+
+
+def _overlay_triad(pl, viewport, ink) -> None:
+    """x / y / z arrows turning with the main camera (an orientation marker that
+    needs no interactor)."""
+    import vtk
+
+    ren = _overlay_renderer(pl, viewport, layer=1)
+    axes = vtk.vtkAxesActor()
+    axes.SetShaftTypeToCylinder()
+    axes.SetTotalLength(1.0, 1.0, 1.0)
+    axes.SetCylinderRadius(0.04)
+    axes.SetConeRadius(0.15)
+    captions = (
+        axes.GetXAxisCaptionActor2D(),
+        axes.GetYAxisCaptionActor2D(),
+        axes.GetZAxisCaptionActor2D(),
+    )
+    for cap in captions:
+        prop = cap.GetCaptionTextProperty()
+        prop.SetColor(*ink)
+        prop.SetShadow(False)
+        prop.SetItalic(False)
+        prop.SetBold(True)
+        cap.GetTextActor().SetTextScaleModeToNone()
+        prop.SetFontSize(14)
+    ren.AddActor(axes)
+    main = pl.camera
+    pos, focal = np.array(main.position), np.array(main.focal_point)
+    d = (pos - focal) / np.linalg.norm(pos - focal)
+    cam = ren.GetActiveCamera()
+    cam.SetFocalPoint(0.4, 0.4, 0.4)
+    cam.SetPosition(*(np.array([0.4, 0.4, 0.4]) + 6.0 * d))
+    cam.SetViewUp(*main.up)
+    cam.ParallelProjectionOn()
+    cam.SetParallelScale(1.05)
+    ren.ResetCameraClippingRange()
+
+
+def _add_ruler(pl, tire_mesh: TireMesh, view: str, ink) -> None:
+    """A mm ruler with three round labels (0, half, full length)."""
     p = tire_mesh.patch
     r0 = p.tire.tire_radius
     side = -1.0 if p.camber >= 0 else 1.0
     if view == "front":
-        length = 10.0 * max(1, int(2.4 * r0 // 10))
-        a, b = (0.0, -length / 2, -0.12 * r0), (0.0, length / 2, -0.12 * r0)
+        length = 20.0 * max(1, int(2.4 * r0 // 20))
+        a, b = (0.0, -length / 2, -0.25 * r0), (0.0, length / 2, -0.25 * r0)
     else:
-        step = 10.0 if p.length < 150 else 50.0
+        step = 20.0 if p.length < 150 else 100.0
         length = step * max(1, int(p.length // step))
         if view == "side":
-            a, b = (-length / 2, 0.0, -0.25 * r0), (length / 2, 0.0, -0.25 * r0)
+            a, b = (-length / 2, 0.0, -0.3 * r0), (length / 2, 0.0, -0.3 * r0)
         else:
-            y = 2.2 * r0 * side
-            a, b = (-length / 2, y, 0.0), (length / 2, y, 0.0)
+            y = 2.0 * r0 * side
+            a, b = (-length / 2, y, -0.1), (length / 2, y, -0.1)
     pl.add_ruler(
         a,
         b,
         title="mm",
         number_labels=3,
         font_size_factor=0.8,
-        label_color="black",
-        tick_color="black",
+        label_color=ink,
+        tick_color=ink,
         label_format="%.0f",
     )
 
@@ -212,10 +688,40 @@ def _headless() -> None:
         os.environ.setdefault("VTK_DEFAULT_OPENGL_WINDOW", "vtkEGLRenderWindow")
 
 
-def _write_png(path, image) -> None:
+def _write_image(path, image, fmt: str) -> None:
     from PIL import Image
 
     from .io import atomic_path
 
+    kw = {"quality": 92} if fmt == "JPEG" else {}
     with atomic_path(path) as tmp:
-        Image.fromarray(np.asarray(image, np.uint8)).save(tmp, format="PNG")
+        Image.fromarray(np.asarray(image, np.uint8)).save(tmp, format=fmt, **kw)
+
+
+def _save_vector(pl, path) -> None:
+    """PDF / SVG / EPS through GL2PS (text and lines vector, the shaded tire raster)."""
+    from .io import atomic_path
+
+    path = Path(path)
+    with atomic_path(path) as tmp:
+        tmp = Path(tmp)
+        target = tmp.with_suffix(path.suffix.lower())
+        pl.save_graphic(str(target), title="tiremesh render")
+        if target != tmp:
+            target.replace(tmp)
+
+
+__all__ = [
+    "FORMATS",
+    "SCALARS",
+    "VIEWS",
+    "ViewCamera",
+    "ground_grid",
+    "nice_ticks",
+    "output_format",
+    "render",
+    "surface_label",
+    "title_lines",
+    "to_polydata",
+    "view_camera",
+]

@@ -51,7 +51,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from . import _validate as v
+from . import validate as v
 from ._roots import newton_bracketed
 from ._tol import tol
 from .errors import InvalidParameter
@@ -256,15 +256,18 @@ class SectionSolution:
         return np.asarray(pressure) * np.maximum(self.width, 0.0)
 
 
-def section_arrays(r0, w, dv, dh, camber, delta, broadcast=False):
-    """Unchecked core of :func:`solve_sections`; returns (solution, bad_h, bad_c).
+def section_arrays(r0, w, dv, dh, *, camber, delta, broadcast=False):
+    """Unchecked core of :func:`solve_sections` (equations 5-10, 5-13, 5-11, 5-12).
 
-    Notes
-    -----
-    Dressel (2013), section 5.1: equation 5-10 (arc bookkeeping, ``c = s - d``),
-    equation 5-13 (the arc-length root, per side), equation 5-11 (bulge radius) and
-    equation 5-12 (bead-to-edge offset), in that order below.
-    """
+    Parameters
+    ----------
+    r0, w, dv, dh, delta : (...) float [mm], broadcastable ((m, 1), (m, n) in the solver)
+    camber : (...) float [rad]
+    broadcast : bool, whether to broadcast every field of the solution to one shape
+
+    Returns
+    -------
+    sol, bad_h, bad_c : SectionSolution, (...) bool; flags: bead at/below ground, c <= 0"""
     theta0 = 2.0 * np.arcsin(0.5 * w / r0)  # equation 5-2, inlined
     half_s0 = r0 * (np.pi - 0.5 * theta0)  # s0 / 2, equation 5-4
     xb1, zb1, xb2, zb2 = bead_positions(r0, w, camber)
@@ -285,12 +288,10 @@ def section_arrays(r0, w, dv, dh, camber, delta, broadcast=False):
     _, dq = bulge_ratio(th)
     (th1, th2), (cot1, cot2), (r1, r2), (dq1, dq2) = th, cot, r, dq
     e1, e2 = xb1 + h1s * cot1, xb2 - h2s * cot2  # Eq. 5-12: d = r sin theta = H cot(theta/2)
-    # lowest point from each side (Table 5-4 cp_mids)
-    low1 = e1 - (r1 * th1 - r0 * (np.pi - 0.5 * theta0 + camber))
-    low2 = e2 + (r2 * th2 - r0 * (np.pi - 0.5 * theta0 - camber))
-    # width sensitivities: d(d_i) = cot dH - r dtheta, dtheta = dy / q'
-    dd1_dv = -cot1 - r1 * (y1 / h1s) / dq1
-    dd2_dv = -cot2 - r2 * (y2 / h2s) / dq2
+    low1 = e1 - (r1 * th1 - r0 * (np.pi - 0.5 * theta0 + camber))  # lowest point from side 1
+    low2 = e2 + (r2 * th2 - r0 * (np.pi - 0.5 * theta0 - camber))  # and side 2 (Table 5-4 cp_mids)
+    dd1_dv = -cot1 - r1 * (y1 / h1s) / dq1  # width sensitivities: d(d_i) = cot dH - r dtheta,
+    dd2_dv = -cot2 - r2 * (y2 / h2s) / dq2  # with dtheta = dy / q'
     dwidth_ddv = -(dd1_dv + dd2_dv)
     dd1_dh, dd2_dh = r1 / (h1s * dq1), -r2 / (h2s * dq2)
     dwidth_ddh = -(dd1_dh + dd2_dh)
@@ -396,7 +397,7 @@ def solve_sections(
     dh = v.finite("horz_deflection", horz_deflection, unit="mm")
     gamma = v.in_range("camber", camber, -np.pi / 2, np.pi / 2, unit="rad")
     dl = r0 * gamma if delta is None else v.finite("delta", delta, unit="mm")
-    sol, bad_h, bad_c = section_arrays(r0, w, dv, dh, gamma, dl, broadcast=True)
+    sol, bad_h, bad_c = section_arrays(r0, w, dv, dh, camber=gamma, delta=dl, broadcast=True)
     if np.any(bad_h):
         hmin = np.minimum(sol.height1, sol.height2)
         raise InvalidParameter(
@@ -421,6 +422,15 @@ def camber_delta_iteration(tire_radius, rim_width, vert_deflection, camber, *, s
     ``dh = dv tan(camber)`` (equation 5-7). Returns the sequence of deltas
     (``steps + 1`` values); the first correction already lands on the fixed point
     ``r0 * camber``.
+
+    Parameters
+    ----------
+    tire_radius, rim_width : (...) float [mm]
+    vert_deflection : (...) float [mm]
+        ``dv`` of the central section.
+    camber : (...) float [rad]
+    steps : int
+        Corrections to run.
 
     Returns
     -------

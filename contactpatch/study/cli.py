@@ -1,4 +1,5 @@
-"""The study's commands: ``contactpatch compare`` and ``contactpatch report``."""
+"""The study's commands: ``contactpatch compare``, ``contactpatch report`` and
+``contactpatch validate``."""
 
 from __future__ import annotations
 
@@ -53,13 +54,49 @@ def report_command(a: argparse.Namespace) -> int:
     return 0
 
 
+def validate_command(a: argparse.Namespace) -> int:
+    """Compare the model with the measurements of Dressel (2013) and write the results.
+
+    Parameters
+    ----------
+    a : argparse.Namespace
+        ``output`` (folder), ``measurements`` (CSV path or None for the packaged copy).
+
+    Returns
+    -------
+    int
+        Exit status 0.
+    """
+    from .validate import validate
+
+    v = validate(a.output, a.measurements)
+    st = v.settings
+    print(
+        f"{st['n_rows']} measurement rows; casing modulus E = {st['modulus_N_mm2']:.4g} N/mm^2 "
+        f"(t = {st['thickness_mm']:g} mm), fitted across all tires; {st['seconds']} s"
+    )
+    print(f"{'quantity':<58} {'n':>3} {'median':>8} {'worst':>8} {'RMS log':>8}")
+    for s in v.statistics:
+        print(
+            f"{s['label'] + ' [' + s['unit'] + ']':<58} {s['n']:>3} {s['median_ratio']:>8.3g} "
+            f"{s['worst_ratio']:>8.3g} {s['rms_log_error']:>8.3g}"
+        )
+    for row in v.variants:
+        if row["variant"].startswith("taut beam, E fitted (leave"):
+            print(
+                f"leave one tire out (lateral stiffness): RMS log error {row['rms_log_error']:.3g}"
+            )
+    print(f"wrote {a.output}/summary.md, index.html, tables (CSV, JSON) and figures/")
+    return 0
+
+
 def build_parser() -> argparse.ArgumentParser:
     """The ``contactpatch`` argument parser.
 
     Returns
     -------
     argparse.ArgumentParser
-        Sub-commands ``compare`` and ``report``; each sets ``func``.
+        Sub-commands ``compare``, ``report`` and ``validate``; each sets ``func``.
     """
     parser = argparse.ArgumentParser(prog="contactpatch", description="Rotta model vs ink prints.")
     sub = parser.add_subparsers(dest="command", required=True)
@@ -72,6 +109,18 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("-o", "--output", required=True, help="report folder")
     p.add_argument("--no-renders", action="store_true", help="skip the 3D renders")
     p.set_defaults(func=report_command)
+    p = sub.add_parser(
+        "validate", help="compare the model with the measurements of Dressel (2013)"
+    )
+    p.add_argument(
+        "-o", "--output", default="validation", help="output folder (default: validation)"
+    )
+    p.add_argument(
+        "--measurements",
+        default=None,
+        help="CSV with the columns of measured-dressel2013.csv (default: the packaged copy)",
+    )
+    p.set_defaults(func=validate_command)
     return parser
 
 

@@ -1,44 +1,60 @@
-"""Model vs print report: a self-contained HTML file plus its tables (Dressel 2013,
-sections 4.1.1, 6.2).
+"""Model vs print report: one self-contained HTML file plus its tables and vector
+figures (Dressel 2013, sections 4.1.1, 6.2).
 
-:func:`build_report` takes an ``inkprint batch`` table and runs four named steps:
+:func:`build_report` takes an ``inkprint batch`` table and runs named steps:
 
-1. :func:`compute_tables` -> :class:`ReportTables` (pairing, trends, drum / plate,
-   rim sensitivity, errors);
+1. :func:`compute_tables` -> :class:`ReportTables` (pairing, trends with standard
+   errors, drum / plate, rim sensitivity, errors);
 2. :func:`report_config` -> the configuration block (package, version, counts);
 3. :func:`write_tables` -> ``tables/*.csv`` and ``report.json``, every table in full
    precision (through :func:`tiremesh.io.write_table`);
-4. :func:`draw_figures` -> :class:`ReportFigures`, ``figures/*.png|svg`` and renders
-   of the modelled tire (through :func:`tiremesh.io.save_figure`);
+4. in a worker process, while the rest goes on: :func:`render_cases` (1200 px
+   renders of representative cases: low and high load on the plate, cambered on
+   the drum) and the validation section, when :mod:`contactpatch.study.validate`
+   provides ``report_section``;
+5. :func:`draw_figures` -> :class:`ReportFigures`: every matplotlib figure drawn
+   once and saved once, as SVG (written to ``figures/`` and inlined in the page);
+6. :func:`collect_sheets`: each scan's QA overlay and what was set aside on it;
+7. :func:`viewer_cases`: the meshes of the interactive 3D view;
 
-then writes the pages of :mod:`contactpatch.study.pages`: ``index.html`` (figures
-embedded, readable in any browser with no server) and ``report.md`` (a Markdown
-summary for version control).
+then writes the pages of :mod:`contactpatch.study.pages`: ``index.html`` (complete
+on its own: figures inline, images as data URIs, no network request) and
+``report.md`` (a Markdown summary for version control). A progress bar follows the
+steps when the report is built in a terminal.
 
-The HTML shows the same numbers as the CSV files (formatted to 6 significant digits)
-and contains no timestamp: the same inputs give the same tables and pages.
+The pages show the numbers of the CSV files rounded by quantity and contain no
+timestamp: the same inputs give the same tables and pages.
 """
 
 from __future__ import annotations
 
 import json
+import math
+import os
 import platform
+import sys
 from dataclasses import dataclass, fields
 from pathlib import Path
 
 import tiremesh as tm
-from tiremesh.io import cell_number_or_nan, save_figure, write_table, write_text_atomic
+from tiremesh.io import cell_number_or_nan, write_table, write_text_atomic
 
 from . import figures as F
 from .compare import DEFAULT_DIAMETER_MM, PAIRED_COLUMNS, case_of, pair_prints
 from .pages import SECTIONS, html_page, markdown_page
-from .trends import (
-    DISSERTATION_TABLE_4_1,
-    drum_plate_ratios,
-    rim_sensitivity,
-    sign_agreement,
-    trend_table,
-)
+from .sheets import locate_scans, qa_overlay, set_aside, sheets_of
+from .style import tire_colours
+from .trends import DISSERTATION_TABLE_4_1, drum_plate_ratios, rim_sensitivity, sign_agreement
+from .uncertainty import trend_table_with_errors
+
+#: at most this many prints: their scans and outlines are shown open; beyond, folded
+EXPAND_LIMIT = 48
+#: beyond this many scans the QA overlays are embedded smaller (long side [px])
+SCAN_LIMIT = 60
+#: size of the report's renders [px]
+RENDER_SIZE = (1200, 900)
+#: camber of the cambered drum render when no print was taken cambered [deg]
+RENDER_CAMBER_DEG = 10.0
 
 
 @dataclass(frozen=True)
@@ -50,7 +66,8 @@ class ReportTables:
     paired : list of dict
         :func:`contactpatch.pair_prints` of the print table.
     trends : list of dict
-        :func:`contactpatch.trend_table`: pressure and load exponents.
+        :func:`contactpatch.study.uncertainty.trend_table_with_errors`: pressure and
+        load exponents with standard errors.
     agreement : list of dict
         :func:`contactpatch.sign_agreement` of ``trends`` (section 6.2.4).
     drum_plate_prints, drum_plate_summary : list of dict
@@ -95,31 +112,92 @@ class ReportTables:
 
 
 @dataclass(frozen=True)
-class ReportFigures:
-    """The report's figure files (PNG; an SVG lies beside each).
+class Figure:
+    """A matplotlib figure of the report, saved once as SVG.
 
     Parameters
     ----------
-    key : Path
-        Area vs length and width (Figure 6-3).
-    load : Path
-        Load over area vs pressure (Figure 4-3).
-    prints : Path
-        Every print over its model patch.
-    drum : Path
-        Drum / plate ratios (Table 4-1).
-    tire_trends : list of (Path, str)
-        Per tire: the trend figure and the tire's name.
-    renders : list of (Path, str)
-        Renders of the modelled tires and their captions (empty when skipped).
+    name : str
+    svg : str
+        The SVG document (inlined in the page).
+    caption : str
+    path : Path
+        The same SVG written beside the page (``figures/NAME.svg``).
     """
 
-    key: Path
-    load: Path
-    prints: Path
-    drum: Path
-    tire_trends: list[tuple[Path, str]]
-    renders: list[tuple[Path, str]]
+    name: str
+    svg: str
+    caption: str
+    path: Path
+
+
+@dataclass(frozen=True)
+class Render:
+    """A render of the model.
+
+    Parameters
+    ----------
+    path : Path
+        ``figures/render_*.png``.
+    png : bytes
+    caption : str
+    size : (int, int) [px]
+    """
+
+    path: Path
+    png: bytes
+    caption: str
+    size: tuple[int, int]
+
+
+@dataclass(frozen=True)
+class ReportFigures:
+    """The report's figures.
+
+    Parameters
+    ----------
+    key : Figure
+        Area vs length and width (Figure 6-3).
+    ratios : Figure
+        Print / model ratios per tire (aggregate).
+    load : Figure
+        Load over area vs pressure, in bar (Figure 4-3).
+    drum : Figure
+        Drum / plate ratios (Table 4-1).
+    tire_trends : dict of str to Figure
+        Per tire: size vs pressure and load.
+    renders : list of Render
+        Renders of representative cases (empty when skipped).
+    """
+
+    key: Figure
+    ratios: Figure
+    load: Figure
+    drum: Figure
+    tire_trends: dict
+    renders: list
+
+
+@dataclass(frozen=True)
+class Sheet:
+    """A scanned sheet in the report.
+
+    Parameters
+    ----------
+    file : str
+        As the print table names it.
+    rows : list of dict
+        Its paired rows.
+    qa_jpeg : bytes or None
+        The QA overlay (None: the scan was not found).
+    set_aside : list of str or None
+        What the analysis set aside (None: not recorded in the table).
+    """
+
+    file: str
+    rows: list
+    qa_jpeg: bytes | None
+    set_aside: list | None
 
 
 @dataclass(frozen=True)
@@ -132,11 +210,31 @@ class ReportContent:
         :func:`report_config`.
     tables : ReportTables
     figures : ReportFigures
+    colours : dict of str to str
+        A colour per tire (sorted by name), shared by every figure and table.
+    sheets : list of Sheet
+    viewer : list of dict
+        Cases of the 3D view (:func:`contactpatch.study.viewer.viewer_case`).
+    validation : (str, str) or None
+        HTML and Markdown of the validation section, when available.
+    facts : list of (str, str)
+        Key numbers of the summary (label, value).
+    expand_prints : bool
+        Show the scans and outlines open (few prints) or folded.
+    outline_scale : (float, float) [mm]
+        Height and width of every print outline drawing (one scale).
     """
 
     config: dict
     tables: ReportTables
     figures: ReportFigures
+    colours: dict
+    sheets: list
+    viewer: list
+    validation: tuple | None
+    facts: list
+    expand_prints: bool
+    outline_scale: tuple
 
 
 def _model_as_prints(paired: list[dict]) -> list[dict]:
@@ -166,7 +264,7 @@ def compute_tables(rows: list[dict]) -> ReportTables:
     ReportTables
     """
     paired = pair_prints(rows)
-    trends = trend_table(paired)
+    trends = trend_table_with_errors(paired)
     dp_pairs, dp_summary = drum_plate_ratios(paired)
     mp_pairs, mp_summary = drum_plate_ratios(_model_as_prints(paired))
     return ReportTables(
@@ -216,6 +314,7 @@ def report_config(rows: list[dict], tables: ReportTables, *, source: str = "") -
         "model cases": len(solved),
         "surfaces": f"plate -> flat ground; drum -> {drum_m:g} m drum unless "
         "drum_diameter_mm is given",
+        "units": "mm, N, bar (1 bar = 0.1 N/mm2)",
     }
 
 
@@ -245,101 +344,370 @@ def write_tables(out_dir, tables: ReportTables, config: dict) -> list[Path]:
     return written
 
 
-def _median_plate_row(paired: list[dict], tire: str) -> dict | None:
-    """The tire's solved plate row in the middle by (pressure, load), if any."""
-    num = cell_number_or_nan
-    rs = [
-        r
-        for r in paired
-        if r.get("tire") == tire
-        and r.get("model_status") == "ok"
-        and str(r.get("surface", "")).lower() in ("plate", "flat")
-    ]
-    rs.sort(key=lambda r: (num(r["pressure_bar"]), num(r["load_N"])))
-    return rs[len(rs) // 2] if rs else None
+# --- representative cases: renders and the 3D view ----------------------------------
 
 
-def render_tires(paired: list[dict], fig_dir, *, size: tuple[int, int] = (640, 480)):
-    """Bottom and iso views of the model of each tire at its median plate case.
+@dataclass(frozen=True)
+class ModelCase:
+    """A load case shown as a render and in the 3D view.
+
+    Parameters
+    ----------
+    label : str
+        'low load', 'high load', 'cambered, drum'.
+    case : tiremesh.LoadCase
+    view : str
+        Render view.
+    stem : str
+        File name stem of the render.
+    note : str
+        Said in the caption (e.g. that no print was taken at this camber).
+    zoom : float
+        Render zoom relative to the view's framing (renders compared side by side
+        share one scale).
+    """
+
+    label: str
+    case: object
+    view: str
+    stem: str
+    note: str = ""
+    zoom: float = 1.0
+
+
+def _f(v) -> float:
+    return cell_number_or_nan(v)
+
+
+def _is_plate(r: dict) -> bool:
+    return str(r.get("surface", "")).lower() in ("plate", "flat")
+
+
+def representative_cases(paired: list[dict]) -> list[ModelCase]:
+    """Low and high load on the plate, and the high load cambered on the drum, for
+    the tire with the most prints, at its median pressure.
 
     Parameters
     ----------
     paired : list of dict
         Rows of :func:`contactpatch.pair_prints`.
-    fig_dir : str or PathLike
-        Folder for ``render_tire{k}_{view}.png``.
-    size : (int, int) [px]
-        Image width and height.
 
     Returns
     -------
-    list of (Path, str)
-        Each image and its caption.
+    list of ModelCase
+        Empty when no row was solved; a case the model cannot solve is left out.
+    """
+    ok = [r for r in paired if r.get("model_status") == "ok" and r.get("status", "ok") == "ok"]
+    if not ok:
+        return []
+    counts: dict[str, int] = {}
+    for r in ok:
+        counts[str(r["tire"])] = counts.get(str(r["tire"]), 0) + 1
+    tire = min(counts, key=lambda t: (-counts[t], t))
+    rows = [r for r in ok if str(r["tire"]) == tire]
+    base = [r for r in rows if _is_plate(r)] or rows
+    pressures = sorted({_f(r["pressure_bar"]) for r in base})
+    p = pressures[(len(pressures) - 1) // 2]
+    at_p = sorted((r for r in base if _f(r["pressure_bar"]) == p), key=lambda r: _f(r["load_N"]))
+    low, high = at_p[0], at_p[-1]
+    cases = [ModelCase("low load", case_of(low), "bottom", "render_low_load")]
+    if high is not low:
+        cases.append(ModelCase("high load", case_of(high), "bottom", "render_high_load"))
+    cases.append(_cambered_drum(rows, high))
+    return [c for c in cases if _solves(c.case)]
+
+
+def _cambered_drum(rows: list[dict], high: dict) -> ModelCase:
+    drums = [r for r in rows if str(r.get("surface", "")).lower().startswith("drum")]
+    d = next((_f(r.get("drum_diameter_mm")) for r in drums), math.nan)
+    d = d if math.isfinite(d) and d > 0 else DEFAULT_DIAMETER_MM["drum"]
+    cambered = [_f(r.get("camber_deg")) for r in drums if math.isfinite(_f(r.get("camber_deg")))]
+    camber = next((c for c in cambered if c != 0), None)
+    note = ""
+    if camber is None:
+        camber = RENDER_CAMBER_DEG
+        note = f"model only: no print was taken at {camber:g} deg camber"
+    case = case_of(high).replace(surface=tm.Drum(d), camber=math.radians(camber))
+    return ModelCase("cambered, drum", case, "iso", "render_cambered_drum", note)
+
+
+def _solves(case) -> bool:
+    try:
+        tm.solve(case)
+    except tm.TireModelError:
+        return False
+    return True
+
+
+def _same_scale(cases: list[ModelCase]) -> list[ModelCase]:
+    """The bottom views drawn at one scale (the largest patch's framing)."""
+    from tiremesh.render import view_camera
+
+    class _Mesh:  # view_camera needs only the patch
+        def __init__(self, patch):
+            self.patch = patch
+
+    bottoms = [c for c in cases if c.view == "bottom"]
+    if len(bottoms) < 2:
+        return cases
+    scales = {c.stem: view_camera("bottom", _Mesh(tm.solve(c.case))).scale for c in bottoms}
+    top = max(scales.values())
+    return [
+        ModelCase(c.label, c.case, c.view, c.stem, c.note, scales[c.stem] / top)
+        if c.stem in scales
+        else c
+        for c in cases
+    ]
+
+
+def render_cases(cases: list[ModelCase], fig_dir, size=RENDER_SIZE) -> list[Render]:
+    """Render each case (with its title block) to ``fig_dir/STEM.png``.
+
+    Parameters
+    ----------
+    cases : list of ModelCase
+    fig_dir : str or PathLike
+    size : (int, int) [px]
+
+    Returns
+    -------
+    list of Render
     """
     from tiremesh.mesh import build_mesh
-    from tiremesh.render import render
+    from tiremesh.render import render, view_camera
 
-    fig_dir = Path(fig_dir)
-    fig_dir.mkdir(parents=True, exist_ok=True)
     out = []
-    for k, name in enumerate(_solved_tires(paired)):
-        r = _median_plate_row(paired, name)
-        if r is None:
-            continue
-        case = case_of(r)
-        mesh = build_mesh(tm.solve(case), n_around=360)
-        d = case.describe()
-        for view in ("iso", "bottom"):
-            path = fig_dir / f"render_tire{k}_{view}.png"
-            render(mesh, path, view=view, size=size)
-            caption = f"{name}, {d['pressure_bar']:g} bar, {d['load_N']:g} N, plate: {view} view"
-            out.append((path, caption))
+    for c in cases:
+        mesh = build_mesh(tm.solve(c.case), n_around=360)
+        path = Path(fig_dir) / f"{c.stem}.png"
+        cam = view_camera(c.view, mesh)
+        render(mesh, path, view=c.view, size=size, camera=(cam.azimuth, cam.elevation, c.zoom))
+        d = c.case.describe()
+        caption = (
+            f"{c.label}: {d['tire']}, {d['pressure_bar']:g} bar, {d['load_N']:g} N, "
+            f"camber {d['camber_deg']:g} deg, {d['surface'].replace(':', ' ')} mm; "
+            f"{c.view} view" + (f" ({c.note})" if c.note else "")
+        )
+        if c.zoom != 1.0:
+            caption += "; the bottom views share one scale"
+        out.append(Render(path, path.read_bytes(), caption, tuple(size)))
     return out
 
 
-def _solved_tires(paired: list[dict]) -> list[str]:
-    return sorted({str(r.get("tire", "")) for r in paired if r.get("model_status") == "ok"})
+def viewer_cases(cases: list[ModelCase]) -> list[dict]:
+    """The representative cases as meshes for the 3D view.
+
+    Parameters
+    ----------
+    cases : list of ModelCase
+
+    Returns
+    -------
+    list of dict
+    """
+    from .viewer import viewer_case
+
+    return [viewer_case(tm.solve(c.case), c.label) for c in cases]
 
 
-def draw_figures(tables: ReportTables, fig_dir, *, renders: bool = True) -> ReportFigures:
-    """Draw and save every figure of the report (PNG and SVG).
+def validation_fragments(out_dir):
+    """The validation section (HTML, Markdown), or None when the validation module
+    is not installed.
+
+    Its results are cached in a folder shared by every report
+    (``$ROTTA_CACHE_DIR`` or ``~/.cache/rotta-tire``) and copied to
+    ``out_dir/validation`` (the Markdown's figure links).
+
+    Parameters
+    ----------
+    out_dir : str or PathLike
+        The report folder.
+
+    Returns
+    -------
+    (str, str) or None
+    """
+    try:
+        from .validate import report_section
+    except ImportError:
+        return None
+    import shutil
+
+    cache = Path(os.environ.get("ROTTA_CACHE_DIR", Path.home() / ".cache" / "rotta-tire"))
+    frags = report_section(cache / "validation", link_base="validation/")
+    shutil.copytree(cache / "validation", Path(out_dir) / "validation", dirs_exist_ok=True)
+    return frags
+
+
+def _background(cases, fig_dir, out_dir, *, renders: bool, validation: bool) -> dict:
+    """Start the renders and the validation in worker processes (they need neither
+    the figures nor the pages): name -> :class:`contactpatch.study.worker.Job`."""
+    from .worker import Job
+
+    jobs = {}
+    if renders and cases:
+        jobs["renders"] = Job(render_cases, _same_scale(cases), fig_dir)
+    if validation:
+        jobs["validation"] = Job(validation_fragments, out_dir)
+    return jobs
+
+
+# --- figures and sheets --------------------------------------------------------------
+
+
+def _svg_figure(fig, name: str, caption: str, fig_dir: Path) -> Figure:
+    svg = F.figure_svg(fig, name)
+    path = write_text_atomic(fig_dir / f"{name}.svg", svg)
+    return Figure(name, svg, caption, path)
+
+
+def draw_figures(tables: ReportTables, fig_dir, colours: dict, *, tick=None) -> ReportFigures:
+    """Draw every figure once and save it once, as SVG in ``fig_dir``.
 
     Parameters
     ----------
     tables : ReportTables
     fig_dir : str or PathLike
-        Folder for the figures.
-    renders : bool
-        Also render the modelled tires (:func:`render_tires`).
+    colours : dict of str to str
+        A colour per tire.
+    tick : callable, optional
+        Called after each figure (progress).
 
     Returns
     -------
     ReportFigures
+        Without renders.
     """
     fig_dir = Path(fig_dir)
     fig_dir.mkdir(parents=True, exist_ok=True)
     paired = tables.paired
+    tick = tick or (lambda: None)
 
-    def save(fig, stem: str) -> Path:
-        return save_figure(fig, fig_dir / stem)[0]
+    def one(make, name, caption):
+        f = _svg_figure(make(), name, caption, fig_dir)
+        tick()
+        return f
 
-    return ReportFigures(
-        key=save(F.area_vs_length_width(paired), "area_vs_length_width"),
-        load=save(F.load_per_area(paired), "load_per_area"),
-        prints=save(F.print_overlays(paired), "print_overlays"),
-        drum=save(
-            F.drum_vs_plate(tables.drum_plate_summary, tables.drum_plate_model_summary),
-            "drum_vs_plate",
-        ),
-        tire_trends=[
-            (save(F.tire_trends(paired, tire), f"trends_tire{k}"), tire)
-            for k, tire in enumerate(_solved_tires(paired))
-        ],
-        renders=render_tires(paired, fig_dir) if renders else [],
+    key = one(
+        lambda: F.area_vs_length_width(paired, colours),
+        "area_vs_length_width",
+        "Contact area vs length and width: prints filled, Rotta model open (cf. Figure 6-3).",
     )
+    ratios = one(lambda: F.ratio_summary(paired, colours), "ratios", "Print / model ratios.")
+    load = one(
+        lambda: F.load_per_area(paired, colours),
+        "load_per_area",
+        "Load over print (hull) area vs inflation pressure, both in bar; the line is 1:1.",
+    )
+    drum = one(
+        lambda: F.drum_vs_plate(tables.drum_plate_summary, tables.drum_plate_model_summary),
+        "drum_vs_plate",
+        "Drum / plate ratios: prints, model and the dissertation's measurements.",
+    )
+    trends = {
+        tire: one(
+            lambda tire=tire: F.tire_trends(paired, tire, colours[tire]),
+            f"trends_tire{k}",
+            f"{tire}: length, width and area vs pressure and load (log-log), prints solid, "
+            "model dashed.",
+        )
+        for k, tire in enumerate(colours)
+    }
+    return ReportFigures(key, ratios, load, drum, trends, [])
 
 
-def build_report(rows: list[dict], out_dir, *, renders: bool = True, source: str = "") -> Path:
+def collect_sheets(paired: list[dict], scan_dirs=(), *, tick=None) -> list[Sheet]:
+    """Each scanned sheet with its QA overlay (when its scan is found) and what was
+    set aside on it.
+
+    Parameters
+    ----------
+    paired : list of dict
+    scan_dirs : sequence of path
+        Where to look for the scans first (:func:`contactpatch.study.sheets.locate_scans`).
+    tick : callable, optional
+        Called after each sheet (progress).
+
+    Returns
+    -------
+    list of Sheet
+    """
+    by_file = sheets_of(paired)
+    found = locate_scans(paired, scan_dirs)
+    side = 1000 if len(by_file) <= SCAN_LIMIT else 560
+    out = []
+    for f, rows in by_file.items():
+        qa = None
+        if f in found and any(r.get("status", "ok") == "ok" for r in rows):
+            try:
+                qa = qa_overlay(found[f], rows, max_side=side)
+            except (OSError, ValueError):
+                qa = None  # unreadable now: the card says the scan was not found
+        out.append(Sheet(f, rows, qa, set_aside(rows)))
+        if tick:
+            tick()
+    return out
+
+
+def _outline_scale(paired: list[dict]) -> tuple[float, float]:
+    """Height and width [mm] of the outline drawings: the longest and widest patch."""
+    ok = [r for r in paired if r.get("status", "ok") == "ok"]
+    longest = max([_f(r.get(k)) for r in ok for k in ("length_mm", "model_length_mm")] + [20.0])
+    widest = max([_f(r.get(k)) for r in ok for k in ("width_mm", "model_width_mm")] + [10.0])
+    longest = longest if math.isfinite(longest) else 200.0
+    widest = widest if math.isfinite(widest) else 60.0
+    return 1.05 * longest, 1.6 * widest
+
+
+def key_facts(tables: ReportTables, colours: dict) -> list[tuple[str, str]]:
+    """The summary's key numbers: prints, tires, median print / model ratios.
+
+    Parameters
+    ----------
+    tables : ReportTables
+    colours : dict
+
+    Returns
+    -------
+    list of (str, str)
+        (label, value).
+    """
+    import numpy as np
+
+    ok = [r for r in tables.paired if r.get("model_status") == "ok"]
+    facts = [("prints paired with the model", str(len(ok))), ("tires", str(len(colours)))]
+    for key, label in (
+        ("ratio_length", "length"),
+        ("ratio_width", "width"),
+        ("ratio_area", "area"),
+    ):
+        v = np.array([_f(r.get(key)) for r in ok])
+        v = v[np.isfinite(v)]
+        if v.size:
+            facts.append((f"median print / model {label}", f"{np.median(v):.3f}"))
+    return facts
+
+
+# --- the whole report ----------------------------------------------------------------
+
+
+def _progress(total: int, enabled: bool | None):
+    from tqdm import tqdm
+
+    on = sys.stderr.isatty() if enabled is None else enabled
+    return tqdm(total=total, desc="report", unit="step", disable=not on, dynamic_ncols=True)
+
+
+def build_report(
+    rows: list[dict],
+    out_dir,
+    *,
+    renders: bool = True,
+    source: str = "",
+    scan_dirs=(),
+    validation: bool = True,
+    progress: bool | None = None,
+) -> Path:
     """Write the model vs print report for a print table.
 
     Parameters
@@ -349,35 +717,99 @@ def build_report(rows: list[dict], out_dir, *, renders: bool = True, source: str
     out_dir : str or PathLike
         Report folder (created).
     renders : bool
-        Include 3D renders of the modelled tires (the slow part).
+        Include the 1200 px renders of representative cases (in a worker process).
     source : str
-        Where the table came from, shown in the configuration block.
+        Where the table came from, shown in the configuration block; its folder is
+        also searched for the scans.
+    scan_dirs : sequence of path
+        Folders holding the scans (e.g. the batch's source folder), searched first
+        for the QA overlays.
+    validation : bool
+        Include the validation section when the validation module is installed.
+    progress : bool, optional
+        Show a progress bar (default: when stderr is a terminal).
 
     Returns
     -------
     Path
         ``out_dir/index.html``; beside it ``report.md``, ``report.json``,
-        ``tables/`` and ``figures/``, the page holding the sections :data:`SECTIONS`.
+        ``tables/`` and ``figures/`` (SVG figures, PNG renders).
     """
     out = Path(out_dir)
+    fig_dir = out / "figures"
+    fig_dir.mkdir(parents=True, exist_ok=True)
     tables = compute_tables(rows)
-    config = report_config(rows, tables, source=source)
-    write_tables(out, tables, config)
-    content = ReportContent(config, tables, draw_figures(tables, out / "figures", renders=renders))
+    cases = representative_cases(tables.paired)
+    jobs = _background(cases, fig_dir, out, renders=renders, validation=validation)
+    try:
+        colours = tire_colours(
+            r.get("tire", "") for r in tables.paired if r.get("model_status") == "ok"
+        )
+        n_files = len({r.get("file") for r in tables.paired})
+        bar = _progress(6 + len(colours) + n_files, progress)
+        with bar:
+            content = _assemble(rows, tables, colours, out, cases, jobs, bar, source, scan_dirs)
+    finally:
+        for job in jobs.values():
+            job.cancel()  # only if still running: after an error in this process
     index = write_text_atomic(out / "index.html", html_page(content))
     write_text_atomic(out / "report.md", markdown_page(content))
     return index
 
 
+def _assemble(rows, tables, colours, out, cases, jobs, bar, source, scan_dirs) -> ReportContent:
+    """Every part of the report, the worker's results last."""
+    config = report_config(rows, tables, source=source)
+    write_tables(out, tables, config)
+    bar.set_postfix_str("figures")
+    figs = draw_figures(tables, out / "figures", colours, tick=lambda: bar.update(1))
+    bar.set_postfix_str("scans")
+    dirs = [*scan_dirs, *([Path(source).parent] if source else [])]
+    sheets = collect_sheets(tables.paired, dirs, tick=lambda: bar.update(1))
+    bar.set_postfix_str("3D view")
+    viewer = viewer_cases(cases)
+    bar.update(1)
+    bar.set_postfix_str("renders")
+    rendered = jobs["renders"].result() if "renders" in jobs else []
+    bar.update(1)
+    bar.set_postfix_str("validation")
+    frags = jobs["validation"].result() if "validation" in jobs else None
+    bar.update(1)
+    n_ok = sum(1 for r in tables.paired if r.get("status", "ok") == "ok")
+    return ReportContent(
+        config=config,
+        tables=tables,
+        figures=ReportFigures(
+            figs.key, figs.ratios, figs.load, figs.drum, figs.tire_trends, rendered
+        ),
+        colours=colours,
+        sheets=sheets,
+        viewer=viewer,
+        validation=frags,
+        facts=key_facts(tables, colours),
+        expand_prints=n_ok <= EXPAND_LIMIT,
+        outline_scale=_outline_scale(tables.paired),
+    )
+
+
 __all__ = [
     "SECTIONS",
+    "Figure",
+    "ModelCase",
+    "Render",
     "ReportContent",
     "ReportFigures",
     "ReportTables",
+    "Sheet",
     "build_report",
+    "collect_sheets",
     "compute_tables",
     "draw_figures",
-    "render_tires",
+    "key_facts",
+    "render_cases",
     "report_config",
+    "representative_cases",
+    "validation_fragments",
+    "viewer_cases",
     "write_tables",
 ]

@@ -51,11 +51,19 @@ def test_read_scan_formats_and_dpi(tmp_path, mode, suffix):
 
 
 def test_read_scan_pdf_without_dpi_uses_page_size(tmp_path):
+    # a page holding one scanned image is rendered at the image's own resolution
     Image.fromarray(_sheet()).save(tmp_path / "s.pdf", resolution=100.0)
     scan = ip.read_scan(tmp_path / "s.pdf")
     assert scan.scale_source == "pdf"
-    assert abs(scan.grey.shape[0] - 180) <= 1 and scan.grey.shape[1] == 240  # rendered at 300 dpi
-    assert_allclose(scan.mm_per_px, 25.4 / 300)
+    assert abs(scan.grey.shape[0] - 60) <= 1 and scan.grey.shape[1] == 80  # pages round up
+    assert_allclose(scan.mm_per_px, 25.4 / 100, rtol=1e-6)
+    # a vector page (no single image) is rendered at AnalysisOptions.pdf_dpi
+    import pypdfium2 as pdfium
+
+    doc = pdfium.PdfDocument.new()
+    doc.new_page(72.0, 36.0)  # 1 x 0.5 inch, blank
+    doc.save(tmp_path / "v.pdf")
+    assert ip.read_scan(tmp_path / "v.pdf").grey.shape == (150, 300)  # 300 dpi
 
 
 def test_read_scan_rgba_transparent_black_is_paper(tmp_path):

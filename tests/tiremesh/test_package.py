@@ -20,14 +20,20 @@ SRC = sorted(PACKAGE.rglob("*.py"))
 
 def _import_nodes(path):
     return [
-        n for n in ast.walk(ast.parse(path.read_text())) if isinstance(n, ast.Import | ast.ImportFrom)
+        n
+        for n in ast.walk(ast.parse(path.read_text()))
+        if isinstance(n, ast.Import | ast.ImportFrom)
     ]
 
 
 def test_tiremesh_imports_none_of_ours():
     for path in SRC:
         for node in _import_nodes(path):
-            names = [a.name for a in node.names] if isinstance(node, ast.Import) else [node.module or ""]
+            names = (
+                [a.name for a in node.names]
+                if isinstance(node, ast.Import)
+                else [node.module or ""]
+            )
             for name in names:
                 assert not name.startswith(("contactpatch", "inkprint")), f"{path.name}: {name}"
 
@@ -36,7 +42,11 @@ def test_no_private_name_imported_across_modules():
     for path in SRC:
         for node in _import_nodes(path):
             if isinstance(node, ast.ImportFrom):
-                private = [a.name for a in node.names if a.name.startswith("_")]
+                private = [
+                    a.name
+                    for a in node.names
+                    if a.name.startswith("_") and not a.name.startswith("__")
+                ]
                 assert not private, f"{path.relative_to(PACKAGE)} imports {private}"
 
 
@@ -77,7 +87,7 @@ def test_no_long_functions_or_many_positionals():
                 public = not node.name.startswith("_")
                 positional = len(node.args.posonlyargs) + len(node.args.args)
                 positional -= bool(node.args.args and node.args.args[0].arg in ("self", "cls"))
-                assert not public or positional <= 4, f"{path.name}:{node.name}"
+                assert not public or positional <= 5, f"{path.name}:{node.name}"
 
 
 @pytest.mark.parametrize("modname", MODULES)

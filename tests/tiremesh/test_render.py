@@ -1,4 +1,5 @@
-"""Off-screen renders, exports and the mesh/render/section CLI (issue 3)."""
+"""Off-screen renders (issues 3, 13: title block, colour bar, views of the patch,
+camera, formats), exports and the mesh/render/section CLI."""
 
 import os
 import subprocess
@@ -13,13 +14,23 @@ from PIL import Image
 import tiremesh as tm
 from tiremesh.export import export_mesh, patch_polydata
 from tiremesh.mesh import build_mesh
-from tiremesh.render import VIEWS, render
+from tiremesh.render import (
+    BAR_FRACTION,
+    TITLE_FRACTION,
+    VIEWS,
+    nice_ticks,
+    render,
+    title_lines,
+    view_camera,
+)
 
-BASELINES = Path(__file__).resolve().parent.parent / "baselines"
+BASELINES = Path(__file__).resolve().parent / "baselines"
 SIZE = (160, 120)
+#: golden images: large enough for the title block and colour bar to be legible
+GOLDEN_SIZE = (480, 360)
 # mean absolute difference allowed against a baseline [0..255]: software rendering
 # differs slightly between Mesa versions, a wrong camera or a missing tire does not
-TOLERANCE = 12.0
+TOLERANCE = 8.0
 
 
 @pytest.fixture(scope="module")
@@ -31,18 +42,66 @@ def tire_mesh():
 @pytest.mark.parametrize("view", VIEWS)
 def test_render_view_matches_baseline(tire_mesh, view, tmp_path):
     out = tmp_path / f"{view}.png"
-    img = render(tire_mesh, out, view=view, size=SIZE)
-    assert img.shape == (SIZE[1], SIZE[0], 3)
+    img = render(tire_mesh, out, view=view, size=GOLDEN_SIZE)
+    assert img.shape == (GOLDEN_SIZE[1], GOLDEN_SIZE[0], 3)
     png = np.asarray(Image.open(out).convert("RGB"))
-    assert png.shape == img.shape
-    # the tire covers a plausible part of the frame
-    tire = np.abs(png.astype(int) - 255).sum(axis=2) > 60
+    assert np.array_equal(png, img)
+    # the model's part of the frame (below the title, left of the colour bar) shows
+    # the tire over a plausible area
+    w, h = GOLDEN_SIZE
+    body = png[round(h * TITLE_FRACTION) :, : round(w * (1 - BAR_FRACTION))]
+    tire = np.abs(body.astype(int) - 255).sum(axis=2) > 60
     assert 0.05 < tire.mean() < 0.95
     base = BASELINES / f"render_{view}.png"
     if os.environ.get("ROTTA_UPDATE_BASELINES"):
+        base.parent.mkdir(exist_ok=True)
         Image.fromarray(png).save(base)
     ref = np.asarray(Image.open(base).convert("RGB")).astype(float)
-    assert np.abs(ref - png).mean() < TOLERANCE
+    diff = np.abs(ref - png).mean()
+    assert diff < TOLERANCE, f"{view}: mean abs difference {diff:.2f} vs {base}"
+
+
+def test_title_block_states_the_load_case(tire_mesh):
+    lines = title_lines(tire_mesh)
+    assert lines[0] == "Schwalbe Big Apple 55-622 on a 18.7 mm rim"
+    assert lines[1] == "4 bar, 400 N, camber 20 deg, slip 0 deg, flat ground"
+    assert lines[2].startswith("patch ") and "mm2" in lines[2]
+    drum = tm.solve(tm.get_tire(8), load=400.0, pressure=0.69, surface=tm.Drum(2500))
+    assert "6.9 bar" in title_lines(build_mesh(drum, n_around=60))[1]
+    assert title_lines(build_mesh(drum, n_around=60))[1].endswith("drum 2.5 m")
+
+
+@pytest.mark.parametrize(
+    ("lo", "hi", "ticks", "decimals"),
+    [
+        (-3.59, 0.0, [-4, -3, -2, -1, 0], 0),
+        (-3.51, 6.01, [-4, -2, 0, 2, 4, 6, 8], 0),
+        (0.0, 4.0, [0, 1, 2, 3, 4], 0),
+        (0.1, 0.35, [0.1, 0.15, 0.2, 0.25, 0.3, 0.35], 2),
+        (2.0, 2.0, [1.4, 1.6, 1.8, 2.0, 2.2, 2.4, 2.6], 1),
+    ],
+)
+def test_nice_ticks(lo, hi, ticks, decimals):
+    (a, b), t, d = nice_ticks(lo, hi)
+    assert_allclose(t, ticks, atol=1e-12)
+    assert (a, b) == (t[0], t[-1]) and a <= lo and b >= hi
+    assert d == decimals
+    assert all(f"{x:.{d}f}" != "-0" + ("." + "0" * d if d else "") for x in t)
+
+
+def test_colour_bar_column_is_clear_of_the_model(tire_mesh):
+    w, h = GOLDEN_SIZE
+    c = view_camera("side", tire_mesh)
+    for scalars in ("radial_deformation", "lateral_displacement"):
+        # zoomed in, the tire fills the model's part of the image from edge to edge...
+        img = render(tire_mesh, size=GOLDEN_SIZE, scalars=scalars, camera=(c.azimuth, 0.0, 2.5))
+        x0 = round(w * (1 - BAR_FRACTION))
+        body = img[round(h * TITLE_FRACTION) :, x0 - 3]
+        assert (np.abs(body.astype(int) - 255).sum(axis=1) > 60).mean() > 0.5
+        # ...and stops there: the bar's column left of the bar (and its label) is
+        # background from top to bottom
+        strip = img[round(h * TITLE_FRACTION) :, x0 : x0 + round(0.15 * w * BAR_FRACTION)]
+        assert (strip == 255).all(), scalars
 
 
 def test_render_colours_by_scalars(tire_mesh):
@@ -51,9 +110,70 @@ def test_render_colours_by_scalars(tire_mesh):
     assert np.abs(a.astype(int) - b.astype(int)).mean() > 1.0
 
 
+def test_contact_pressure_marks_the_patch(tire_mesh):
+    img = render(tire_mesh, view="bottom", size=GOLDEN_SIZE, scalars="contact_pressure")
+    w, h = GOLDEN_SIZE
+    body = img[round(h * TITLE_FRACTION) :, : round(w * (1 - BAR_FRACTION))].astype(int)
+    # viridis' top colour (the inflation pressure) where the patch is, and only there
+    yellow = (np.abs(body - [253, 231, 37]).sum(axis=2) < 120).mean()
+    patch_share = tire_mesh.patch.area / (2 * 0.55 * tire_mesh.patch.length + 80) ** 2
+    assert 0.2 * patch_share < yellow < 0.2
+
+
+def test_camera_and_background(tire_mesh):
+    default = render(tire_mesh, view="iso", size=SIZE, title=False, scalar_bar=False)
+    # the iso view's own direction (the tire leans toward +y: seen from -y)
+    bare = dict(view="iso", size=SIZE, title=False, scalar_bar=False)
+    turned = render(tire_mesh, camera=(120.0, 30.0, 1.0), **bare)
+    assert np.abs(default.astype(int) - turned.astype(int)).mean() > 5.0
+    c = view_camera("iso", tire_mesh)
+    same = render(tire_mesh, camera=(c.azimuth, c.elevation, 1.0), **bare)
+    assert np.abs(default.astype(int) - same.astype(int)).mean() < 1.0
+    dark = render(tire_mesh, view="bottom", size=GOLDEN_SIZE, background="black")
+    assert (dark[0, -1] == 0).all()  # the corner is background
+    title = dark[: round(GOLDEN_SIZE[1] * TITLE_FRACTION)]
+    assert (title.min(axis=2) > 200).any()  # white text on black
+
+
+@pytest.mark.parametrize(
+    ("suffix", "magic"),
+    [
+        (".jpg", b"\xff\xd8"),
+        (".tiff", b"II"),
+        (".svg", b"<?xml"),
+        (".pdf", b"%PDF"),
+        (".eps", b"%!PS"),
+    ],
+)
+def test_render_formats_from_the_suffix(tire_mesh, tmp_path, suffix, magic):
+    out = tmp_path / f"view{suffix.upper() if suffix == '.pdf' else suffix}"
+    render(tire_mesh, out, view="bottom", size=SIZE)
+    data = out.read_bytes()
+    assert data.startswith(magic)
+    if suffix in (".jpg", ".tiff"):
+        assert Image.open(out).size == SIZE
+    if suffix == ".svg":
+        assert b"Schwalbe Big Apple 55-622" in data  # the title is vector text
+
+
+def test_unsupported_suffix_fails_before_any_work(tmp_path):
+    # the mesh argument is not even looked at: the suffix is checked first
+    with pytest.raises(ValueError, match=r"\.png \| \.jpg .* \.pdf \| \.svg \| \.eps"):
+        render(object(), tmp_path / "view.gif")
+    assert not any(tmp_path.iterdir())
+
+
 @pytest.mark.parametrize(
     ("kw", "match"),
-    [({"view": "top"}, "view"), ({"scalars": "heat"}, "scalars"), ({"size": (4, 4)}, "width")],
+    [
+        ({"view": "top"}, "view"),
+        ({"scalars": "heat"}, "scalars"),
+        ({"scalars": "section"}, "scalars"),
+        ({"size": (4, 4)}, "width"),
+        ({"camera": (0.0, 95.0, 1.0)}, "camera"),
+        ({"camera": (0.0, 10.0, 0.0)}, "camera"),
+        ({"camera": (1.0, 2.0)}, "camera"),
+    ],
 )
 def test_render_invalid(tire_mesh, kw, match):
     with pytest.raises(tm.InvalidParameter, match=match):

@@ -106,14 +106,16 @@ def check_room(cs: CaseArrays) -> None:
         )
 
 
-def _deflection(cs: CaseArrays, load, deflection):
+def _deflection(cs: CaseArrays, load, deflection, start=None):
     check_room(cs)
     if load is not None:
-        return find_deflection(cs, load)
+        return find_deflection(cs, load, start=start)
     return check_deflection(deflection, cs), None, None
 
 
-def solve_arrays(cs: CaseArrays, *, load=None, deflection=None, leading=None) -> Solved:
+def solve_arrays(
+    cs: CaseArrays, *, load=None, deflection=None, leading=None, start=None
+) -> Solved:
     """Wheel deflection, patch ends and slip anchor offset of m cases on one surface.
 
     Parameters
@@ -136,7 +138,8 @@ def solve_arrays(cs: CaseArrays, *, load=None, deflection=None, leading=None) ->
     offset, prev = np.zeros_like(cs.r0), None
     for _ in range(tol.max_iter):
         cs_k = cs.with_lateral(base + offset)
-        dw, ends, track = _deflection(cs_k, load, deflection)
+        dw, ends, track = _deflection(cs_k, load, deflection, start)
+        start = (dw, ends) if ends is not None else None
         if not np.any(active):
             return Solved(cs_k, dw, ends, track, offset)
         if ends is None:
@@ -248,14 +251,14 @@ RESULT_KEYS = (
 )
 
 
-def _solve_group(table: CaseTable, n: int) -> dict[str, np.ndarray]:
+def _solve_group(table: CaseTable, n: int, start=None) -> dict[str, np.ndarray]:
     cs = case_arrays(table, stack_surfaces(table.surface))
     col = lambda a: a.reshape(-1, 1)
     by_load = not np.all(np.isnan(table.load))
     load = col(table.load) if by_load else None
     dw0 = None if by_load else v.positive("deflection", col(table.deflection), unit="mm")
     leading = col(np.array([k == "leading" for k in table.slip_kinematics]))
-    sv = solve_arrays(cs, load=load, deflection=dw0, leading=leading)
+    sv = solve_arrays(cs, load=load, deflection=dw0, leading=leading, start=start)
     cs, dw = sv.cs, sv.dw
     out = sv.evaluate(n)
     return {
@@ -284,23 +287,32 @@ def _prescreen(table: CaseTable) -> dict[int, str]:
     rest = np.array([i for i in range(len(table)) if i not in flagged], int)
     if rest.size == 0 or np.all(np.isnan(table.load)):
         return flagged
-    try:
-        fmax, _ = max_load_arrays(cs.take(rest), tol.search_sections)
-    except TireModelError:
-        return flagged  # the isolating solve finds the culprits
+    for _ in range(3):  # cases that fail even at the largest deflection: left to the solve
+        try:
+            fmax, _ = max_load_arrays(cs.take(rest), tol.search_sections)
+            break
+        except TireModelError as exc:
+            named = getattr(exc, "case_errors", None)
+            if not named:
+                return flagged
+            rest = np.delete(rest, list(named))
+            if rest.size == 0:
+                return flagged
+    else:
+        return flagged
     for j in np.nonzero(table.load[rest] > fmax[:, 0])[0]:
         i = int(rest[j])
         flagged[i] = f"LoadTooHigh: {LoadTooHigh('load', float(table.load[i]), float(fmax[j, 0]))}"
     return flagged
 
 
-def _solve_isolating(table: CaseTable, n: int, out: dict, rows, errors: dict) -> None:
+def _solve_isolating(table: CaseTable, n: int, out: dict, rows, errors: dict, start=None) -> None:
     """Solve ``table`` as one vectorized group. Cases the solver names as failed
     (``case_errors``) are recorded and the rest solved again; an error that names no
     case splits the group in halves until the failing case is alone. A case's result
     never depends on its companions, and the good cases stay vectorized."""
     try:
-        got = _solve_group(table, n)
+        got = _solve_group(table, n, start)
     except TireModelError as exc:
         named = getattr(exc, "case_errors", None) or {}
         if len(table) == 1:
@@ -309,8 +321,12 @@ def _solve_isolating(table: CaseTable, n: int, out: dict, rows, errors: dict) ->
             for i, err in named.items():
                 errors[int(rows[i])] = f"{type(err).__name__}: {err}"
             keep = np.setdiff1d(np.arange(len(table)), list(named))
+            partial = getattr(exc, "partial", None)
+            warm = (
+                None if partial is None else (partial[0][keep], tuple(e[keep] for e in partial[1]))
+            )
             if keep.size:
-                _solve_isolating(table.take(keep), n, out, rows[keep], errors)
+                _solve_isolating(table.take(keep), n, out, rows[keep], errors, warm)
             return
         half = len(table) // 2
         for part in (np.arange(half), np.arange(half, len(table))):

@@ -153,7 +153,7 @@ def sections_at(phi, dw, cs: CaseArrays, offset, broadcast=False):
     """
     d = displacements(phi, dw, cs, offset)
     sol, bad_h, bad_c = section_arrays(
-        cs.r0, cs.w, d.dv, d.dh, cs.gamma, cs.r0 * cs.gamma, broadcast
+        cs.r0, cs.w, d.dv, d.dh, camber=cs.gamma, delta=cs.r0 * cs.gamma, broadcast=broadcast
     )
     if np.any(bad_h) or np.any(bad_c):
         raise_case_errors(limit_errors(cs, _per_case(bad_h, cs.m), _per_case(bad_c, cs.m), dw))
@@ -270,7 +270,7 @@ def section_to_ground(xs, zs, phi, *, tire_radius, wheel_radius, camber, ground_
     return x, y, z
 
 
-def area_jacobian(sol: SectionSolution, dv, ddv, phi, cs: CaseArrays, xm=None):
+def area_jacobian(sol: SectionSolution, dv, ddv, phi, cs: CaseArrays, *, xm=None):
     """Ground area per unit section width and per radian of ``phi`` [mm/rad].
 
     The contact segment ``[e1, e2]`` of the section at ``phi`` maps to the ground by
@@ -312,7 +312,7 @@ def area_jacobian(sol: SectionSolution, dv, ddv, phi, cs: CaseArrays, xm=None):
     return jac * cs.surface.stretch(rho * sp)
 
 
-def djac_ddw(sol: SectionSolution, dv, ddv_dphi, phi, cs: CaseArrays, jac, dw):
+def djac_ddw(sol: SectionSolution, phi, cs: CaseArrays, *, dv, ddv_dphi, jac, dw):
     """d(area Jacobian)/d(wheel deflection): a directional difference along the exact
     d dv/d dw = cos(camber)/cos(phi), moving the section midpoints by their analytic
     sensitivities (for the load search's ``dA/ddw``).
@@ -340,4 +340,4 @@ def djac_ddw(sol: SectionSolution, dv, ddv_dphi, phi, cs: CaseArrays, jac, dw):
     xm = 0.5 * (sol.edge1 + sol.edge2) + h * (sol.dmid_ddv * ddv_ddw + sol.dmid_ddh * ddh_ddw)
     dv2 = dv + h * ddv_ddw
     ddv2 = ddv_dphi + h * cg * np.sin(phi) / (cp * cp)
-    return (area_jacobian(sol, dv2, ddv2, phi, cs, xm) - jac) / h
+    return (area_jacobian(sol, dv2, ddv2, phi, cs, xm=xm) - jac) / h

@@ -58,7 +58,7 @@ def area_and_slope(cs: CaseArrays, dw, n: int, guess=None):
     ddv, ddh = dw_sensitivities(phi, cs)
     width = np.maximum(sol.width, 0.0)
     area = half * (wts * width * jac).sum(-1, keepdims=True)
-    djac = djac_ddw(sol, dv, ddv_dphi, phi, cs, jac, dwe)
+    djac = djac_ddw(sol, phi, cs, dv=dv, ddv_dphi=ddv_dphi, jac=jac, dw=dwe)
     slope = half * (
         wts * ((sol.dwidth_ddv * ddv + sol.dwidth_ddh * ddh) * jac + width * djac)
     ).sum(-1, keepdims=True)
@@ -150,7 +150,8 @@ def joint_newton(cs: CaseArrays, load, n: int, offset=0.0, start=None):
         if act.size == 0:
             break
         cs_a, s_a = cs.take(act), st.take(act)
-        step = _newton_step(cs_a, s_a, offset[act], np.log(load[act]), (t, wts))
+        with np.errstate(all="ignore"):  # invalid cases compute garbage, masked below
+            step = _newton_step(cs_a, s_a, offset[act], np.log(load[act]), (t, wts))
         if step.bad is not None:  # back to the last valid iterate, half the step
             bad = act[step.bad[:, 0]]
             st.damp[bad] *= 0.5
@@ -169,7 +170,11 @@ def joint_newton(cs: CaseArrays, load, n: int, offset=0.0, start=None):
             for f in ("dw", "rear", "front"):
                 cur, prev = getattr(st, f), getattr(good, f)
                 cur[bad] = prev[bad] + st.damp[bad] * (cur[bad] - prev[bad])
-            continue
+            keep = ~step.bad[:, 0]  # the valid cases step on in this iteration
+            if not np.any(keep):
+                continue
+            act, s_a = act[keep], s_a.take(keep)
+            step = step.take(keep)
         good.assign(act, st)
         # converged, but the surface still reaches sections beyond the ends: patch_ends
         # would refuse this deflection (equation-free check, same probe)
@@ -210,6 +215,20 @@ class _Step:
     finite: np.ndarray | None = None
     reach: np.ndarray | None = None
 
+    def take(self, keep) -> _Step:
+        """The step of the cases ``keep`` (bool mask), all valid."""
+        pick = lambda a: None if a is None else a[keep]
+        return _Step(
+            None,
+            dw=pick(self.dw),
+            rear=pick(self.rear),
+            front=pick(self.front),
+            f3=pick(self.f3),
+            done=pick(self.done),
+            finite=pick(self.finite),
+            reach=pick(self.reach),
+        )
+
 
 def _newton_step(cs: CaseArrays, st: _NewtonState, offset, target, quad) -> _Step:
     t, wts = quad
@@ -217,22 +236,22 @@ def _newton_step(cs: CaseArrays, st: _NewtonState, offset, target, quad) -> _Ste
     phi = 0.5 * (st.front + st.rear) + half * t
     d = displacements(phi, st.dw, cs, offset)
     sol, bad_h, bad_c = section_arrays(
-        cs.r0, cs.w, d.dv, d.dh, cs.gamma, cs.r0 * cs.gamma, broadcast=True
+        cs.r0, cs.w, d.dv, d.dh, camber=cs.gamma, delta=cs.r0 * cs.gamma, broadcast=True
     )
     jac = area_jacobian(sol, d.dv, d.ddv, phi, cs)
     width = sol.width
     area = half * (wts * width * jac).sum(-1, keepdims=True)
     bad = np.any(bad_h | bad_c, -1, keepdims=True) | ~(area > 0)
-    if np.any(bad):
-        return _Step(bad, bad_h & bad, bad_c & bad)
     outer = np.minimum(1.05 * np.arccos(np.clip((cs.R - st.dw) / cs.R, -1, 1)) + 1e-9, 1.2)
     d_o = displacements(np.concatenate([-outer, outer], 1), st.dw, cs, offset)
-    sol_o, bh_o, bc_o = section_arrays(cs.r0, cs.w, d_o.dv, d_o.dh, cs.gamma, cs.r0 * cs.gamma)
+    sol_o, bh_o, bc_o = section_arrays(
+        cs.r0, cs.w, d_o.dv, d_o.dh, camber=cs.gamma, delta=cs.r0 * cs.gamma
+    )
     reach = np.any((sol_o.width > 0) & ~bh_o & ~bc_o, -1, keepdims=True)
     dv_dw, dh_dw = dw_sensitivities(phi, cs)
     dwid_dw = sol.dwidth_ddv * dv_dw + sol.dwidth_ddh * dh_dw
     dwid_dphi = sol.dwidth_ddv * d.ddv + sol.dwidth_ddh * d.ddh
-    djac = djac_ddw(sol, d.dv, d.ddv, phi, cs, jac, st.dw)
+    djac = djac_ddw(sol, phi, cs, dv=d.dv, ddv_dphi=d.ddv, jac=jac, dw=st.dw)
     slope = half * (wts * (dwid_dw * jac + width * djac)).sum(-1, keepdims=True)
     f1, f2 = width[:, :1], width[:, -1:]
     a1, a2 = dwid_dphi[:, :1], dwid_dphi[:, -1:]
@@ -253,21 +272,30 @@ def _newton_step(cs: CaseArrays, st: _NewtonState, offset, target, quad) -> _Ste
     )
     finite = np.isfinite(step_dw) & np.isfinite(step_r) & np.isfinite(step_f)
     return _Step(
-        None, dw=step_dw, rear=step_r, front=step_f, f3=f3, done=done, finite=finite, reach=reach
+        bad if np.any(bad) else None,
+        bad_h & bad,
+        bad_c & bad,
+        dw=step_dw,
+        rear=step_r,
+        front=step_f,
+        f3=f3,
+        done=done & ~bad,
+        finite=finite,
+        reach=reach,
     )
 
 
-def _joint_with_offset(cs: CaseArrays, load, n: int):
+def _joint_with_offset(cs: CaseArrays, load, n: int, start=None):
     """Joint Newton inside a fixed point on the track offset (section 5.3.2): each
     outer step solves deflection and ends for a fixed offset, then moves the offset
     to the mean track shift at the new ends; only the cases whose offset still
     moves take another (warm-started) step."""
     if not has_track_shift(cs):
-        dw, ends, done, failed = joint_newton(cs, load, n)
+        dw, ends, done, failed = joint_newton(cs, load, n, start=start)
         return dw, ends, done, np.zeros_like(cs.r0), failed
     dw, rear, front = np.zeros_like(cs.r0), np.zeros_like(cs.r0), np.zeros_like(cs.r0)
     offset, done, failed = np.zeros_like(cs.r0), np.zeros(cs.r0.shape, bool), {}
-    active, start = np.arange(cs.m), None
+    active = np.arange(cs.m)
     for _ in range(tol.max_iter):
         sub = cs.take(active)
         dw_a, (r_a, f_a), ok_a, failed_a = joint_newton(
@@ -302,7 +330,7 @@ def _nested_each(sub: CaseArrays, load, n: int, idx) -> tuple[np.ndarray, dict]:
     return dw, errors
 
 
-def find_deflection(cs: CaseArrays, load, n: int | None = None):
+def find_deflection(cs: CaseArrays, load, n: int | None = None, *, start=None):
     """Wheel deflection (m, 1) [mm] carrying ``load`` (m, 1) [N], the patch ends
     (rear, front) and the track offset (m, 1) [mm].
 
@@ -312,7 +340,7 @@ def find_deflection(cs: CaseArrays, load, n: int | None = None):
     in its ``case_errors`` (``{case index: error}``).
     """
     n = tol.search_sections if n is None else n
-    dw, ends, done, offset, failed = _joint_with_offset(cs, load, n)
+    dw, ends, done, offset, failed = _joint_with_offset(cs, load, n, start)
     rest = ~done[:, 0] & ~np.isin(np.arange(cs.m), list(failed))
     if np.any(rest):
         idx = np.nonzero(rest)[0]
@@ -328,6 +356,8 @@ def find_deflection(cs: CaseArrays, load, n: int | None = None):
             k = idx[ok]
             dw[k], rear[k], front[k], offset[k] = dw_ok, rear_s, front_s, off_s
             ends = (rear, front)
+    if failed:  # the good cases' solution travels with the error: a re-solve starts there
+        failed[min(failed)].partial = (dw, ends)
     raise_case_errors(failed)
     return dw, ends, offset
 
