@@ -20,7 +20,7 @@ Errors    : InkPrintError, InvalidInput, ScanReadError, ImageTooLarge, ScaleMiss
             NoInk, AllInk
 """
 
-from .analyze import PrintResult, SheetResult, analyze_scan, contact_pressure
+from .analyze import analyze_scan
 from .batch import BatchResult, run_batch
 from .binarize import binarize
 from .errors import (
@@ -29,13 +29,16 @@ from .errors import (
     InkPrintError,
     InvalidInput,
     NoInk,
+    OutputLocked,
     ScaleMissing,
+    ScaleUntrusted,
     ScanReadError,
 )
 from .group import edge_spots, group_blobs
 from .options import AnalysisOptions
 from .overlay import draw_overlay
-from .read import Scan, read_scan
+from .read import Scan, iter_scans, read_scan
+from .results import PrintResult, SheetResult, contact_pressure
 
 __all__ = [
     "AllInk",

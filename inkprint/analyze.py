@@ -1,211 +1,54 @@
-"""Analyse a scanned sheet: binarize, group, edge spots, measure (sections 3.5, 4.1.1).
+"""Analyse a scanned sheet: light, threshold, marks, footprints, edge spots, measure.
+
+Steps (sections 3.5, 4.1.1, 7.1.1): flatten uneven light and find the page in a
+photo (:mod:`inkprint.light`); threshold (:mod:`inkprint.binarize`); sort the ink
+into prints and marks that are not prints - lines, gridlines, text, dust, noise -
+and group each print's tread elements into one footprint (:mod:`inkprint.marks`,
+:mod:`inkprint.group`); set apart the edge spots that bore no load; measure.
 
 Each print is measured with :func:`contactpatch.measure` (the definitions shared with
-the model): the *gross* outline is the convex hull of the ink's sub-pixel edge (the
-iso-line half-way between the local paper and ink levels, :func:`edge_field`; no
-pixel-staircase or ink-darkness bias), the *net* area is the ink pixel count (at most
-the hull's area). With the load and inflation pressure known, load / area is compared
-with the inflation pressure (4.1.1, Figure 4-3). A sensitivity band re-measures each
-print at the threshold x (1 -+ ``sensitivity``) of :class:`inkprint.AnalysisOptions`.
+the model) along its rolling direction: ``rolling_axis`` ``'x'`` or ``'y'`` (the
+sheet's axes: x across the image from left to right, y up it) or ``'auto'`` (each
+print's principal axis, the longer direction; the row says ``axis_source = auto``).
+With a given axis, the measuring direction is the print's own symmetry axis when
+that lies within :data:`AXIS_SNAP_DEG` of the given one (a print taped a little
+askew), else the given axis itself. The *gross* outline is the convex hull of the
+ink's sub-pixel edge (the iso-line half-way between the local paper and ink levels,
+:func:`edge_field`), the *net* area the ink pixel count (at most the hull's area).
+With the load and inflation pressure known, load / area is compared with the
+inflation pressure (4.1.1, Figure 4-3). A sensitivity band re-measures each print
+at the threshold x (1 -+ ``sensitivity``) of :class:`inkprint.AnalysisOptions`.
+
+A print touching the image's edge (or the photographed page's) is flagged
+``clipped``; a page photographed at an angle, ``perspective``: never a silent
+partial number.
 """
 
 from __future__ import annotations
 
+import math
 import os
 from dataclasses import dataclass, field
 
 import numpy as np
 
 from .binarize import Binarization, binarize, remove_specks
-from .coords import area_mm2_to_px, area_px_to_mm2, mm_per_px_to_dpi, mm_to_px_length, px_to_mm
+from .coords import area_mm2_to_px, area_px_to_mm2, mm_to_px_length, px_to_mm
 from .errors import InvalidInput, NoInk
-from .group import Group, edge_spots, group_blobs, is_print
+from .group import Group, edge_spots, is_print
+from .light import Page, prepare_page
+from .marks import Mark, SortedInk, sort_ink
 from .options import AnalysisOptions, resolve_options
 from .read import Scan, read_scan
+from .results import BAND_KEYS, PrintResult, SheetResult, contact_pressure, marks_summary
 
-BAND_KEYS = ("length", "width", "hull_area", "area", "ellipse_length", "ellipse_width")
-
-
-@dataclass(frozen=True)
-class PrintResult:
-    """One print on a sheet.
-
-    Attributes
-    ----------
-    index : int
-        0-based, top to bottom.
-    metrics : contactpatch.PatchMetrics
-        Load-bearing ink (edge spots removed) [mm, or px without a scale].
-    metrics_all : contactpatch.PatchMetrics
-        All ink of the print.
-    n_blobs : int
-        8-connected ink blobs of the print.
-    n_edge_spots : int
-        Blobs that touched the paper without bearing load (section 7.1.1).
-    edge_spot_area : float [mm^2]
-        Ink area of the edge spots.
-    hull_px : (k, 2) float [px]
-        Load-bearing hull, continuous (row, col) pixel coordinates (for overlays).
-    band : dict
-        ``{key: (low, high)}`` for each of ``BAND_KEYS`` over the thresholds
-        x (1 -+ ``AnalysisOptions.sensitivity``).
-    bbox : (row0, col0, row1, col1) int [px]
-        The print's box on the sheet.
-    """
-
-    index: int
-    metrics: object
-    metrics_all: object
-    n_blobs: int
-    n_edge_spots: int
-    edge_spot_area: float
-    hull_px: np.ndarray = field(repr=False)
-    band: dict = field(repr=False)
-    bbox: tuple[int, int, int, int] = (0, 0, 0, 0)
-
-
-@dataclass(frozen=True)
-class SheetResult:
-    """All prints of one scanned sheet.
-
-    Attributes
-    ----------
-    path : str
-        The scan's file ('' for a scan made in memory).
-    page : int
-        Page of a PDF (0-based).
-    mm_per_px : float [mm / px]
-    scale_source : str
-        'given', 'metadata', 'pdf' or 'pixels'.
-    unit : str
-        'mm', or 'px' without a scale.
-    method : str
-        Threshold method ('otsu', 'fixed' or 'sauvola').
-    threshold : float [grey level]
-    shape : (rows, cols) int [px]
-    prints : list of PrintResult
-        Top to bottom.
-    rejected : list of str
-        Why each other ink group is not a print (label, line, dust).
-    """
-
-    path: str
-    page: int
-    mm_per_px: float
-    scale_source: str
-    unit: str
-    method: str
-    threshold: float
-    shape: tuple[int, int]
-    prints: list[PrintResult]
-    rejected: list[str]
-
-    def rows(self, *, load: float | None = None, pressure: float | None = None) -> list[dict]:
-        """One table row per print.
-
-        Parameters
-        ----------
-        load : float, optional [N]
-        pressure : float, optional [N/mm^2]
-            With ``load``, add the load / area comparison of section 4.1.1.
-
-        Returns
-        -------
-        list of dict
-            Keys carry their unit (``length_mm``, ``hull_area_mm2``, ...).
-        """
-        return [self.row(p.index, load=load, pressure=pressure) for p in self.prints]
-
-    def row(self, index: int, *, load: float | None = None, pressure: float | None = None) -> dict:
-        """The table row of print ``index`` (see :meth:`rows`).
-
-        Parameters
-        ----------
-        index : int
-            0-based, top to bottom.
-        load : float, optional [N]
-        pressure : float, optional [N/mm^2]
-
-        Returns
-        -------
-        dict
-        """
-        p = self.prints[index]
-        u = self.unit
-        row = {
-            "file": self.path,
-            "page": self.page,
-            "print": p.index,
-            "n_prints": len(self.prints),
-            "status": "ok",
-            "error": "",
-            "mm_per_px": self.mm_per_px,
-            "dpi": mm_per_px_to_dpi(self.mm_per_px),
-            "scale_source": self.scale_source,
-            "threshold_method": self.method,
-            "threshold": self.threshold,
-        }
-        row.update(p.metrics.as_row(unit=u))
-        a = p.metrics_all
-        row.update(
-            {
-                f"all_ink_area_{u}2": a.area,
-                f"all_ink_hull_area_{u}2": a.hull_area,
-                f"all_ink_length_{u}": a.length,
-                f"all_ink_width_{u}": a.width,
-                "n_blobs": p.n_blobs,
-                "n_edge_spots": p.n_edge_spots,
-                f"edge_spot_area_{u}2": p.edge_spot_area,
-            }
-        )
-        for key, (lo, hi) in p.band.items():
-            unit = f"_{u}2" if "area" in key else f"_{u}"
-            row[f"{key}{unit}_lo"], row[f"{key}{unit}_hi"] = lo, hi
-        row.update(contact_pressure(p.metrics, load, pressure))
-        row["hull_wkt"] = self._hull_wkt(p)
-        return row
-
-    def _hull_wkt(self, p: PrintResult) -> str:
-        x, y = px_to_mm(
-            p.hull_px[:, 0], p.hull_px[:, 1], n_rows=self.shape[0], mm_per_px=self.mm_per_px
-        )
-        ring = [*zip(x, y, strict=True), (x[0], y[0])]
-        return "POLYGON ((" + ", ".join(f"{a:.4f} {b:.4f}" for a, b in ring) + "))"
-
-
-def contact_pressure(metrics, load: float | None, pressure: float | None) -> dict:
-    """Load / area and its percentage of the inflation pressure (section 4.1.1).
-
-    Parameters
-    ----------
-    metrics : contactpatch.PatchMetrics
-        Uses ``hull_area`` (gross) and ``area`` (net) [mm^2].
-    load : float or None [N]
-    pressure : float or None [N/mm^2]
-        Inflation pressure.
-
-    Returns
-    -------
-    dict
-        ``load_per_hull_area_N_mm2``, ``load_per_net_area_N_mm2`` [N/mm^2] and their
-        ``_pct`` of ``pressure`` [%]; NaN where not given.
-    """
-    nan = float("nan")
-    if load is None or not np.isfinite(load):
-        return {
-            "load_per_hull_area_N_mm2": nan,
-            "load_per_hull_area_pct": nan,
-            "load_per_net_area_N_mm2": nan,
-            "load_per_net_area_pct": nan,
-        }
-    gross, net = load / metrics.hull_area, load / metrics.area
-    pct = (lambda q: 100.0 * q / pressure) if pressure else (lambda q: nan)
-    return {
-        "load_per_hull_area_N_mm2": gross,
-        "load_per_hull_area_pct": pct(gross),
-        "load_per_net_area_N_mm2": net,
-        "load_per_net_area_pct": pct(net),
-    }
+AXES = ("auto", "x", "y")
+#: a given rolling axis snaps to the print's own axis within this angle [deg]
+AXIS_SNAP_DEG = 20.0
+#: principal moments' ratio below which a print's own axis is not defined
+AXIS_ROUND = 1.15
+#: ``auto`` on a print whose length / width is below this is flagged axis_uncertain
+AXIS_UNCERTAIN_ASPECT = 1.3
 
 
 def _hull_px(mask, field, r0: int, c0: int) -> np.ndarray:
@@ -300,7 +143,7 @@ class MaskMeasurement:
 
 
 def measure_mask(
-    mask, r0: int, c0: int, *, n_rows: int, mm_per_px: float, field=None
+    mask, r0: int, c0: int, *, n_rows: int, mm_per_px: float, field=None, axis=None
 ) -> MaskMeasurement:
     """Shared metrics (:func:`contactpatch.measure`) of an ink mask cropped from a sheet.
 
@@ -315,6 +158,10 @@ def measure_mask(
     field : (h, w) float, optional
         Signed edge field over the crop (:func:`edge_field`) giving the sub-pixel
         outline; default: the pixel mask's own edge.
+    axis : float or str, optional
+        Rolling direction: an angle from +x [rad], ``'x'``, ``'y'`` (the sheet's
+        axes, snapped to the print's own axis, see :func:`rolling_angle`) or None /
+        ``'auto'`` (the hull's principal axis).
 
     Returns
     -------
@@ -327,6 +174,8 @@ def measure_mask(
     if field is None:
         field = np.where(mask, -0.5, 0.5)
     hull_px = _hull_px(mask, field, r0, c0)
+    if isinstance(axis, str):
+        axis = rolling_angle(hull_px, axis)
     x, y = px_to_mm(hull_px[:, 0], hull_px[:, 1], n_rows=n_rows, mm_per_px=mm_per_px)
     rr, cc = np.nonzero(mask)
     cx, cy = px_to_mm(
@@ -334,8 +183,51 @@ def measure_mask(
     )
     hull = shapely.Polygon(np.column_stack([x, y]))
     net = min(area_px_to_mm2(len(rr), mm_per_px), hull.area)
-    m = cp.measure(hull, net_area=net, net_centroid=(float(cx), float(cy)))
+    m = cp.measure(hull, axis=axis, net_area=net, net_centroid=(float(cx), float(cy)))
     return MaskMeasurement(m, hull_px)
+
+
+def rolling_angle(hull_px, rolling_axis: str) -> float | None:
+    """Measuring direction [rad from the sheet's +x] for a given rolling axis.
+
+    Parameters
+    ----------
+    hull_px : (k, 2) float [px]
+        The print's hull, (row, col).
+    rolling_axis : {'auto', 'x', 'y'}
+
+    Returns
+    -------
+    float or None
+        None for 'auto' (:func:`contactpatch.measure` takes the principal axis).
+        For 'x' / 'y': the print's own principal axis nearest the given one when
+        the print has a defined axis (principal moments differing by
+        :data:`AXIS_ROUND`) within :data:`AXIS_SNAP_DEG` of it, else the given
+        axis exactly (0 or pi/2).
+    """
+    import cv2
+
+    if rolling_axis not in AXES:
+        raise InvalidInput("rolling_axis", rolling_axis, " | ".join(AXES))
+    if rolling_axis == "auto":
+        return None
+    target = 0.0 if rolling_axis == "x" else math.pi / 2
+    # sheet coordinates: x = col, y = -row (the scale does not change directions)
+    pts = np.column_stack([hull_px[:, 1], -hull_px[:, 0]]).astype(np.float32)
+    mo = cv2.moments(pts)
+    if mo["m00"] <= 0:
+        return target
+    a, b, c = mo["mu20"], mo["mu11"], mo["mu02"]
+    spread = math.hypot(a - c, 2 * b)
+    big, small = 0.5 * (a + c + spread), 0.5 * (a + c - spread)
+    if small <= 0 or big / small < AXIS_ROUND:
+        return target
+    major = 0.5 * math.atan2(2 * b, a - c)
+    for cand in (major, major + math.pi / 2):
+        d = (cand - target + math.pi / 2) % math.pi - math.pi / 2
+        if abs(d) <= math.radians(AXIS_SNAP_DEG):
+            return target + d
+    return target
 
 
 def _band_values(m) -> dict:
@@ -350,106 +242,46 @@ def _band_values(m) -> dict:
     return dict(zip(BAND_KEYS, values, strict=True))
 
 
-@dataclass(frozen=True)
-class _BandWindow:
-    """A print's box grown by the group distance (sheet rows and cols [px]) and the
-    region near the print's ink in it (``(h, w) bool``): where re-thresholded ink
-    still belongs to this print."""
-
-    rows: slice
-    cols: slice
-    region: np.ndarray
-
-
-def _band_window(scan: Scan, g: Group, opts: AnalysisOptions) -> _BandWindow:
-    import cv2
-
-    pad = int(np.ceil(mm_to_px_length(opts.group_distance_mm, scan.mm_per_px)))
-    h, w = scan.grey.shape
-    r0, r1 = max(g.rows.start - pad, 0), min(g.rows.stop + pad, h)
-    c0, c1 = max(g.cols.start - pad, 0), min(g.cols.stop + pad, w)
-    region = np.zeros((r1 - r0, c1 - c0), np.uint8)
-    region[g.rows.start - r0 : g.rows.stop - r0, g.cols.start - c0 : g.cols.stop - c0] = g.mask
-    region = cv2.dilate(region, np.ones((2 * pad + 1, 2 * pad + 1), np.uint8)).astype(bool)
-    return _BandWindow(slice(r0, r1), slice(c0, c1), region)
-
-
-def sensitivity_band(
-    scan: Scan,
-    binarization: Binarization,
-    group: Group,
-    *,
-    base: dict,
-    options: AnalysisOptions | None = None,
-) -> dict:
-    """Re-measure one print at the threshold x (1 -+ ``options.sensitivity``).
-
-    Parameters
-    ----------
-    scan : Scan
-    binarization : Binarization
-        The sheet's threshold (``level``).
-    group : Group
-        The print's ink at that threshold.
-    base : dict
-        ``{key: value}`` for ``BAND_KEYS`` at the threshold itself.
-    options : AnalysisOptions, optional
-        Uses ``sensitivity``, ``group_distance_mm``, ``speck_area_mm2`` and the edge
-        spot and edge window settings (defaults when None).
-
-    Returns
-    -------
-    dict
-        ``{key: (low, high)}`` over the three thresholds.
-    """
-    opts = resolve_options(options)
-    s = scan.mm_per_px
-    n_rows = scan.grey.shape[0]
-    win = _band_window(scan, group, opts)
-    grey = scan.grey[win.rows, win.cols]
-    level = binarization.level
-    level = level if np.ndim(level) == 0 else level[win.rows, win.cols]
-    speck_px = area_mm2_to_px(opts.speck_area_mm2, s)
-    values = {k: [v] for k, v in base.items()}
-    for f in (1.0 - opts.sensitivity, 1.0 + opts.sensitivity):
-        ink = remove_specks((grey < level * f) & win.region, speck_px)
-        if not ink.any():
-            continue
-        spots = edge_spots(Group(win.rows, win.cols, ink), 1.0 - grey, mm_per_px=s, options=opts)
-        if not spots.load_bearing.any():
-            continue
-        fld = edge_field(grey, spots.load_bearing, mm_per_px=s, options=opts)
-        m = measure_mask(
-            spots.load_bearing,
-            win.rows.start,
-            win.cols.start,
-            n_rows=n_rows,
-            mm_per_px=s,
-            field=fld,
-        ).metrics
-        for k, v in _band_values(m).items():
-            values[k].append(v)
-    return {k: (float(np.nanmin(v)), float(np.nanmax(v))) for k, v in values.items()}
+def _grey(scan: Scan, page: Page, rows: slice, cols: slice) -> np.ndarray:
+    """The grey [0, 1] of a box as thresholded: the page's flattened levels when
+    the light was flattened or the page cut from a photo, else the scan's own."""
+    if page.flattened or page.sheet is not None:
+        return page.work[rows, cols] * np.float32(1 / 255)
+    return scan.crop(rows, cols)
 
 
 @dataclass(frozen=True)
 class FoundPrints:
-    """Ink groups of a sheet, sorted into prints and the rest.
+    """Ink of a sheet sorted into prints and the rest.
 
     Attributes
     ----------
     groups : list of Group
         The prints' ink (specks removed), top to bottom.
-    rejected : list of str
-        Why each other group is not a print.
+    marks : list of Mark
+        Ink set aside (lines, text, dust, noise) and groups that are not prints.
+    sorted : SortedInk
+        The sorting (where the marks are, for the sensitivity band).
     """
 
-    groups: list[Group]
-    rejected: list[str]
+    groups: list
+    marks: list
+    sorted: SortedInk = field(repr=False)
+
+    @property
+    def rejected(self) -> list[str]:
+        """Why each mark is not a print."""
+        return [f"{m.kind}: {m.reason}" for m in self.marks]
 
 
-def find_prints(mask, *, mm_per_px: float, options: AnalysisOptions | None = None) -> FoundPrints:
-    """Group a sheet's ink (:func:`group_blobs`), remove specks and keep the prints.
+def find_prints(
+    mask,
+    *,
+    mm_per_px: float,
+    options: AnalysisOptions | None = None,
+    sheet_area_mm2: float | None = None,
+) -> FoundPrints:
+    """Sort a sheet's ink (:func:`inkprint.marks.sort_ink`) and keep the prints.
 
     Parameters
     ----------
@@ -457,71 +289,194 @@ def find_prints(mask, *, mm_per_px: float, options: AnalysisOptions | None = Non
         Ink of the sheet.
     mm_per_px : float [mm / px]
     options : AnalysisOptions, optional
-        Grouping, speck and print-shape thresholds (defaults when None).
+        Grouping, mark, speck and print-shape thresholds (defaults when None).
+    sheet_area_mm2 : float, optional [mm^2]
+        Area of the page (for the automatic ink floor); default the image's.
 
     Returns
     -------
     FoundPrints
     """
     opts = resolve_options(options)
+    shape = mask.shape
+    area = sheet_area_mm2 if sheet_area_mm2 is not None else area_px_to_mm2(mask.size, mm_per_px)
+    floor = opts.patch_area_floor(area)
     speck_px = area_mm2_to_px(opts.speck_area_mm2, mm_per_px)
-    groups, rejected = [], []
-    for g0 in group_blobs(mask, mm_per_px=mm_per_px, options=opts):
+    ink = sort_ink(mask, mm_per_px=mm_per_px, options=opts)
+    marks, kept = list(ink.marks), []
+    for g0 in ink.groups:
         g = Group(g0.rows, g0.cols, remove_specks(g0.mask, speck_px))
         if not g.mask.any():
             continue
-        check = is_print(g, mm_per_px=mm_per_px, options=opts)
+        check = is_print(g, mm_per_px=mm_per_px, options=opts, floor_mm2=floor, image_shape=shape)
         if check.ok:
-            groups.append(g)
+            kept.append(g)
         else:
-            rejected.append(check.reason)
-    return FoundPrints(groups, rejected)
+            marks.append(_group_mark(g, check.kind, check.reason, mm_per_px))
+    biggest = max((g.n_pixels for g in kept), default=0)
+    groups = []
+    for g in kept:
+        if g.n_pixels < opts.min_patch_fraction * biggest:
+            why = f"a fragment beside the prints ({100 * g.n_pixels / biggest:.1f} % of the largest)"
+            marks.append(_group_mark(g, "fragment", why, mm_per_px))
+        else:
+            groups.append(g)
+    return FoundPrints(groups, marks, ink)
 
 
-def measure_print(
-    scan: Scan,
-    binarization: Binarization,
-    group: Group,
-    *,
-    index: int = 0,
-    sensitivity: bool = True,
-    options: AnalysisOptions | None = None,
-) -> PrintResult:
-    """Measure one print: edge spots (section 7.1.1), outline, metrics, band.
+def _group_mark(g: Group, kind: str, reason: str, mm_per_px: float) -> Mark:
+    box = (g.rows.start, g.cols.start, g.rows.stop, g.cols.stop)
+    return Mark(kind, box, area_px_to_mm2(g.n_pixels, mm_per_px), reason)
+
+
+@dataclass(frozen=True)
+class _BandWindow:
+    """A print's box grown by the group distance (sheet rows and cols [px]) and the
+    region near the print's ink in it, marks excepted (``(h, w) bool``): where
+    re-thresholded ink still belongs to this print."""
+
+    rows: slice
+    cols: slice
+    region: np.ndarray
+
+
+def _band_window(shape, g: Group, found: FoundPrints, mm_per_px: float, opts) -> _BandWindow:
+    import cv2
+
+    pad = int(np.ceil(mm_to_px_length(opts.group_distance_mm, mm_per_px)))
+    h, w = shape
+    r0, r1 = max(g.rows.start - pad, 0), min(g.rows.stop + pad, h)
+    c0, c1 = max(g.cols.start - pad, 0), min(g.cols.stop + pad, w)
+    region = np.zeros((r1 - r0, c1 - c0), np.uint8)
+    region[g.rows.start - r0 : g.rows.stop - r0, g.cols.start - c0 : g.cols.stop - c0] = g.mask
+    region = cv2.dilate(region, np.ones((2 * pad + 1, 2 * pad + 1), np.uint8)).astype(bool)
+    rows, cols = slice(r0, r1), slice(c0, c1)
+    return _BandWindow(rows, cols, region & ~found.sorted.marks_near(rows, cols))
+
+
+@dataclass(frozen=True)
+class _Context:
+    """What measuring a print needs of its sheet."""
+
+    scan: Scan
+    page: Page
+    binarization: Binarization
+    found: FoundPrints
+    rolling_axis: str
+    opts: AnalysisOptions
+
+
+def sensitivity_band(ctx: _Context, group: Group, *, base: dict) -> dict:
+    """Re-measure one print at the threshold x (1 -+ ``options.sensitivity``).
 
     Parameters
     ----------
-    scan : Scan
-    binarization : Binarization
-        The sheet's threshold.
+    ctx : _Context
+        The sheet (scan, page, threshold, sorted ink, axis, options).
+    group : Group
+        The print's ink at the sheet's threshold.
+    base : dict
+        ``{key: value}`` for ``BAND_KEYS`` at the threshold itself.
+
+    Returns
+    -------
+    dict
+        ``{key: (low, high)}`` over the three thresholds.
+    """
+    opts, s = ctx.opts, ctx.scan.mm_per_px
+    win = _band_window(ctx.page.work.shape, group, ctx.found, s, opts)
+    work = ctx.page.work[win.rows, win.cols]
+    grey = _grey(ctx.scan, ctx.page, win.rows, win.cols)
+    level = ctx.binarization.level
+    level = level if np.ndim(level) == 0 else level[win.rows, win.cols]
+    speck_px = area_mm2_to_px(opts.speck_area_mm2, s)
+    values = {k: [v] for k, v in base.items()}
+    for f in (1.0 - opts.sensitivity, 1.0 + opts.sensitivity):
+        ink = remove_specks((work < level * f) & win.region, speck_px)
+        if not ink.any():
+            continue
+        spots = edge_spots(Group(win.rows, win.cols, ink), 1.0 - grey, mm_per_px=s, options=opts)
+        if not spots.load_bearing.any():
+            continue
+        m = measure_mask(
+            spots.load_bearing,
+            win.rows.start,
+            win.cols.start,
+            n_rows=ctx.page.work.shape[0],
+            mm_per_px=s,
+            field=edge_field(grey, spots.load_bearing, mm_per_px=s, options=opts),
+            axis=ctx.rolling_axis,
+        ).metrics
+        for k, v in _band_values(m).items():
+            values[k].append(v)
+    return {k: (float(np.nanmin(v)), float(np.nanmax(v))) for k, v in values.items()}
+
+
+def clipped(group: Group, shape, sheet=None) -> str:
+    """Why a print is cut off ('' if it is whole): it touches the image's edge, or
+    the edge of the page found in a photo.
+
+    Parameters
+    ----------
+    group : Group
+    shape : (rows, cols) int
+        The image.
+    sheet : (rows, cols) bool, optional
+        The page inside a photo.
+
+    Returns
+    -------
+    str
+    """
+    import cv2
+
+    h, w = shape
+    r, c = group.rows, group.cols
+    if r.start <= 0 or c.start <= 0 or r.stop >= h or c.stop >= w:
+        return "touches the image's edge: it may run off the sheet; rescan it with a margin"
+    if sheet is None:
+        return ""
+    r0, r1, c0, c1 = max(r.start - 2, 0), min(r.stop + 2, h), max(c.start - 2, 0), min(c.stop + 2, w)
+    off = np.zeros((r1 - r0, c1 - c0), np.uint8)
+    off[:] = ~sheet[r0:r1, c0:c1]
+    near = cv2.dilate(off, np.ones((5, 5), np.uint8))[r.start - r0 :, c.start - c0 :]
+    if (near[: group.mask.shape[0], : group.mask.shape[1]].astype(bool) & group.mask).any():
+        return "touches the page's edge in the photo: it may run off the page"
+    return ""
+
+
+def measure_print(ctx: _Context, group: Group, *, index: int = 0, sensitivity: bool = True):
+    """Measure one print: edge spots (section 7.1.1), outline, metrics, band, flags.
+
+    Parameters
+    ----------
+    ctx : _Context
+        The sheet (scan, page, threshold, sorted ink, axis, options).
     group : Group
         The print's ink (from :func:`find_prints`).
     index : int
         The print's number on the sheet (0-based, top to bottom).
     sensitivity : bool
         Compute the threshold sensitivity band (else each band is the value itself).
-    options : AnalysisOptions, optional
-        Defaults when None.
 
     Returns
     -------
     PrintResult
     """
-    opts = resolve_options(options)
-    s, n_rows = scan.mm_per_px, scan.grey.shape[0]
+    opts, s = ctx.opts, ctx.scan.mm_per_px
+    n_rows = ctx.page.work.shape[0]
     g = group
-    grey = scan.grey[g.rows, g.cols]
+    grey = _grey(ctx.scan, ctx.page, g.rows, g.cols)
     spots = edge_spots(g, 1.0 - grey, mm_per_px=s, options=opts)
-    kw = dict(n_rows=n_rows, mm_per_px=s)
+    kw = dict(n_rows=n_rows, mm_per_px=s, axis=ctx.rolling_axis)
     fld_all = edge_field(grey, g.mask, mm_per_px=s, options=opts)
     fld = edge_field(grey, spots.load_bearing, mm_per_px=s, options=opts)
-    m_all = measure_mask(g.mask, g.rows.start, g.cols.start, field=fld_all, **kw)
     m = measure_mask(spots.load_bearing, g.rows.start, g.cols.start, field=fld, **kw)
+    kw["axis"] = m.metrics.orientation  # all ink measured along the same direction
+    m_all = measure_mask(g.mask, g.rows.start, g.cols.start, field=fld_all, **kw)
     base = _band_values(m.metrics)
-    if sensitivity:
-        band = sensitivity_band(scan, binarization, g, base=base, options=opts)
-    else:
-        band = {k: (v, v) for k, v in base.items()}
+    band = sensitivity_band(ctx, g, base=base) if sensitivity else {k: (v, v) for k, v in base.items()}
+    flags, warnings = _print_flags(ctx, g, m.metrics, index)
     return PrintResult(
         index=index,
         metrics=m.metrics,
@@ -532,7 +487,24 @@ def measure_print(
         hull_px=m.hull_px,
         band=band,
         bbox=(g.rows.start, g.cols.start, g.rows.stop, g.cols.stop),
+        flags=flags,
+        warnings=warnings,
     )
+
+
+def _print_flags(ctx: _Context, g: Group, metrics, index: int) -> tuple[tuple, tuple]:
+    flags, warnings = [], []
+    cut = clipped(g, ctx.page.work.shape, ctx.page.sheet)
+    if cut:
+        flags.append("clipped")
+        warnings.append(f"print #{index} {cut}")
+    if ctx.rolling_axis == "auto" and metrics.aspect_ratio < AXIS_UNCERTAIN_ASPECT:
+        flags.append("axis_uncertain")
+        warnings.append(
+            f"print #{index} is nearly as wide as long ({metrics.aspect_ratio:.2f}): the "
+            f"rolling direction was taken as its longer axis (auto); give --rolling-axis x|y"
+        )
+    return tuple(flags), tuple(warnings)
 
 
 def _as_scan(scan, opts: AnalysisOptions) -> Scan:
@@ -546,6 +518,27 @@ def _as_scan(scan, opts: AnalysisOptions) -> Scan:
     )
 
 
+def no_print_message(found: FoundPrints) -> str:
+    """Why a sheet has no print, from what was set aside.
+
+    Parameters
+    ----------
+    found : FoundPrints
+
+    Returns
+    -------
+    str
+    """
+    if not found.marks:
+        return "no print found on the sheet (no ink group at all)"
+    why = "; ".join(dict.fromkeys(m.reason for m in sorted(found.marks, key=_mark_weight)))
+    return f"no print found on the sheet: set aside {marks_summary(found.marks)} ({why[:400]})"
+
+
+def _mark_weight(m: Mark) -> float:
+    return -m.area_mm2
+
+
 def analyze_scan(
     scan: Scan | str | os.PathLike,
     *,
@@ -553,6 +546,7 @@ def analyze_scan(
     threshold: float | None = None,
     window_mm: float = 15.0,
     sensitivity: bool = True,
+    rolling_axis: str = "auto",
     options: AnalysisOptions | None = None,
 ) -> SheetResult:
     """Find and measure every print on a scanned sheet.
@@ -570,6 +564,9 @@ def analyze_scan(
         Sauvola window.
     sensitivity : bool
         Compute the threshold sensitivity band.
+    rolling_axis : {'auto', 'x', 'y'}
+        Rolling direction on the sheet: length is measured along it, width across
+        (see the module's notes).
     options : AnalysisOptions, optional
         Judgement thresholds (defaults when None).
 
@@ -581,7 +578,8 @@ def analyze_scan(
     Raises
     ------
     NoInk
-        Blank sheet, or nothing on it looks like a print.
+        Blank sheet, or nothing on it is a print (the message says what was set
+        aside: lines, text, dust, noise).
     AllInk, ScanReadError, ScaleMissing, InvalidInput
 
     Examples
@@ -602,24 +600,24 @@ def analyze_scan(
     (70.0, 8.0, 70.0, 8.0)
     """
     opts = resolve_options(options)
+    if rolling_axis not in AXES:
+        raise InvalidInput("rolling_axis", rolling_axis, " | ".join(AXES))
     scan = _as_scan(scan, opts)
     s = scan.mm_per_px
+    page = prepare_page(scan, options=opts)
     b = binarize(
-        scan.grey,
-        mm_per_px=s,
-        method=method,
-        threshold=threshold,
-        window_mm=window_mm,
-        options=opts,
+        page.work, mm_per_px=s, method=method, threshold=threshold, window_mm=window_mm, options=opts
     )
-    found = find_prints(b.mask, mm_per_px=s, options=opts)
+    sheet_px = b.mask.size if page.sheet is None else int(np.count_nonzero(page.sheet))
+    found = find_prints(
+        b.mask, mm_per_px=s, options=opts, sheet_area_mm2=area_px_to_mm2(sheet_px, s)
+    )
+    if not found.groups:
+        raise NoInk(no_print_message(found))
+    ctx = _Context(scan, page, b, found, rolling_axis, opts)
     prints = [
-        measure_print(scan, b, g, index=i, sensitivity=sensitivity, options=opts)
-        for i, g in enumerate(found.groups)
+        measure_print(ctx, g, index=i, sensitivity=sensitivity) for i, g in enumerate(found.groups)
     ]
-    if not prints:
-        why = f" ({'; '.join(found.rejected[:3])})" if found.rejected else ""
-        raise NoInk(f"no contact print on the sheet{why}")
     return SheetResult(
         path=scan.path,
         page=scan.page,
@@ -628,7 +626,32 @@ def analyze_scan(
         unit=scan.unit,
         method=b.method,
         threshold=b.threshold,
-        shape=scan.grey.shape,
+        shape=scan.shape,
         prints=prints,
-        rejected=found.rejected,
+        marks=found.marks,
+        rolling_axis=rolling_axis,
+        axis_source="auto" if rolling_axis == "auto" else "given",
+        flags=page.flags + (("uneven_light",) if page.flattened else ()),
+        warnings=page.warnings,
+        light_range=page.light_range,
+        n_pages=scan.n_pages,
     )
+
+
+__all__ = [
+    "AXES",
+    "BAND_KEYS",
+    "FoundPrints",
+    "PrintResult",
+    "SheetResult",
+    "analyze_scan",
+    "clipped",
+    "contact_pressure",
+    "edge_field",
+    "find_prints",
+    "measure_mask",
+    "measure_print",
+    "no_print_message",
+    "rolling_angle",
+    "sensitivity_band",
+]

@@ -1,25 +1,38 @@
-"""Group tread blobs into prints, and tell load-bearing ink from edge spots.
+"""Whole footprints from tread elements, and load-bearing ink from edge spots.
 
 The thresholds named below are fields of :class:`inkprint.AnalysisOptions`.
 
-Grouping (section 4.1.1, "groups of pixels are identified"): ink blobs closer than
-``group_distance_mm`` belong to one print, so the isolated knobs and ribs of a tread
-join while two prints on a sheet (Figure 3-2) stay apart. It is done on a max-pooled
-copy of the mask (a few pixels per group distance), dilated by half the distance and
-labelled. Groups too small (labels, dust), too thin or too elongated (ruler lines,
-pen strokes) or too sparse (writing) are not prints.
+Footprints (section 4.1.1, "groups of pixels are identified"). A print's tread
+elements (knobs, blocks, ribs: the ink that is wider than a pen stroke, see
+:mod:`inkprint.marks`) are linked into one print by footprint-scale structure, not
+one fixed distance: the gap between two neighbouring elements (the free space
+between their edges, from a Voronoi partition of the sheet) is a groove of the same
+print when it is
+
+* at most ``group_distance_mm`` (3 mm: the knobs and sipes of bicycle treads), or
+* at most ``group_size_factor`` x the narrower element's width (a car tire's 8-15 mm
+  circumferential grooves between 20-35 mm ribs), or
+* at most ``group_pattern_factor`` x the tread pattern's own gap around the two
+  elements: the smallest gap from each to its *other* neighbours, counting only
+  neighbours no farther than :data:`PATTERN_REACH` x their widths (wide-groove knobs
+  as far apart as they are wide). Two prints on a sheet are farther apart than their
+  grooves are wide.
+
+Elements linked are one print; groups whose convex hulls overlap are one print too.
+``group_mm`` replaces the rule by one distance (``--group-mm``, manifest column).
 
 Edge spots (section 7.1.1, "determining which sections near the edge actually bore
-weight and which merely touched the paper"): the print's *core* is the convex hull
-of its large, dark blobs (area >= ``edge_spot_area_mm2``, peak darkness >=
-``edge_spot_faintness`` x the median of the large blobs'). A blob whose centroid
-lies outside the core is taken to have touched the paper without bearing load when
-it is *faint* (peak darkness below that fraction of the core's: ink that was not
-pressed) or *small and isolated* (below the area and farther than
-``edge_spot_distance_mm`` from the core). Small dark blobs right at the core's
-edge (a knob clipped by the patch outline) are kept. The peak, not the mean, is used
-because a small dot's anti-aliased rim lowers its mean. Results are reported both
-with all ink and with load-bearing ink only.
+weight and which merely touched the paper"): the print's *core* is its large, dark
+blobs (area >= ``edge_spot_area_mm2``, peak darkness >= ``edge_spot_faintness`` x
+the large blobs' median). A blob outside the core's hull bore no load when it is
+*faint* (peak darkness below that fraction: ink that was not pressed) or *small and
+isolated*: below the area and farther from the nearest core blob than
+``edge_spot_distance_mm`` or 1.5 x the core's own tread gap, whichever is larger. So
+small dark blocks at the tips that continue the tread pattern along the rolling
+direction are kept (before, their centroids' distance to the core's hull dropped
+them: length -2.4 %), and a dark speck far out is dropped. The peak, not the mean,
+is used because a small dot's anti-aliased rim lowers its mean. Results are reported
+both with all ink and with load-bearing ink only.
 """
 
 from __future__ import annotations
@@ -30,6 +43,10 @@ import numpy as np
 
 from .coords import area_px_to_mm2, mm_to_px_length, px_to_mm_length
 from .options import AnalysisOptions, resolve_options
+
+#: a neighbour counts for the tread pattern's gap when no farther than this many
+#: times the narrower element's width
+PATTERN_REACH = 2.0
 
 
 @dataclass(frozen=True)
@@ -51,68 +68,205 @@ class Group:
     @property
     def n_pixels(self) -> int:
         """Number of ink pixels [px]."""
-        return int(self.mask.sum())
+        return int(np.count_nonzero(self.mask))
 
 
-def _disk(radius: int):
-    import cv2
+@dataclass(frozen=True)
+class ElementGraph:
+    """Neighbouring tread elements and the gaps between them.
 
-    r = max(int(radius), 1)
-    return cv2.getStructuringElement(cv2.MORPH_ELLIPSE, (2 * r + 1, 2 * r + 1))
+    Attributes
+    ----------
+    widths : (n,) float [mm]
+        Width of each element (twice its largest inscribed radius).
+    a, b : (m,) int
+        Neighbouring pairs (0-based element indices, a < b).
+    gaps : (m,) float [mm]
+        Free space between the two elements' edges.
+    """
 
-
-def _pooled_labels(mask, d_px: float) -> tuple[int, np.ndarray]:
-    """Pooling factor and the labels of the pooled mask dilated by ``d_px / 2``."""
-    import cv2
-
-    f = max(1, int(d_px // 4))
-    h, w = mask.shape
-    H, W = -(-h // f) * f, -(-w // f) * f
-    if (H, W) != (h, w):
-        padded = np.zeros((H, W), bool)
-        padded[:h, :w] = mask
-    else:
-        padded = mask
-    small = padded.reshape(H // f, f, W // f, f).any(axis=(1, 3)).astype(np.uint8)
-    grown = cv2.dilate(small, _disk(int(np.ceil(0.5 * d_px / f))))
-    _, small_labels = cv2.connectedComponents(grown, connectivity=8)
-    return f, small_labels
+    widths: np.ndarray
+    a: np.ndarray
+    b: np.ndarray
+    gaps: np.ndarray
 
 
-def group_blobs(mask, *, mm_per_px: float, options: AnalysisOptions | None = None) -> list[Group]:
-    """Group ink blobs that lie within ``options.group_distance_mm`` of each other.
+def element_graph(labels: np.ndarray, n: int, *, px_mm: float, step: int = 1) -> ElementGraph:
+    """Voronoi neighbours of labelled elements and their gaps.
 
     Parameters
     ----------
-    mask : (rows, cols) bool
-        Ink of the sheet.
-    mm_per_px : float [mm / px]
-    options : AnalysisOptions, optional
-        Uses ``group_distance_mm`` (defaults when None).
+    labels : (h, w) int32
+        0 = paper, 1..n = elements.
+    n : int
+        Number of elements.
+    px_mm : float [mm]
+        Size of a pixel of ``labels``.
+    step : int
+        Sample every ``step``-th pixel for the partition (coarser, faster; each
+        element must keep a sample: elements wider than ``step`` px).
 
     Returns
     -------
-    list of Group
-        Ordered top to bottom (by the box's centre row), then left to right.
+    ElementGraph
     """
-    from scipy import ndimage
+    import cv2
 
+    widths = _element_widths(labels, n, px_mm)
+    lab = labels[::step, ::step] if step > 1 else labels
+    ink = lab > 0
+    dist, nearest = cv2.distanceTransformWithLabels(
+        (~ink).astype(np.uint8), cv2.DIST_L2, 3, labelType=cv2.DIST_LABEL_PIXEL
+    )
+    lut = np.zeros(int(nearest.max()) + 1, np.int32)
+    lut[nearest[ink]] = lab[ink]
+    owner = lut[nearest]
+    pairs = []
+    for sl0, sl1 in (
+        ((slice(None), slice(None, -1)), (slice(None), slice(1, None))),
+        ((slice(None, -1), slice(None)), (slice(1, None), slice(None))),
+    ):
+        o0, o1 = owner[sl0], owner[sl1]
+        cut = o0 != o1
+        pairs.append((o0[cut], o1[cut], dist[sl0][cut] + dist[sl1][cut]))
+    a = np.concatenate([p[0] for p in pairs]).astype(np.int64)
+    b = np.concatenate([p[1] for p in pairs]).astype(np.int64)
+    g = np.concatenate([p[2] for p in pairs]).astype(float) * px_mm * step
+    lo, hi = np.minimum(a, b), np.maximum(a, b)
+    key = lo * (n + 1) + hi
+    order = np.argsort(key, kind="stable")
+    key, g = key[order], g[order]
+    first = np.flatnonzero(np.r_[True, key[1:] != key[:-1]]) if len(key) else np.zeros(0, int)
+    gmin = np.minimum.reduceat(g, first) if len(first) else np.zeros(0)
+    uk = key[first]
+    return ElementGraph(widths, uk // (n + 1) - 1, uk % (n + 1) - 1, gmin)
+
+
+def _element_widths(labels: np.ndarray, n: int, px_mm: float) -> np.ndarray:
+    """Twice the largest inscribed radius of each element [mm]."""
+    import cv2
+
+    dt = cv2.distanceTransform((labels > 0).astype(np.uint8), cv2.DIST_L2, 3)
+    best = np.zeros(n + 1, np.float32)
+    ink = labels > 0
+    np.maximum.at(best, labels[ink], dt[ink])
+    return 2.0 * best[1:].astype(float) * px_mm
+
+
+def _pattern_gaps(graph: ElementGraph, n: int):
+    """Per element: the smallest and second-smallest gap to a pattern neighbour
+    (:data:`PATTERN_REACH`) and the first one's index (inf / -1 when none)."""
+    w = graph.widths
+    ok = graph.gaps <= PATTERN_REACH * np.minimum(w[graph.a], w[graph.b])
+    src = np.concatenate([graph.a[ok], graph.b[ok]])
+    dst = np.concatenate([graph.b[ok], graph.a[ok]])
+    gap = np.concatenate([graph.gaps[ok], graph.gaps[ok]])
+    first, second, who = np.full(n, np.inf), np.full(n, np.inf), np.full(n, -1)
+    order = np.lexsort((gap, src))
+    src, dst, gap = src[order], dst[order], gap[order]
+    start = np.flatnonzero(np.r_[True, src[1:] != src[:-1]]) if len(src) else np.zeros(0, int)
+    first[src[start]], who[src[start]] = gap[start], dst[start]
+    nxt = start + 1
+    has2 = nxt < len(src)
+    has2[has2] &= src[nxt[has2]] == src[start[has2]]
+    second[src[start[has2]]] = gap[nxt[has2]]
+    return first, second, who
+
+
+def linked_edges(graph: ElementGraph, *, options: AnalysisOptions | None = None) -> np.ndarray:
+    """Which neighbour pairs belong to one print (the rule of the module's notes).
+
+    Parameters
+    ----------
+    graph : ElementGraph
+    options : AnalysisOptions, optional
+        Uses ``group_mm``, ``group_distance_mm``, ``group_size_factor`` and
+        ``group_pattern_factor`` (defaults when None).
+
+    Returns
+    -------
+    (m,) bool
+    """
     opts = resolve_options(options)
-    f, small_labels = _pooled_labels(mask, mm_to_px_length(opts.group_distance_mm, mm_per_px))
-    h, w = mask.shape
-    groups = []
-    # boxes on the pooled image; the full-resolution group mask is read off per box
-    for label, box in enumerate(ndimage.find_objects(small_labels), start=1):
-        if box is None:
+    g, a, b = graph.gaps, graph.a, graph.b
+    if opts.group_mm is not None:
+        return g <= opts.group_mm
+    n = len(graph.widths)
+    w = graph.widths
+    first, second, who = _pattern_gaps(graph, n)
+    pa = np.where(who[a] == b, second[a], first[a])  # a's pattern gap without b
+    pb = np.where(who[b] == a, second[b], first[b])
+    pattern = np.minimum(pa, pb)
+    return (
+        (g <= opts.group_distance_mm)
+        | (g <= opts.group_size_factor * np.minimum(w[a], w[b]))
+        | (np.isfinite(pattern) & (g <= opts.group_pattern_factor * pattern))
+    )
+
+
+def union_labels(n: int, a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """Connected components of ``n`` nodes joined by the edges (a, b).
+
+    Parameters
+    ----------
+    n : int
+    a, b : (m,) int
+
+    Returns
+    -------
+    (n,) int
+        Component index 0..k-1 of each node, in order of first appearance.
+    """
+    lab = np.arange(n)
+    if len(a):
+        while True:
+            m = np.minimum(lab[a], lab[b])
+            new = lab.copy()
+            np.minimum.at(new, a, m)
+            np.minimum.at(new, b, m)
+            new = new[new]  # pointer jumping
+            if np.array_equal(new, lab):
+                break
+            lab = new
+    _, comp = np.unique(lab, return_inverse=True)
+    return comp
+
+
+def merge_overlapping(hulls: list, comp: np.ndarray) -> np.ndarray:
+    """Join groups whose convex hulls overlap by more than a fifth of the smaller.
+
+    Parameters
+    ----------
+    hulls : list of (k, 1, 2) float32 or None
+        Hull of each group (cv2 point layout); None for an empty group.
+    comp : (n,) int
+        Group of each element.
+
+    Returns
+    -------
+    (n,) int
+        Groups after joining (renumbered).
+    """
+    import cv2
+
+    k = len(hulls)
+    boxes = np.array([cv2.boundingRect(h) if h is not None else (0, 0, 0, 0) for h in hulls])
+    areas = np.array([cv2.contourArea(h) if h is not None else 0.0 for h in hulls])
+    x0, y0 = boxes[:, 0], boxes[:, 1]
+    x1, y1 = x0 + boxes[:, 2], y0 + boxes[:, 3]
+    ia, ib = np.nonzero(np.triu((x0[:, None] < x1) & (x0 < x1[:, None]), 1))
+    ea, eb = [], []
+    for i, j in zip(ia, ib, strict=True):
+        if not (y0[i] < y1[j] and y0[j] < y1[i]) or min(areas[i], areas[j]) <= 0:
             continue
-        rows = slice(box[0].start * f, min(box[0].stop * f, h))
-        cols = slice(box[1].start * f, min(box[1].stop * f, w))
-        lab = np.repeat(np.repeat(small_labels[box] == label, f, axis=0), f, axis=1)
-        sub = mask[rows, cols] & lab[: rows.stop - rows.start, : cols.stop - cols.start]
-        if sub.any():
-            groups.append(Group(rows, cols, sub))
-    groups.sort(key=lambda g: (g.rows.start + g.rows.stop, g.cols.start))
-    return groups
+        inter, _ = cv2.intersectConvexConvex(hulls[i], hulls[j])
+        if inter > 0.2 * min(areas[i], areas[j]):
+            ea.append(i)
+            eb.append(j)
+    if not ea:
+        return comp
+    joined = union_labels(k, np.array(ea), np.array(eb))
+    return joined[comp]
 
 
 @dataclass(frozen=True)
@@ -123,17 +277,25 @@ class PrintCheck:
     ----------
     ok : bool
     reason : str
-        Why not ('' when ``ok``): a label, a line, writing or dust.
+        Why not ('' when ``ok``).
+    kind : str
+        What it is instead: 'dust', 'fragment', 'line', 'writing' or 'texture'.
     """
 
     ok: bool
     reason: str = ""
+    kind: str = ""
 
 
 def is_print(
-    group: Group, *, mm_per_px: float, options: AnalysisOptions | None = None
+    group: Group,
+    *,
+    mm_per_px: float,
+    options: AnalysisOptions | None = None,
+    floor_mm2: float | None = None,
+    image_shape: tuple[int, int] | None = None,
 ) -> PrintCheck:
-    """Whether a group looks like a contact print; if not, why (label, line, dust).
+    """Whether a group looks like a contact print; if not, what it is and why.
 
     Parameters
     ----------
@@ -142,6 +304,10 @@ def is_print(
     options : AnalysisOptions, optional
         Uses ``min_patch_area_mm2``, ``min_patch_width_mm``, ``max_patch_aspect`` and
         ``min_net_to_gross`` (defaults when None).
+    floor_mm2 : float, optional [mm^2]
+        Ink-area floor (default: ``options.min_patch_area_mm2`` or 0).
+    image_shape : (rows, cols), optional
+        With it, a group spanning three or four sides of the image is texture.
 
     Returns
     -------
@@ -150,22 +316,64 @@ def is_print(
     import cv2
 
     opts = resolve_options(options)
+    floor = floor_mm2 if floor_mm2 is not None else (opts.min_patch_area_mm2 or 0.0)
     area = area_px_to_mm2(group.n_pixels, mm_per_px)
-    if area < opts.min_patch_area_mm2:
-        return PrintCheck(False, f"too little ink ({area:.1f} mm^2 < {opts.min_patch_area_mm2:g})")
-    pts = np.column_stack(np.nonzero(group.mask)[::-1]).astype(np.float32)
+    if area < floor:
+        return PrintCheck(False, f"too little ink ({area:.2f} mm^2 < {floor:.3g})", "dust")
+    if image_shape is not None and _sides(group, image_shape) >= 3:
+        return PrintCheck(
+            False, "texture or noise spread over the whole page, not a print", "texture"
+        )
+    pts = cv2.findNonZero(group.mask.astype(np.uint8)).reshape(-1, 2).astype(np.float32)
     (_, _), (a, b), _ = cv2.minAreaRect(pts)
     length = px_to_mm_length(max(a, b) + 1, mm_per_px)
     width = px_to_mm_length(min(a, b) + 1, mm_per_px)
     if width < opts.min_patch_width_mm:
-        return PrintCheck(False, f"a line ({width:.2f} mm wide)")
+        return PrintCheck(False, f"a line ({width:.2f} mm wide)", "line")
     if length / width > opts.max_patch_aspect:
-        return PrintCheck(False, f"a line ({length / width:.0f} x longer than wide)")
+        return PrintCheck(False, f"a line ({length / width:.0f} x longer than wide)", "line")
     hull = cv2.convexHull(pts)
     fill = group.n_pixels / max(cv2.contourArea(hull) + 0.5 * cv2.arcLength(hull, True) + 1.0, 1.0)
     if fill < opts.min_net_to_gross:
-        return PrintCheck(False, f"writing or marks ({100 * fill:.0f} % of its hull inked)")
+        return PrintCheck(
+            False, f"writing or marks ({100 * fill:.0f} % of its hull inked)", "writing"
+        )
     return PrintCheck(True)
+
+
+def _sides(group: Group, shape: tuple[int, int]) -> int:
+    """How many sides of the image the group's box reaches (within 1 %)."""
+    h, w = shape
+    mr, mc = max(1, h // 100), max(1, w // 100)
+    return sum(
+        (
+            group.rows.start <= mr,
+            group.rows.stop >= h - mr,
+            group.cols.start <= mc,
+            group.cols.stop >= w - mc,
+        )
+    )
+
+
+def group_blobs(mask, *, mm_per_px: float, options: AnalysisOptions | None = None) -> list[Group]:
+    """Group a sheet's ink into candidate prints (the footprint rule; marks set aside).
+
+    Parameters
+    ----------
+    mask : (rows, cols) bool
+        Ink of the sheet.
+    mm_per_px : float [mm / px]
+    options : AnalysisOptions, optional
+        Grouping and mark thresholds (defaults when None).
+
+    Returns
+    -------
+    list of Group
+        Top to bottom (by the box's centre row), then left to right.
+    """
+    from .marks import sort_ink
+
+    return sort_ink(mask, mm_per_px=mm_per_px, options=options).groups
 
 
 @dataclass(frozen=True)
@@ -213,19 +421,35 @@ def _blobs(group: Group, darkness, mm_per_px: float) -> _Blobs:
     return _Blobs(lab, areas, cent[1:], peak[1:])
 
 
-def _core_distance(blobs: _Blobs, core: np.ndarray) -> np.ndarray:
-    """Signed distance [px] of each blob's centroid to the convex hull of the core
-    blobs (< 0 outside)."""
+def _outside_core(blobs: _Blobs, core_mask: np.ndarray) -> np.ndarray:
+    """Whether each blob's centroid lies outside the convex hull of the core."""
     import cv2
 
-    core_mask = np.concatenate([[False], core])[blobs.labels].astype(np.uint8)
-    core_pts = np.concatenate(
-        cv2.findContours(core_mask, cv2.RETR_EXTERNAL, cv2.CHAIN_APPROX_SIMPLE)[0]
-    )
-    hull = cv2.convexHull(core_pts)
+    pts = cv2.findNonZero(core_mask.astype(np.uint8))
+    hull = cv2.convexHull(pts)
     return np.array(
-        [cv2.pointPolygonTest(hull, (float(x), float(y)), True) for x, y in blobs.centroids]
+        [cv2.pointPolygonTest(hull, (float(x), float(y)), False) < 0 for x, y in blobs.centroids]
     )
+
+
+def _core_gaps(blobs: _Blobs, core_mask: np.ndarray) -> tuple:
+    """Gap [px] from every blob to the nearest core blob, and the core's own tread
+    gap [px]: the median over core blobs of the gap to their nearest core neighbour
+    (0 for a one-blob core)."""
+    import cv2
+
+    dt = cv2.distanceTransform((~core_mask).astype(np.uint8), cv2.DIST_L2, 3)
+    ink = blobs.labels > 0
+    gaps = np.full(len(blobs.areas) + 1, np.inf)
+    np.minimum.at(gaps, blobs.labels[ink], dt[ink])
+    n_core, lab = cv2.connectedComponents(core_mask.astype(np.uint8), connectivity=8)
+    if n_core <= 2:
+        return gaps[1:], 0.0
+    graph = element_graph(lab, n_core - 1, px_mm=1.0)
+    nearest = np.full(n_core - 1, np.inf)
+    np.minimum.at(nearest, graph.a, graph.gaps)
+    np.minimum.at(nearest, graph.b, graph.gaps)
+    return gaps[1:], float(np.median(nearest[np.isfinite(nearest)]))
 
 
 def edge_spots(
@@ -260,8 +484,27 @@ def edge_spots(
     core = large & ~faint
     if not core.any():
         core = large
-    dist_mm = px_to_mm_length(_core_distance(blobs, core), mm_per_px)
-    isolated = (blobs.areas < opts.edge_spot_area_mm2) & (-dist_mm > opts.edge_spot_distance_mm)
-    spot = (dist_mm < 0) & (faint | isolated)
+    core_mask = np.concatenate([[False], core])[blobs.labels]
+    outside = _outside_core(blobs, core_mask) & ~core
+    small = outside & ~faint & (blobs.areas < opts.edge_spot_area_mm2)
+    gaps, pattern = _core_gaps(blobs, core_mask)
+    reach = max(mm_to_px_length(opts.edge_spot_distance_mm, mm_per_px), 1.5 * pattern)
+    spot = outside & (faint | (small & (gaps > reach)))
     is_spot = np.concatenate([[False], spot])[blobs.labels]
     return EdgeSpots(group.mask & ~is_spot, n_blobs, int(spot.sum()), int(is_spot.sum()))
+
+
+__all__ = [
+    "PATTERN_REACH",
+    "EdgeSpots",
+    "ElementGraph",
+    "Group",
+    "PrintCheck",
+    "edge_spots",
+    "element_graph",
+    "group_blobs",
+    "is_print",
+    "linked_edges",
+    "merge_overlapping",
+    "union_labels",
+]

@@ -109,8 +109,9 @@ class AnalysisOptions:
         A thin mark this long, mostly outside the prints, is a line, gridlines or
         writing, and is set aside (never merged into a print).
     mark_overhang_mm : float [mm]
-        A thin mark reaching farther than this out of a print's outline (a label
-        touching the print) is set aside; nearer, it is the print's own edge.
+        A thin piece of ink reaching farther than this out of a print's outline (a
+        label touching the print, a ruler's tick) is set aside; nearer, it is the
+        print's own edge (see :mod:`inkprint.marks`).
     edge_spot_area_mm2 : float [mm^2]
         Section 7.1.1 rule: blobs at least this large (and dark) form the print's
         core.
@@ -162,7 +163,7 @@ class AnalysisOptions:
     speck_area_mm2: float = 0.05
     stroke_width_mm: float = 0.9
     line_length_mm: float = 12.0
-    mark_overhang_mm: float = 2.0
+    mark_overhang_mm: float = 1.0
     edge_spot_area_mm2: float = 1.5
     edge_spot_faintness: float = 0.6
     edge_spot_distance_mm: float = 2.0

@@ -193,7 +193,7 @@ def _touching_label(rng, spec: PrintSpec) -> Text:
     """A pen label whose letters touch the top of the print."""
     text = str(rng.choice(["T5 4BAR", "MAXXIS 6.9", "A3 400N", "PLATE 5"]))
     height = float(rng.uniform(3, 5))
-    t = Text(text, (0.0, 0.0), height, float(rng.uniform(0.3, 0.6)), float(rng.uniform(0.7, 0.9)))
+    t = Text(text, (0.0, 0.0), height, float(rng.uniform(0.25, 0.45)), float(rng.uniform(0.7, 0.9)))
     w, _ = text_extent(t)
     x, y = _top_point(spec)
     return Text(text, (x - rng.uniform(0.2, 0.8) * w, y - 0.3), height, t.stroke, t.darkness)

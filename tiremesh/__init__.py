@@ -11,6 +11,8 @@ Surfaces      : Surface, SurfaceBase, Flat, Drum, Disk, parse_surface, register_
 Cross section : solve_sections, SectionSolution
 Whole tire    : solve, solve_patch, find_sinkage, max_load, solve_many, ContactPatch
 Lateral       : solve_lateral, LateralResult, stiffnesses
+Relations     : fit_relations, evaluate_relation, write_relations, read_relations, Relation
+                (closed-form fits to dense sweeps, docs/relations.md)
 Errors        : TireModelError, InvalidParameter, LoadTooHigh, ModelLimit (RimBottoms,
                 BulgeLimit, PatchEndLimit), NoContact, NotConverged
 Tolerances    : tol (numerical epsilons only)
@@ -39,6 +41,7 @@ from .errors import (
 )
 from .geometry import TireGeometry
 from .lateral import LateralResult, solve_lateral, stiffnesses
+from .relations import Relation, evaluate_relation, fit_relations, read_relations, write_relations
 from .section import SectionSolution, solve_sections
 from .solver import ContactPatch, find_sinkage, max_load, solve, solve_many, solve_patch
 from .surface import Disk, Drum, Flat, Surface, SurfaceBase, parse_surface, register_surface
@@ -60,6 +63,7 @@ __all__ = [
     "NoContact",
     "NotConverged",
     "PatchEndLimit",
+    "Relation",
     "Relaxation",
     "RimBottoms",
     "SectionSolution",
@@ -67,12 +71,15 @@ __all__ = [
     "SurfaceBase",
     "TireGeometry",
     "TireModelError",
+    "evaluate_relation",
     "find_sinkage",
     "find_tire",
+    "fit_relations",
     "get_tire",
     "load_catalog",
     "max_load",
     "parse_surface",
+    "read_relations",
     "register_surface",
     "solve",
     "solve_lateral",
@@ -81,4 +88,5 @@ __all__ = [
     "solve_sections",
     "stiffnesses",
     "tol",
+    "write_relations",
 ]

@@ -38,6 +38,7 @@ from .units import MPA_PER_BAR
 
 SLIP_KINEMATICS = ("leading", "centre")
 FRICTION_MODELS = ("coulomb", "appendix")
+FORCE_CONVENTIONS = ("ground", "appendix")
 MAX_SECTIONS = 20001
 
 
@@ -127,6 +128,14 @@ class LoadCase:
         How a slip angle displaces the tread (module docstring).
     n_beyond : int
         Sections beyond each patch end in :func:`solve_lateral`, 9 .. 20001.
+    force_convention : {'ground', 'appendix'}
+        Length element of the lateral-force integrals (equation 5-25). ``'ground'``
+        (default): the true ground length of each slice (the path of the contact
+        segment's midpoint on the surface) in the patch, and arc length along the
+        carcass beyond it, to where the displacement has decayed. ``'appendix'``:
+        Appendix C's ``dy`` = ``d[(R - dv) sin phi]`` in the patch and
+        ``R d(sin phi)`` beyond it, up to its last slice angle of 15 degrees
+        (``docs/model.md``: -1.8 % camber thrust at 45 degrees for ``'ground'``).
     friction_model : {'coulomb', 'appendix'}
         ``'coulomb'``: a sliding section's ground reaction is exactly ``mu dN``, so
         ``|Fy| <= mu Fz`` always; ``'appendix'``: Appendix C's iteration, where
@@ -155,6 +164,7 @@ class LoadCase:
     slip_kinematics: str = "leading"
     n_beyond: int = 129
     friction_model: str = "coulomb"
+    force_convention: str = "ground"
 
     def __post_init__(self) -> None:
         if not isinstance(self.tire, TireGeometry):
@@ -184,6 +194,10 @@ class LoadCase:
         if self.slip_kinematics not in SLIP_KINEMATICS:
             raise InvalidParameter(
                 "slip_kinematics", self.slip_kinematics, "'leading' or 'centre'"
+            )
+        if self.force_convention not in FORCE_CONVENTIONS:
+            raise InvalidParameter(
+                "force_convention", self.force_convention, "'ground' or 'appendix'"
             )
         if self.friction_model not in FRICTION_MODELS:
             raise InvalidParameter(
@@ -252,6 +266,7 @@ class LoadCase:
             "surface": self.surface.spec,
             "friction": self.friction,
             "slip_kinematics": self.slip_kinematics,
+            "force_convention": self.force_convention,
         }
 
 
@@ -299,6 +314,7 @@ class CaseTable:
     lateral : (m,) float [mm]
     surface : tuple of Surface, length m
     slip_kinematics : tuple of str, length m
+    force_convention : tuple of str, length m
     """
 
     tire_radius: np.ndarray
@@ -312,6 +328,7 @@ class CaseTable:
     lateral: np.ndarray
     surface: tuple
     slip_kinematics: tuple
+    force_convention: tuple = ()
 
     def __len__(self) -> int:
         return self.pressure.shape[0]
@@ -336,6 +353,7 @@ class CaseTable:
             lateral=col(lambda c: c.lateral),
             surface=tuple(c.surface for c in cases),
             slip_kinematics=tuple(c.slip_kinematics for c in cases),
+            force_convention=tuple(c.force_convention for c in cases),
         )
 
     @classmethod
@@ -352,7 +370,8 @@ class CaseTable:
         lateral=0.0,
         bead_seat_diameter=622.0,
         surface: Surface | Sequence[Surface] = Flat(),
-        slip_kinematics: str = "centre",
+        slip_kinematics: str = "leading",
+        force_convention: str = "ground",
     ) -> CaseTable:
         """Columns broadcast together like numpy (scalars repeat), validated per column.
 
@@ -377,6 +396,8 @@ class CaseTable:
             f = np.full(np.shape(dw), np.nan)
         if slip_kinematics not in SLIP_KINEMATICS:
             raise InvalidParameter("slip_kinematics", slip_kinematics, "'leading' or 'centre'")
+        if force_convention not in FORCE_CONVENTIONS:
+            raise InvalidParameter("force_convention", force_convention, "'ground' or 'appendix'")
         many = isinstance(surface, list | tuple)
         n_surf = len(surface) if many else 1
         try:
@@ -392,7 +413,10 @@ class CaseTable:
         if np.any(cols[1] >= 2 * cols[0]):
             raise InvalidParameter("rim_width", float(np.max(cols[1])), "< 2 x tire_radius [mm]")
         return cls(
-            *cols, tuple(surfaces * (m if len(surfaces) == 1 else 1)), (slip_kinematics,) * m
+            *cols,
+            tuple(surfaces * (m if len(surfaces) == 1 else 1)),
+            (slip_kinematics,) * m,
+            (force_convention,) * m,
         )
 
     def take(self, index) -> CaseTable:
@@ -407,4 +431,11 @@ class CaseTable:
         )
 
 
-__all__ = ["FRICTION_MODELS", "SLIP_KINEMATICS", "CaseTable", "LoadCase", "Relaxation"]
+__all__ = [
+    "FORCE_CONVENTIONS",
+    "FRICTION_MODELS",
+    "SLIP_KINEMATICS",
+    "CaseTable",
+    "LoadCase",
+    "Relaxation",
+]

@@ -723,8 +723,33 @@ def _common_options() -> argparse.ArgumentParser:
     return p
 
 
+def _add_relations(sub, common) -> None:
+    p = sub.add_parser(
+        "relations",
+        parents=[common],
+        help="regenerate the closed-form relations fitted to dense model sweeps (8.2.2.1)",
+    )
+    p.add_argument("-o", "--output", required=True, metavar="DIR", help="output folder")
+    p.add_argument(
+        "--cases", type=_int_at_least(1000), default=100_000, help="cases swept (default 100000)"
+    )
+    p.add_argument("--seed", type=int, default=0, help="random seed of the sweep (default 0)")
+    p.set_defaults(func=_cmd_relations)
+
+
+def _cmd_relations(a: argparse.Namespace) -> int:
+    from .relations import write_relations
+
+    paths = write_relations(a.output, n_cases=a.cases, seed=a.seed)
+    if _verbosity(a) >= 0:
+        for path in paths:
+            print(path)
+    return EXIT_OK
+
+
 def build_parser() -> argparse.ArgumentParser:
-    """The ``tiremesh`` argument parser: subcommands solve, sweep, mesh, render, section.
+    """The ``tiremesh`` argument parser: subcommands solve, sweep, mesh, render, section,
+    relations.
 
     Returns
     -------
@@ -744,7 +769,7 @@ def build_parser() -> argparse.ArgumentParser:
     )
     parser.add_argument("--version", action="version", version=f"%(prog)s {__version__}")
     sub = parser.add_subparsers(dest="command", required=True)
-    for add in (_add_solve, _add_sweep, _add_mesh, _add_render, _add_section):
+    for add in (_add_solve, _add_sweep, _add_mesh, _add_render, _add_section, _add_relations):
         add(sub, common)
     return parser
 

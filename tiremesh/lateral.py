@@ -119,6 +119,7 @@ class LateralResult:
 
     @property
     def net_force_orientation(self) -> float:
+        """Angle of the ground reaction from the vertical, ``atan2(Fy, Fz)`` [rad]."""
         return float(math.atan2(self.lateral_force, self.vertical_force))
 
     @property
@@ -141,8 +142,25 @@ class LateralResult:
 
 
 def section_forces(patch: ContactPatch, dv, dh):
-    """Lateral and vertical force per length, ``dS = p (r1 - r2)`` (equation 5-25) and
-    ``dN = p max(e2 - e1, 0)`` (equation 5-26), of sections at (dv, dh) [mm] [N/mm]."""
+    """Lateral and vertical force per length of Rotta sections at (dv, dh):
+    ``dS = p (r1 - r2)`` (equation 5-25) and ``dN = p max(e2 - e1, 0)`` (equation 5-26).
+
+    Parameters
+    ----------
+    patch : ContactPatch
+        Gives the tire, the pressure [N/mm^2] and the camber [rad].
+    dv, dh : (n,) float [mm]
+        Vertical and lateral section displacement (any broadcastable shapes).
+
+    Returns
+    -------
+    dS, dN : (n,) float [N/mm]
+
+    Raises
+    ------
+    InvalidParameter
+        A section leaves Rotta's construction (bead at the ground, or ``c <= 0``).
+    """
     t = patch.tire
     sol, bad_h, bad_c = section_arrays(
         t.tire_radius, t.rim_width, dv, dh, camber=patch.camber, delta=t.tire_radius * patch.camber
@@ -157,7 +175,19 @@ def section_forces(patch: ContactPatch, dv, dh):
 
 def zero_force_displacement(patch: ContactPatch, dv) -> np.ndarray:
     """Lateral displacement at which a section at ``dv`` carries no lateral force
-    (``r1 = r2``): 0 without camber, opposite to the lean with camber [mm]."""
+    (``r1 = r2``): 0 without camber, opposite to the lean with camber. Solved per
+    section by bracketed Newton within ``+-r0 / 2``.
+
+    Parameters
+    ----------
+    patch : ContactPatch
+    dv : (n,) float [mm]
+        Vertical section displacement.
+
+    Returns
+    -------
+    (n,) float [mm]
+    """
     dv = np.asarray(dv, float)
     if patch.camber == 0:
         return np.zeros_like(dv)
@@ -182,8 +212,19 @@ def zero_force_displacement(patch: ContactPatch, dv) -> np.ndarray:
 
 @dataclass(frozen=True)
 class BeyondSide:
-    """Sections beyond one patch end (equation 5-28): distance from the end, displacements,
-    lateral force per length and quadrature weights, each (k,)."""
+    """Sections beyond one patch end (equation 5-28), from the end outward.
+
+    Attributes
+    ----------
+    s : (k,) float [mm]
+        Distance from the patch end along the wheel.
+    dv, dh : (k,) float [mm]
+        Vertical and lateral section displacement.
+    dS : (k,) float [N/mm]
+        Lateral force per length (equation 5-25).
+    weights : (k,) float [mm]
+        Quadrature weights over ``s``.
+    """
 
     s: np.ndarray
     dv: np.ndarray
@@ -197,35 +238,104 @@ class BeyondSide:
         return float(np.sum(self.weights * self.dS))
 
 
-def beyond_side(patch: ContactPatch, dv_end, dh_end, *, rate, n) -> BeyondSide:
+APPENDIX_LAST_SLICE = math.radians(15.0)
+"""Appendix C's last slice angle (``rip.last_slice_angle = 15*pi/180``)."""
+
+
+def beyond_side(patch: ContactPatch, dv_end, dh_end, *, rate, n, end=None) -> BeyondSide:
     """Sections beyond one patch end, displaced as the end section decayed by
-    ``exp((i - 1) s) = exp(-lambda s)``, ``lambda = 1 - i`` (equation 5-28), over 8 decay
-    lengths (equation 5-29; at most a quarter wheel)."""
+    ``exp((i - 1) s) = exp(-lambda s)``, ``lambda = 1 - i`` (equation 5-28).
+
+    With ``force_convention='ground'`` the sections cover 8 decay lengths of arc
+    along the carcass (equation 5-29; at most a quarter wheel) and the force is
+    integrated over that arc length. With ``'appendix'`` they run from the patch end
+    angle ``end`` to Appendix C's last slice angle (15 degrees) and the force is
+    integrated over ``R d(sin phi)``, as the appendix's ``dy`` beyond the patch.
+
+    Parameters
+    ----------
+    patch : ContactPatch
+    dv_end, dh_end : float [mm]
+        Vertical and lateral displacement of the end section.
+    rate : float [1/mm]
+        Relaxation rate ``i``, in [0, 1).
+    n : int
+        Clenshaw-Curtis nodes over the span.
+    end : float [rad], optional
+        Angle of the patch end (``'appendix'`` convention only; its sign says which end).
+
+    Returns
+    -------
+    BeyondSide
+        ``n`` sections; one zero section (zero weight) when there is no span.
+    """
+    zero = BeyondSide(*(np.zeros(1),) * 5)
     ell = Relaxation.decay_length(rate) if rate > 0 else 0.0
-    span = min(8.0 * ell, 0.5 * math.pi * patch.tire.wheel_radius) if ell > 0 else 0.0
-    if span <= 0:
-        z = np.zeros(1)
-        return BeyondSide(z, z, z, z, z)
+    R = patch.tire.wheel_radius
     t, w = clenshaw_curtis(n)
-    s = 0.5 * span * (t + 1.0)
+    if patch.case.force_convention == "appendix":
+        a = abs(end)
+        if ell <= 0 or a >= APPENDIX_LAST_SLICE:
+            return zero
+        phi = a + 0.5 * (APPENDIX_LAST_SLICE - a) * (t + 1.0)
+        s = R * (phi - a)
+        weights = 0.5 * (APPENDIX_LAST_SLICE - a) * w * R * np.cos(phi)
+    else:
+        span = min(8.0 * ell, 0.5 * math.pi * R) if ell > 0 else 0.0
+        if span <= 0:
+            return zero
+        s = 0.5 * span * (t + 1.0)
+        weights = 0.5 * span * w
     e = np.exp((rate - 1.0) * s)  # Eq. 5-28
     dv, dh = dv_end * e, dh_end * e
     dS, _ = section_forces(patch, dv, dh)
-    return BeyondSide(s, dv, dh, dS, 0.5 * span * w)
+    return BeyondSide(s, dv, dh, dS, weights)
 
 
 def beyond_both(patch: ContactPatch, dv, dh, *, relax: Relaxation, n: int):
-    """(trailing, leading) :class:`BeyondSide` for patch displacements ``dh``."""
+    """(trailing, leading) :class:`BeyondSide` continuing the patch's end sections.
+
+    Parameters
+    ----------
+    patch : ContactPatch
+    dv, dh : (n,) float [mm]
+        Patch section displacements, trailing to leading (the end values are used).
+    relax : Relaxation
+        Its ``trail_out`` and ``lead_out`` rates [1/mm] apply.
+    n : int
+        Clenshaw-Curtis nodes per side.
+
+    Returns
+    -------
+    (BeyondSide, BeyondSide)
+    """
     return (
-        beyond_side(patch, dv[0], dh[0], rate=relax.trail_out, n=n),
-        beyond_side(patch, dv[-1], dh[-1], rate=relax.lead_out, n=n),
+        beyond_side(patch, dv[0], dh[0], rate=relax.trail_out, n=n, end=patch.phi_ends[0]),
+        beyond_side(patch, dv[-1], dh[-1], rate=relax.lead_out, n=n, end=patch.phi_ends[1]),
     )
 
 
 def slide(u, sliding, x, relax: Relaxation) -> np.ndarray:
     """Sliding step of section 5.6: a sliding section follows its nearest gripping
     neighbour toward the patch centre, decayed at the inner relaxation rate
-    (Appendix C limits a section's slide by its neighbour's)."""
+    (Appendix C limits a section's slide by its neighbour's).
+
+    Parameters
+    ----------
+    u : (n,) float [mm]
+        Section displacement relative to the zero-force displacement.
+    sliding : (n,) bool
+    x : (n,) float [mm]
+        Forward section position: ``x >= 0`` slides at ``lead_in``, the rest at
+        ``trail_in``.
+    relax : Relaxation
+
+    Returns
+    -------
+    (n,) float [mm]
+        ``u`` where gripping; where sliding, the gripping neighbour's ``u`` times
+        ``exp((i - 1) |x - x_neighbour|)``, or 0 if no section toward the centre grips.
+    """
     front = x >= 0.0
     u_new = u.copy()
     orders = (np.nonzero(front)[0], np.nonzero(~front)[0][::-1])  # centre -> out
@@ -416,9 +526,18 @@ def appendix_friction(patch: ContactPatch, case: LoadCase) -> FrictionState:
 
 
 def relaxation_length(side: BeyondSide) -> float:
-    """Distance [mm] over which the lateral displacement beyond an end falls to 1/e
-    of its value at the end (the decay length of equation 5-29, measured),
-    interpolated in log; NaN if it never does."""
+    """Distance over which the lateral displacement beyond an end falls to 1/e of its
+    value at the end (the decay length of equation 5-29, measured), interpolated in log.
+
+    Parameters
+    ----------
+    side : BeyondSide
+
+    Returns
+    -------
+    float [mm]
+        NaN if it never falls to 1/e (or is 0 at the end).
+    """
     s_b, dh_b = side.s, side.dh
     if not (abs(dh_b[0]) > 0 and np.any(np.abs(dh_b) <= abs(dh_b[0]) / math.e)):
         return math.nan
@@ -484,11 +603,21 @@ def _assemble(patch: ContactPatch, st: FrictionState) -> LateralResult:
 
 
 def tangent_rule(camber_deg):
-    """Normalized camber stiffness of the tangent rule, ``tan(theta) / theta`` [1/deg]
-    (Eq. 2-5): the net ground reaction in the wheel plane. The dissertation's
+    """Normalized camber stiffness of the tangent rule, ``tan(theta) / theta``
+    (equation 2-5): the net ground reaction in the wheel plane. The dissertation's
     small-angle approximation ``tan(1 deg)`` = 0.017455 /deg is the value at 1 degree
     (the limit at 0 is pi/180 = 0.017453); the approximation is about 21 % too low
-    at 45 degrees."""
+    at 45 degrees.
+
+    Parameters
+    ----------
+    camber_deg : float or (...) float [deg]
+
+    Returns
+    -------
+    (...) float [1/deg]
+        ``pi / 180`` where the camber is 0.
+    """
     t = np.asarray(camber_deg, float)
     with np.errstate(divide="ignore", invalid="ignore"):
         out = np.tan(np.radians(t)) / t
@@ -498,10 +627,24 @@ def tangent_rule(camber_deg):
 def stiffnesses(result) -> dict:
     """Secant stiffnesses of a solved case (Appendix C ``norm_*_stiffness``).
 
-    Lateral ``Fy / lateral`` [N/mm], cornering ``Fy / slip`` [N/deg], camber
+    Lateral ``Fy / lateral`` [N/mm], cornering ``-Fy / slip`` [N/deg], camber
     ``Fy / camber`` [N/deg], each also normalized by the vertical load; for camber
-    the tangent-rule value (Eq. 2-5), the agreement ratio and the camber-thrust
+    the tangent-rule value (equation 2-5), the agreement ratio and the camber-thrust
     deficiency ``1 - agreement`` (negative: a surplus, section 6.1.4).
+
+    Parameters
+    ----------
+    result : LateralResult or ContactPatch
+        Its ``lateral_force`` and ``vertical_force`` [N] are used.
+
+    Returns
+    -------
+    dict of str -> float
+        Only for the non-zero inputs: ``lateral_stiffness_N_mm``,
+        ``norm_lateral_stiffness_1_mm`` (lateral); ``cornering_stiffness_N_deg``,
+        ``norm_cornering_stiffness_1_deg`` (slip); ``camber_stiffness_N_deg``,
+        ``norm_camber_stiffness_1_deg``, ``tangent_rule_1_deg``,
+        ``tangent_rule_agreement``, ``camber_thrust_deficiency`` (camber).
     """
     p = result.patch if isinstance(result, LateralResult) else result
     fy, fz = result.lateral_force, result.vertical_force

@@ -1,4 +1,4 @@
-"""Off-screen renders of the deformed tire (pyvista, no display needed).
+"""Off-screen renders of the deformed tire (VTK, no display needed).
 
 Views: ``iso`` (front quarter, from slightly below through the ground grid, so the
 contact patch and a bulge show), ``side`` (along the axle), ``front`` (against the
@@ -14,6 +14,10 @@ in the model's lower-left corner and a ruler gives the length scale in mm.
 The format follows the output's suffix: PNG, JPEG, TIFF (raster) or PDF, SVG, EPS
 (vector, through VTK's GL2PS exporter: text and lines as vectors, the shaded tire
 as an embedded raster).
+
+The scene is built with plain VTK (:mod:`tiremesh.vtkscene`), which imports several
+times faster than pyvista; :func:`to_polydata` still gives the mesh as a pyvista
+surface for interactive use.
 """
 
 from __future__ import annotations
@@ -25,6 +29,7 @@ from pathlib import Path
 import numpy as np
 
 from . import validate as v
+from . import vtkscene as vs
 from .case import LoadCase
 from .errors import InvalidParameter
 from .mesh import TireMesh, build_mesh, rim_mesh, support_mesh
@@ -82,7 +87,7 @@ class ViewCamera:
     scale: float
 
     def position(self, distance: float):
-        """``[position, focal point, view up]`` for pyvista, ``distance`` mm away."""
+        """``[position, focal point, view up]``, ``distance`` mm from the focal point."""
         az, el = math.radians(self.azimuth), math.radians(self.elevation)
         d = np.array([math.cos(el) * math.cos(az), math.cos(el) * math.sin(az), math.sin(el)])
         up = (0.0, 0.0, 1.0)
@@ -163,13 +168,6 @@ def to_polydata(tire_mesh: TireMesh):
     return poly
 
 
-def _trimesh_to_pv(mesh):
-    import pyvista as pv
-
-    faces = np.column_stack([np.full(len(mesh.faces), 3), mesh.faces])
-    return pv.PolyData(np.asarray(mesh.vertices, float), faces.ravel())
-
-
 def view_camera(view: str, tire_mesh: TireMesh) -> ViewCamera:
     """The default camera of a view, framed on the tire and its patch.
 
@@ -231,11 +229,11 @@ def render(
         Look at the view's focal point from ``azimuth`` [deg] (seen from above, from
         the forward axis ``+x`` toward ``+y``; 0 = from the front, 90 = from the
         ``+y`` side) and ``elevation`` [deg] (above the ground; negative: from below,
-        through the ground), magnified by ``zoom`` (1: the view's framing). A
-        pyvista camera position ``[position, focal point, view up]`` is accepted too.
+        through the ground), magnified by ``zoom`` (1: the view's framing). A camera
+        position ``[position, focal point, view up]`` (perspective) is accepted too.
     background : color
-        Any pyvista colour (``'white'``, ``'black'``, ``'#202020'``, an RGB tuple);
-        the text turns white on a dark background.
+        A colour name (``'white'``, ``'black'``, ``'lightgray'``), ``'#rrggbb'`` or an
+        RGB triple (0-1 or 0-255); the text turns white on a dark background.
     title : bool
         Title block: tire, rim, pressure [bar], load, camber, slip, surface.
     show_surface, show_rim, scalar_bar, ruler, axes : bool
@@ -257,17 +255,18 @@ def render(
     """
     fmt = None if path is None else output_format(path)
     opts = _check_options(view, scalars, size, camera)
+    bg = vs.parse_colour(background)
     _headless()
     if not isinstance(tire_mesh, TireMesh):
         tire_mesh = build_mesh(tire_mesh)
     parts = dict(surface=show_surface, rim=show_rim, bar=scalar_bar, ruler=ruler, axes=axes)
-    pl = _scene(tire_mesh, opts, background, title, cmap, parts)
+    win = _scene(tire_mesh, opts, bg, title, cmap, parts)
     try:
-        image = pl.screenshot(return_img=True)
+        image = win.screenshot()
         if path is not None and fmt is None:
-            _save_vector(pl, path)
+            _save_vector(win, path)
     finally:
-        pl.close()
+        win.close()
     if path is not None and fmt is not None:
         _write_image(path, image, fmt)
     return image
@@ -291,52 +290,68 @@ def _check_options(view, scalars, size, camera) -> _Options:
     return _Options(view, scalars, (w, h), _check_camera(camera))
 
 
-def _scene(tire_mesh: TireMesh, o: _Options, background, title: bool, cmap, parts: dict):
-    """The plotter with the tire, surface, rim, overlays and camera set."""
-    import pyvista as pv
-
+def _scene(tire_mesh: TireMesh, o: _Options, bg, title: bool, cmap, parts: dict):
+    """The window with the tire, surface, rim, overlays and camera set."""
     w, h = o.size
-    pl = pv.Plotter(off_screen=True, window_size=(w, h))
+    win = vs.Window(o.size, bg)
     try:
-        pl.set_background(background)
-        ink = _ink(pl.background_color)
+        ink = _ink(bg)
         top = TITLE_FRACTION if title else 0.0
         right = BAR_FRACTION if parts["bar"] else 0.0
-        pl.renderer.SetViewport(0.0, 0.0, 1.0 - right, 1.0 - top)
+        ren = win.renderer((0.0, 0.0, 1.0 - right, 1.0 - top), lights=True)
         # the front view is cut at the central section: the edge is the Rotta section
         cut = o.view == "front" and not isinstance(o.camera, list)
-        poly = _cut(to_polydata(tire_mesh), cut)
-        colour = _add_tire(pl, poly, o.scalars, cmap)
-        if cut:
-            section = to_polydata(tire_mesh).slice(normal="x", origin=(0.0, 0.0, 0.0))
-            pl.add_mesh(section, color=ink, line_width=3)
+        poly = _cut(_tire_polydata(tire_mesh), cut)
+        colour = _add_tire(ren, poly, o.scalars, cmap)
+        if cut:  # the section line, just in front of the cut (no z-fighting)
+            section = vs.actor(vs.slice_x(poly), colour=ink, line_width=3)
+            section.SetPosition(0.3, 0.0, 0.0)
+            ren.AddActor(section)
         below = _from_below(o, tire_mesh)
         if parts["surface"]:
-            _add_surface(pl, tire_mesh, grid=below)
-        _add_patch_outline(pl, tire_mesh, lifted=-0.2 if below else 0.2)
+            _add_surface(ren, tire_mesh, grid=below)
+        _add_patch_outline(ren, tire_mesh, lifted=-0.2 if below else 0.2)
         if parts["rim"]:
-            rim = _cut(_trimesh_to_pv(rim_mesh(tire_mesh)), cut)
-            pl.add_mesh(rim, color=RIM_COLOR, metallic=0.5)
+            rim = _cut(_trimesh_vtk(rim_mesh(tire_mesh)), cut)
+            ren.AddActor(vs.actor(rim, colour=RIM_COLOR))
         if parts["ruler"]:
-            _add_ruler(pl, tire_mesh, o.view, ink)
-        _set_camera(pl, o.camera, o.view, tire_mesh)
+            _add_ruler(ren, tire_mesh, o.view, ink, max(8, round(h / 50)))
+        _set_camera(ren, o.camera, o.view, tire_mesh)
         if title:
-            _overlay_title(pl, title_lines(tire_mesh), (0.0, 1.0 - top, 1.0, 1.0), ink, h)
+            _overlay_title(win, title_lines(tire_mesh), (0.0, 1.0 - top, 1.0, 1.0), ink, h)
         if parts["bar"]:
-            _overlay_bar(pl, o.scalars, colour, (1.0 - right, 0.0, 1.0, 1.0 - top), ink, h)
+            _overlay_bar(win, o.scalars, colour, (1.0 - right, 0.0, 1.0, 1.0 - top), ink, h)
         if parts["axes"]:
-            _overlay_triad(pl, (0.0, 0.0, 0.13 * h / w * 1.33, 0.17 * (1 - top)), ink)
+            box = (0.0, 0.0, 0.13 * h / w * 1.33, 0.17 * (1 - top))
+            _overlay_triad(win, ren, box, ink, max(8, round(h / 55)))
     except BaseException:
-        pl.close()
+        win.close()
         raise
-    return pl
+    return win
+
+
+def _tire_polydata(tire_mesh: TireMesh):
+    """The tire as ``vtkPolyData`` with the arrays of :func:`to_polydata`."""
+    m = tire_mesh.mesh
+    bar = tire_mesh.patch.pressure / MPA_PER_BAR
+    return vs.polydata(
+        m.vertices,
+        m.faces,
+        point_data={k: np.asarray(a, float) for k, a in tire_mesh.point_data.items()},
+        cell_data={
+            "contact": tire_mesh.face_contact.astype(float),
+            "contact_pressure": tire_mesh.face_contact * bar,
+        },
+    )
+
+
+def _trimesh_vtk(mesh):
+    return vs.polydata(mesh.vertices, mesh.faces)
 
 
 def _cut(poly, cut: bool):
     """The part behind the central section (x <= 0) when ``cut``."""
-    if not cut:
-        return poly
-    return poly.clip(normal=(1.0, 0.0, 0.0), origin=(0.0, 0.0, 0.0), invert=True)
+    return vs.clip_x(poly) if cut else poly
 
 
 def _from_below(o: _Options, tire_mesh: TireMesh) -> bool:
@@ -431,41 +446,43 @@ def nice_ticks(lo: float, hi: float, n: int = 6):
     return (float(a), float(b)), ticks, decimals
 
 
-def _add_tire(pl, poly, scalars: str, cmap: str):
-    """The tire coloured by ``scalars`` over a rounded range; returns its lookup
-    table and the ``ticks, decimals`` of :func:`nice_ticks`."""
+def _add_tire(ren, poly, scalars: str, cmap: str):
+    """The tire coloured by ``scalars`` over a rounded range, its inside (seen
+    through a cut) grey; returns the lookup table and the ``ticks, decimals`` of
+    :func:`nice_ticks`."""
+    from vtkmodules.util.numpy_support import vtk_to_numpy
+
     cell = scalars in ("contact", "contact_pressure")
-    data = np.asarray(poly.cell_data[scalars] if cell else poly.point_data[scalars])
-    lo = 0.0 if scalars in ("contact_pressure", "contact") else float(data.min())
-    (lo, hi), ticks, decimals = nice_ticks(lo, float(data.max()))
-    actor = pl.add_mesh(
-        poly,
-        scalars=scalars,
-        preference="cell" if cell else "point",
-        cmap=cmap,
-        clim=(lo, hi),
-        smooth_shading=True,
-        show_scalar_bar=False,
-        specular=0.2,
-    )
-    actor.mapper.scalar_range = (lo, hi)
-    actor.prop.culling = "back"  # the outside coloured; the inside (seen through
-    pl.add_mesh(poly, color=INSIDE_COLOR, culling="front", smooth_shading=True)  # a cut) grey
-    return actor.mapper.lookup_table, ticks, decimals
+    data = poly.GetCellData() if cell else poly.GetPointData()
+    values = vtk_to_numpy(data.GetArray(scalars))
+    lo = 0.0 if cell else float(values.min())
+    (lo, hi), ticks, decimals = nice_ticks(lo, float(values.max()))
+    lut = vs.lookup_table(cmap, lo, hi)
+    smooth = vs.smooth_normals(poly)
+    outside = vs.scalar_actor(smooth, scalars, lut, cell=cell)
+    outside.GetProperty().BackfaceCullingOn()
+    outside.GetProperty().SetSpecular(0.2)
+    inside = vs.actor(smooth, colour=INSIDE_COLOR)
+    inside.GetProperty().FrontfaceCullingOn()
+    ren.AddActor(outside)
+    ren.AddActor(inside)
+    return lut, ticks, decimals
 
 
-def _add_surface(pl, tire_mesh: TireMesh, *, grid: bool) -> None:
+def _add_surface(ren, tire_mesh: TireMesh, *, grid: bool) -> None:
     """A solid slab, or (seen from below) the surface as a grid with its outline."""
     if not grid:
-        ground = _trimesh_to_pv(support_mesh(tire_mesh.patch, sink=0.3))
-        pl.add_mesh(ground, color=SURFACE_COLOR, smooth_shading=False)
+        slab = _trimesh_vtk(support_mesh(tire_mesh.patch, sink=0.3))
+        ren.AddActor(vs.actor(slab, colour=SURFACE_COLOR))
         return
-    pl.add_mesh(ground_grid(tire_mesh), color=GRID_COLOR, line_width=1, opacity=0.6)
+    a = vs.actor(vs.lines(ground_grid(tire_mesh)), colour=GRID_COLOR, line_width=1)
+    a.GetProperty().SetOpacity(0.6)
+    ren.AddActor(a)
 
 
-def ground_grid(tire_mesh: TireMesh, *, spacing: float = 10.0):
-    """The support surface under the tire as grid lines (``spacing`` mm apart) and an
-    outline, lying on the surface (a drum's lines follow its curve).
+def ground_grid(tire_mesh: TireMesh, *, spacing: float = 10.0) -> list[np.ndarray]:
+    """The support surface under the tire as grid lines ``spacing`` mm apart,
+    outline included, lying on the surface (a drum's lines follow its curve).
 
     Parameters
     ----------
@@ -474,80 +491,63 @@ def ground_grid(tire_mesh: TireMesh, *, spacing: float = 10.0):
 
     Returns
     -------
-    pyvista.PolyData
-        Line cells.
+    list of (k, 3) float [mm]
+        Polylines.
     """
-    import pyvista as pv
-
     p = tire_mesh.patch
     r0 = p.tire.tire_radius
     half_x = spacing * math.ceil((0.5 * p.length + 2.5 * r0) / spacing)
     half_y = spacing * math.ceil(2.5 * r0 / spacing)
-    xs = np.arange(-half_x, half_x + 0.5 * spacing, spacing)
-    ys = np.arange(-half_y, half_y + 0.5 * spacing, spacing)
-    s_fine = np.linspace(-half_x, half_x, 4 * len(xs))
-    pts, lines = [], []
+    s_fine = np.linspace(-half_x, half_x, 4 * round(2 * half_x / spacing) + 1)
 
-    def add(s, y):
+    def on_surface(s, y):
         x = p.surface.roll(s)
-        start = sum(len(q) for q in pts)
-        pts.append(np.column_stack([x, y, p.surface.height(x) - 0.05]))
-        lines.append(np.concatenate([[len(x)], start + np.arange(len(x))]))
+        return np.column_stack([x, y, p.surface.height(x) - 0.05])
 
-    for y in ys:
-        add(s_fine, np.full(len(s_fine), y))
-    for s in xs:
-        add(np.full(2, s), np.array([-half_y, half_y]))
-    return pv.PolyData(np.concatenate(pts), lines=np.concatenate(lines))
+    out = [
+        on_surface(s_fine, np.full(len(s_fine), y))
+        for y in np.arange(-half_y, half_y + 1e-9, spacing)
+    ]
+    out += [
+        on_surface(np.full(2, s), np.array([-half_y, half_y]))
+        for s in np.arange(-half_x, half_x + 1e-9, spacing)
+    ]
+    return out
 
 
-def _add_patch_outline(pl, tire_mesh: TireMesh, *, lifted: float) -> None:
+def _add_patch_outline(ren, tire_mesh: TireMesh, *, lifted: float) -> None:
     """The solver's patch outline on the surface, ``lifted`` mm toward the camera."""
-    import pyvista as pv
-
     p = tire_mesh.patch
     xy = p.outline
     x = p.surface.roll(xy[:, 0])
     pts = np.column_stack([x, xy[:, 1], p.surface.height(x) + lifted])
-    line = pv.PolyData(pts, lines=np.concatenate([[len(pts)], np.arange(len(pts))]))
-    pl.add_mesh(line, color=PATCH_COLOR, line_width=3)
+    ren.AddActor(vs.actor(vs.lines([pts]), colour=PATCH_COLOR, line_width=3))
 
 
-def _set_camera(pl, camera, view: str, tire_mesh: TireMesh) -> None:
+def _set_camera(ren, camera, view: str, tire_mesh: TireMesh) -> None:
+    cam = ren.GetActiveCamera()
     if isinstance(camera, list):
-        pl.camera_position = camera
-        return
-    c = view_camera(view, tire_mesh)
-    if camera is not None:
-        az, el, zoom = camera
-        c = ViewCamera(c.focal, az, el, c.scale / zoom)
-    pl.camera_position = c.position(8.0 * tire_mesh.patch.tire.wheel_radius)
-    pl.enable_parallel_projection()
-    pl.camera.parallel_scale = c.scale
-    pl.renderer.ResetCameraClippingRange()
-
-
-def _overlay_renderer(pl, viewport, layer: int = 0):
-    """A 2D renderer over part of the window, with the window's background."""
-    import vtk
-
-    ren = vtk.vtkRenderer()
-    ren.SetViewport(*viewport)
-    ren.SetBackground(*pl.background_color[:3])
-    ren.SetLayer(layer)
-    ren.InteractiveOff()
-    if layer:
-        ren.SetPreserveColorBuffer(1)
-        ren.SetPreserveDepthBuffer(0)
-        pl.ren_win.SetNumberOfLayers(max(pl.ren_win.GetNumberOfLayers(), layer + 1))
-    pl.ren_win.AddRenderer(ren)
-    return ren
+        position, focal, up = camera
+    else:
+        c = view_camera(view, tire_mesh)
+        if camera is not None:
+            az, el, zoom = camera
+            c = ViewCamera(c.focal, az, el, c.scale / zoom)
+        position, focal, up = c.position(8.0 * tire_mesh.patch.tire.wheel_radius)
+        cam.ParallelProjectionOn()
+        cam.SetParallelScale(c.scale)
+    cam.SetPosition(*position)
+    cam.SetFocalPoint(*focal)
+    cam.SetViewUp(*up)
+    if isinstance(camera, list):
+        ren.ResetCamera()
+    ren.ResetCameraClippingRange()
 
 
 def _text(ren, text: str, x: float, y: float, size: int, ink, *, bold=False, align="left"):
-    import vtk
+    from vtkmodules.vtkRenderingCore import vtkTextActor
 
-    t = vtk.vtkTextActor()
+    t = vtkTextActor()
     t.SetInput(text)
     prop = t.GetTextProperty()
     prop.SetFontSize(size)
@@ -562,8 +562,8 @@ def _text(ren, text: str, x: float, y: float, size: int, ink, *, bold=False, ali
     return t
 
 
-def _overlay_title(pl, lines: list[str], viewport, ink, h: int) -> None:
-    ren = _overlay_renderer(pl, viewport)
+def _overlay_title(win, lines: list[str], viewport, ink, h: int) -> None:
+    ren = win.renderer(viewport)
     n = len(lines)
     size = max(9, round(h * TITLE_FRACTION / (n + 1.6)))
     for i, line in enumerate(lines):
@@ -571,27 +571,28 @@ def _overlay_title(pl, lines: list[str], viewport, ink, h: int) -> None:
         _text(ren, line, 0.015, y, size if i else round(size * 1.1), ink, bold=i == 0)
 
 
-def _overlay_bar(pl, scalars: str, colour, viewport, ink, h: int) -> None:
+def _overlay_bar(win, scalars: str, colour, viewport, ink, h: int) -> None:
     """Vertical colour bar in its own column: label and unit on top, rounded ticks."""
     import textwrap
 
-    import vtk
+    from vtkmodules.vtkCommonCore import vtkDoubleArray
+    from vtkmodules.vtkRenderingAnnotation import vtkScalarBarActor
 
-    ren = _overlay_renderer(pl, viewport)
+    ren = win.renderer(viewport)
     label, unit = SCALARS[scalars]
     lines = textwrap.wrap(label, 12) + ([f"[{unit}]"] if unit else [])
-    col_px = (viewport[2] - viewport[0]) * pl.window_size[0]
+    col_px = (viewport[2] - viewport[0]) * win.size[0]
     # the label fits its column (a glyph is at most ~0.75 font sizes wide)
     size = max(6, min(round(h / 48), int(0.9 * col_px / (0.75 * max(map(len, lines))))))
     rows_h = (viewport[3] - viewport[1]) * h
     for i, line in enumerate(lines):
         _text(ren, line, 0.5, 0.97 - 1.3 * size * (i + 0.5) / rows_h, size, ink, align="center")
     lut, ticks, decimals = colour
-    bar = vtk.vtkScalarBarActor()
+    bar = vtkScalarBarActor()
     bar.SetLookupTable(lut)
     bar.SetOrientationToVertical()
     bar.SetNumberOfLabels(len(ticks))
-    labels = vtk.vtkDoubleArray()
+    labels = vtkDoubleArray()
     for t in ticks:
         labels.InsertNextValue(float(t))
     bar.SetUseCustomLabels(True)
@@ -614,13 +615,13 @@ def _overlay_bar(pl, scalars: str, colour, viewport, ink, h: int) -> None:
     ren.AddViewProp(bar)
 
 
-def _overlay_triad(pl, viewport, ink) -> None:
+def _overlay_triad(win, main, viewport, ink, font_size: int) -> None:
     """x / y / z arrows turning with the main camera (an orientation marker that
     needs no interactor)."""
-    import vtk
+    from vtkmodules.vtkRenderingAnnotation import vtkAxesActor
 
-    ren = _overlay_renderer(pl, viewport, layer=1)
-    axes = vtk.vtkAxesActor()
+    ren = win.renderer(viewport, layer=1)
+    axes = vtkAxesActor()
     axes.SetShaftTypeToCylinder()
     axes.SetTotalLength(1.0, 1.0, 1.0)
     axes.SetCylinderRadius(0.04)
@@ -637,22 +638,24 @@ def _overlay_triad(pl, viewport, ink) -> None:
         prop.SetItalic(False)
         prop.SetBold(True)
         cap.GetTextActor().SetTextScaleModeToNone()
-        prop.SetFontSize(14)
+        prop.SetFontSize(font_size)
     ren.AddActor(axes)
-    main = pl.camera
-    pos, focal = np.array(main.position), np.array(main.focal_point)
+    mc = main.GetActiveCamera()
+    pos, focal = np.array(mc.GetPosition()), np.array(mc.GetFocalPoint())
     d = (pos - focal) / np.linalg.norm(pos - focal)
     cam = ren.GetActiveCamera()
     cam.SetFocalPoint(0.4, 0.4, 0.4)
     cam.SetPosition(*(np.array([0.4, 0.4, 0.4]) + 6.0 * d))
-    cam.SetViewUp(*main.up)
+    cam.SetViewUp(*mc.GetViewUp())
     cam.ParallelProjectionOn()
     cam.SetParallelScale(1.05)
     ren.ResetCameraClippingRange()
 
 
-def _add_ruler(pl, tire_mesh: TireMesh, view: str, ink) -> None:
+def _add_ruler(ren, tire_mesh: TireMesh, view: str, ink, font_size: int) -> None:
     """A mm ruler with three round labels (0, half, full length)."""
+    from vtkmodules.vtkRenderingAnnotation import vtkAxisActor2D
+
     p = tire_mesh.patch
     r0 = p.tire.tire_radius
     side = -1.0 if p.camber >= 0 else 1.0
@@ -667,16 +670,25 @@ def _add_ruler(pl, tire_mesh: TireMesh, view: str, ink) -> None:
         else:
             y = 2.0 * r0 * side
             a, b = (-length / 2, y, -0.1), (length / 2, y, -0.1)
-    pl.add_ruler(
-        a,
-        b,
-        title="mm",
-        number_labels=3,
-        font_size_factor=0.8,
-        label_color=ink,
-        tick_color=ink,
-        label_format="%.0f",
-    )
+    ruler = vtkAxisActor2D()
+    for coord, pt in ((ruler.GetPositionCoordinate(), a), (ruler.GetPosition2Coordinate(), b)):
+        coord.SetCoordinateSystemToWorld()
+        coord.SetValue(*pt)
+    ruler.SetRange(0.0, length)
+    ruler.SetTitle("mm")
+    ruler.SetFontFactor(0.8)
+    ruler.AdjustLabelsOff()
+    ruler.SetNumberOfLabels(3)
+    ruler.SetLabelFormat("%.0f")
+    ruler.SetNumberOfMinorTicks(0)
+    ruler.GetProperty().SetColor(*ink)
+    ruler.UseFontSizeFromPropertyOn()
+    for tp in (ruler.GetLabelTextProperty(), ruler.GetTitleTextProperty()):
+        tp.SetColor(*ink)
+        tp.SetShadow(False)
+        tp.SetItalic(False)
+        tp.SetFontSize(font_size)
+    ren.AddViewProp(ruler)
 
 
 def _headless() -> None:
@@ -698,15 +710,14 @@ def _write_image(path, image, fmt: str) -> None:
         Image.fromarray(np.asarray(image, np.uint8)).save(tmp, format=fmt, **kw)
 
 
-def _save_vector(pl, path) -> None:
+def _save_vector(win, path) -> None:
     """PDF / SVG / EPS through GL2PS (text and lines vector, the shaded tire raster)."""
     from .io import atomic_path
 
     path = Path(path)
     with atomic_path(path) as tmp:
-        tmp = Path(tmp)
         target = tmp.with_suffix(path.suffix.lower())
-        pl.save_graphic(str(target), title="tiremesh render")
+        win.save_vector(str(target), "tiremesh render")
         if target != tmp:
             target.replace(tmp)
 

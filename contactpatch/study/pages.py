@@ -307,7 +307,8 @@ def figure_html(fig: Figure) -> str:
     str
     """
     return (
-        f'<figure id="fig-{fig.name}">{inline_svg(fig.svg, fig.caption)}'
+        f'<figure id="fig-{fig.name}" class="chart"><div class="chartbox" tabindex="0">'
+        f"{inline_svg(fig.svg, fig.caption)}</div>"
         f"<figcaption>{html.escape(fig.caption)} <span class='files'>(vector file: "
         f"<code>figures/{fig.path.name}</code>)</span></figcaption></figure>"
     )
@@ -419,7 +420,7 @@ def _tires(c: ReportContent) -> str:
         '<p class="legend-inline">In every figure and drawing: the tire\'s colour; prints '
         "filled, model open or as a line; circles plate, squares drum. Outlines: "
         "<i style='background:#bbb'></i>print hull, <i style='border-top:2px dotted #444'>"
-        "</i>print ellipse, <i style='border-top:2px solid #333'></i>model patch; rolling "
+        "</i>print ellipse, <i style='border-top:2px dashed #222'></i>model patch; rolling "
         "direction up, all at one scale.</p>"
     ]
     for k, tire in enumerate(c.colours):
@@ -446,8 +447,7 @@ def _tire_section(c: ReportContent, k: int, tire: str) -> str:
         f"{html.escape(tire)}</h3><p>{html.escape(facts)}</p>"
         + (figure_html(fig) if fig else "")
         + f"<details{opened}><summary>Scans and outlines ({len(sheets)} sheets)</summary>"
-        + body
-        + "</details></section>"
+        + f'<div class="sheets">{body}</div></details></section>'
     )
 
 

@@ -8,12 +8,12 @@ figures (Dressel 2013, sections 4.1.1, 6.2).
 2. :func:`report_config` -> the configuration block (package, version, counts);
 3. :func:`write_tables` -> ``tables/*.csv`` and ``report.json``, every table in full
    precision (through :func:`tiremesh.io.write_table`);
-4. in a worker process, while the rest goes on: :func:`render_cases` (1200 px
+4. in worker processes, while the rest goes on: :func:`render_cases` (1200 px
    renders of representative cases: low and high load on the plate, cambered on
    the drum) and the validation section, when :mod:`contactpatch.study.validate`
    provides ``report_section``;
-5. :func:`draw_figures` -> :class:`ReportFigures`: every matplotlib figure drawn
-   once and saved once, as SVG (written to ``figures/`` and inlined in the page);
+5. :func:`draw_figures` -> :class:`ReportFigures`: every figure drawn once and
+   saved once, as SVG (written to ``figures/`` and inlined in the page);
 6. :func:`collect_sheets`: each scan's QA overlay and what was set aside on it;
 7. :func:`viewer_cases`: the meshes of the interactive 3D view;
 
@@ -383,37 +383,47 @@ def _is_plate(r: dict) -> bool:
     return str(r.get("surface", "")).lower() in ("plate", "flat")
 
 
-def representative_cases(paired: list[dict]) -> list[ModelCase]:
+def representative_cases(rows: list[dict]) -> list[ModelCase]:
     """Low and high load on the plate, and the high load cambered on the drum, for
     the tire with the most prints, at its median pressure.
 
     Parameters
     ----------
-    paired : list of dict
-        Rows of :func:`contactpatch.pair_prints`.
+    rows : list of dict
+        Print rows (an ``inkprint batch`` table or its pairing): tire, pressure,
+        load, surface of the prints whose ``status`` is ok.
 
     Returns
     -------
     list of ModelCase
-        Empty when no row was solved; a case the model cannot solve is left out.
+        Empty when there is no print; a case the model cannot solve (or a row that
+        names no tire the model knows) is left out.
     """
-    ok = [r for r in paired if r.get("model_status") == "ok" and r.get("status", "ok") == "ok"]
+    ok = [r for r in rows if r.get("status", "ok") == "ok" and r.get("model_status", "ok") == "ok"]
+    ok = [
+        r
+        for r in ok
+        if math.isfinite(_f(r.get("pressure_bar"))) and math.isfinite(_f(r.get("load_N")))
+    ]
     if not ok:
         return []
     counts: dict[str, int] = {}
     for r in ok:
-        counts[str(r["tire"])] = counts.get(str(r["tire"]), 0) + 1
+        counts[str(r.get("tire", ""))] = counts.get(str(r.get("tire", "")), 0) + 1
     tire = min(counts, key=lambda t: (-counts[t], t))
-    rows = [r for r in ok if str(r["tire"]) == tire]
+    rows = [r for r in ok if str(r.get("tire", "")) == tire]
     base = [r for r in rows if _is_plate(r)] or rows
     pressures = sorted({_f(r["pressure_bar"]) for r in base})
     p = pressures[(len(pressures) - 1) // 2]
     at_p = sorted((r for r in base if _f(r["pressure_bar"]) == p), key=lambda r: _f(r["load_N"]))
     low, high = at_p[0], at_p[-1]
-    cases = [ModelCase("low load", case_of(low), "bottom", "render_low_load")]
-    if high is not low:
-        cases.append(ModelCase("high load", case_of(high), "bottom", "render_high_load"))
-    cases.append(_cambered_drum(rows, high))
+    try:
+        cases = [ModelCase("low load", case_of(low), "bottom", "render_low_load")]
+        if _f(high["load_N"]) != _f(low["load_N"]):
+            cases.append(ModelCase("high load", case_of(high), "bottom", "render_high_load"))
+        cases.append(_cambered_drum(rows, high))
+    except (tm.TireModelError, ValueError):
+        return []
     return [c for c in cases if _solves(c.case)]
 
 
@@ -494,6 +504,23 @@ def render_cases(cases: list[ModelCase], fig_dir, size=RENDER_SIZE) -> list[Rend
     return out
 
 
+def render_representative(rows: list[dict], fig_dir, size=RENDER_SIZE) -> list[Render]:
+    """:func:`render_cases` of :func:`representative_cases`, the bottom views at one
+    scale (what the report's worker runs).
+
+    Parameters
+    ----------
+    rows : list of dict
+    fig_dir : str or PathLike
+    size : (int, int) [px]
+
+    Returns
+    -------
+    list of Render
+    """
+    return render_cases(_same_scale(representative_cases(rows)), fig_dir, size)
+
+
 def viewer_cases(cases: list[ModelCase]) -> list[dict]:
     """The representative cases as meshes for the 3D view.
 
@@ -539,30 +566,17 @@ def validation_fragments(out_dir):
     return frags
 
 
-def _background(cases, fig_dir, out_dir, *, renders: bool, validation: bool) -> dict:
-    """Start the renders and the validation in worker processes (they need neither
-    the figures nor the pages): name -> :class:`contactpatch.study.worker.Job`."""
-    from .worker import Job
-
-    jobs = {}
-    if renders and cases:
-        jobs["renders"] = Job(render_cases, _same_scale(cases), fig_dir)
-    if validation:
-        jobs["validation"] = Job(validation_fragments, out_dir)
-    return jobs
-
-
 # --- figures and sheets --------------------------------------------------------------
 
 
-def _svg_figure(fig, name: str, caption: str, fig_dir: Path) -> Figure:
-    svg = F.figure_svg(fig, name)
+def _svg_figure(svg: str, name: str, caption: str, fig_dir: Path) -> Figure:
     path = write_text_atomic(fig_dir / f"{name}.svg", svg)
     return Figure(name, svg, caption, path)
 
 
 def draw_figures(tables: ReportTables, fig_dir, colours: dict, *, tick=None) -> ReportFigures:
-    """Draw every figure once and save it once, as SVG in ``fig_dir``.
+    """Draw every figure once (:mod:`contactpatch.study.figures`) and save it once, as
+    SVG in ``fig_dir``.
 
     Parameters
     ----------
@@ -606,7 +620,9 @@ def draw_figures(tables: ReportTables, fig_dir, colours: dict, *, tick=None) -> 
     )
     trends = {
         tire: one(
-            lambda tire=tire: F.tire_trends(paired, tire, colours[tire]),
+            lambda tire=tire, k=k: F.tire_trends(
+                paired, tire, colours[tire], name=f"trends_tire{k}"
+            ),
             f"trends_tire{k}",
             f"{tire}: length, width and area vs pressure and load (log-log), prints solid, "
             "model dashed.",
@@ -717,7 +733,7 @@ def build_report(
     out_dir : str or PathLike
         Report folder (created).
     renders : bool
-        Include the 1200 px renders of representative cases (in a worker process).
+        Include the 1200 px renders of representative cases.
     source : str
         Where the table came from, shown in the configuration block; its folder is
         also searched for the scans.
@@ -734,20 +750,28 @@ def build_report(
     Path
         ``out_dir/index.html``; beside it ``report.md``, ``report.json``,
         ``tables/`` and ``figures/`` (SVG figures, PNG renders).
+
+    Notes
+    -----
+    The renders and the validation run in worker processes
+    (:class:`contactpatch.study.worker.Job`) while this one writes the tables, draws
+    the figures and the scans and meshes the 3D view.
     """
+    from .worker import Job
+
     out = Path(out_dir)
     fig_dir = out / "figures"
     fig_dir.mkdir(parents=True, exist_ok=True)
-    tables = compute_tables(rows)
-    cases = representative_cases(tables.paired)
-    jobs = _background(cases, fig_dir, out, renders=renders, validation=validation)
+    jobs = {"renders": Job(render_representative, rows, fig_dir)} if renders else {}
+    if validation:
+        jobs["validation"] = Job(validation_fragments, out)
     try:
-        colours = tire_colours(
-            r.get("tire", "") for r in tables.paired if r.get("model_status") == "ok"
-        )
+        tables = compute_tables(rows)
+        ok = [r for r in tables.paired if r.get("model_status") == "ok"]
+        colours = tire_colours(r.get("tire", "") for r in ok)
+        cases = representative_cases(rows)
         n_files = len({r.get("file") for r in tables.paired})
-        bar = _progress(6 + len(colours) + n_files, progress)
-        with bar:
+        with _progress(n_files + len(colours) + 7, progress) as bar:
             content = _assemble(rows, tables, colours, out, cases, jobs, bar, source, scan_dirs)
     finally:
         for job in jobs.values():
@@ -757,8 +781,15 @@ def build_report(
     return index
 
 
+def _wait(jobs: dict, name: str, bar, default=None):
+    bar.set_postfix_str(name)
+    value = jobs[name].result() if name in jobs else default
+    bar.update(1)
+    return value
+
+
 def _assemble(rows, tables, colours, out, cases, jobs, bar, source, scan_dirs) -> ReportContent:
-    """Every part of the report, the worker's results last."""
+    """Every part of the report, the workers' results last."""
     config = report_config(rows, tables, source=source)
     write_tables(out, tables, config)
     bar.set_postfix_str("figures")
@@ -769,12 +800,8 @@ def _assemble(rows, tables, colours, out, cases, jobs, bar, source, scan_dirs) -
     bar.set_postfix_str("3D view")
     viewer = viewer_cases(cases)
     bar.update(1)
-    bar.set_postfix_str("renders")
-    rendered = jobs["renders"].result() if "renders" in jobs else []
-    bar.update(1)
-    bar.set_postfix_str("validation")
-    frags = jobs["validation"].result() if "validation" in jobs else None
-    bar.update(1)
+    rendered = _wait(jobs, "renders", bar, [])
+    frags = _wait(jobs, "validation", bar)
     n_ok = sum(1 for r in tables.paired if r.get("status", "ok") == "ok")
     return ReportContent(
         config=config,

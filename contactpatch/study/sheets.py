@@ -176,8 +176,8 @@ def _points(ring) -> str:
 
 
 def outline_svg(row: dict, span: float, colour: str, *, width: float | None = None) -> str:
-    """One print's hull (filled) and ellipse (dotted) over its model patch
-    (line), centred, rolling direction up, ``span`` mm tall.
+    """One print's hull (filled, the tire's colour) and ellipse (dotted) over its
+    model patch (dashed), centred, rolling direction up, ``span`` mm tall.
 
     Parameters
     ----------
@@ -216,14 +216,15 @@ def outline_svg(row: dict, span: float, colour: str, *, width: float | None = No
         model = shapely.from_wkt(row["model_outline_wkt"]).simplify(0.05)
         parts.append(
             f'<polygon points="{_points(_centred(model, 0.0))}" fill="none" '
-            f'stroke="{colour}" stroke-width="1.6" vector-effect="non-scaling-stroke"/>'
+            'stroke="#222" stroke-width="1.3" stroke-dasharray="4 2" '
+            'vector-effect="non-scaling-stroke"/>'
         )
     w, h = (0.5 * span if width is None else max(width, 24.0)), 1.08 * span
     y0 = 0.5 * h - 2
     parts.append(
         f'<path d="M{-10:.1f},{y0:.1f} h20" stroke="#222" stroke-width="1.5" '
         'vector-effect="non-scaling-stroke"/>'
-        f'<text x="0" y="{y0 - 2:.1f}" font-size="{0.045 * span:.1f}" '
+        f'<text x="0" y="{y0 - 3:.1f}" font-size="{0.045 * span:.1f}" '
         'text-anchor="middle">20 mm</text>'
     )
     return (

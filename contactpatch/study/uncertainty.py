@@ -60,12 +60,12 @@ def fit_with_errors(x_pressure, x_load, y) -> dict:
         out[name] = float(value)
     if dof <= 0 or rank < A.shape[1]:
         return out
-    from scipy import stats
+    from scipy.special import stdtrit  # Student t quantile (scipy.stats is slow to import)
 
     resid = yy - A @ coef
     s2 = float(resid @ resid) / dof
     cov = s2 * np.linalg.inv(A.T @ A)
-    t = float(stats.t.ppf(0.975, dof))
+    t = float(stdtrit(dof, 0.975))
     for k, name in enumerate(names, start=1):
         se = math.sqrt(max(cov[k, k], 0.0))
         out[f"{name}_se"], out[f"{name}_ci95"] = se, t * se

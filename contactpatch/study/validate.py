@@ -38,7 +38,7 @@ from tiremesh.io import save_figure, write_table, write_text_atomic
 from ..errors import ContactPatchError
 from . import validate_pages as pages
 from .validate_data import read_measurements
-from .validate_figures import measured_vs_model, relaxation_figure
+from .validate_figures import figure_style, measured_vs_model, relaxation_figure
 from .validate_fit import (
     RelaxationFit,
     cornering_variants,
@@ -287,8 +287,12 @@ def write_validation(v: Validation, out_dir: str | os.PathLike) -> dict:
         for ext in (".csv", ".json"):
             write_table(data[key], out / f"{name}{ext}", columns=cols)
     figs = out / "figures"
-    save_figure(measured_vs_model(data["points"], data["statistics"]), figs / FIGURES[0], dpi=100)
-    save_figure(relaxation_figure(data["fit_curve"], data["variants"]), figs / FIGURES[1], dpi=100)
+    with figure_style():
+        fig = measured_vs_model(data["points"], data["statistics"])
+        save_figure(fig, figs / FIGURES[0], dpi=100)
+        save_figure(
+            relaxation_figure(data["fit_curve"], data["variants"]), figs / FIGURES[1], dpi=100
+        )
     write_text_atomic(out / "summary.md", pages.summary_markdown(data))
     write_text_atomic(out / "index.html", pages.standalone_html(data, _figure_bytes(out)))
     write_text_atomic(out / "validation.json", json.dumps(_jsonable(data), indent=1))

@@ -2,6 +2,7 @@
 
 Each function takes plain rows (the dicts written to ``points.json`` and
 ``validation.json``) and returns a Figure; :func:`tiremesh.io.save_figure` writes it.
+Build and save them inside :func:`figure_style`.
 """
 
 from __future__ import annotations
@@ -36,23 +37,31 @@ PANELS = {
 MARKERS = "osD^v<>ph*XP"
 
 
+#: matplotlib settings of the validation's figures (see :func:`figure_style`)
+STYLE = {
+    "svg.hashsalt": "contactpatch-validate",
+    "figure.dpi": 100,
+    "font.size": 8,
+    "text.parse_math": False,
+    "text.usetex": False,
+}
+
+
 def _plt():
-    """pyplot on Agg with plain-text labels (no mathtext) and deterministic SVG ids."""
+    """pyplot on the Agg backend."""
     import matplotlib
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    plt.rcParams.update(
-        {
-            "svg.hashsalt": "contactpatch-validate",
-            "figure.dpi": 100,
-            "font.size": 8,
-            "text.parse_math": False,
-            "text.usetex": False,
-        }
-    )
     return plt
+
+
+def figure_style():
+    """Context manager with :data:`STYLE` (plain-text labels, no mathtext; fixed SVG
+    ids): build *and* save the figures inside it, since tick labels are drawn at save
+    time. Leaves the global matplotlib settings alone."""
+    return _plt().rc_context(STYLE)
 
 
 def _finite(*xs) -> bool:
@@ -202,4 +211,4 @@ def relaxation_figure(curve: dict, variants: list[dict]):
     return fig
 
 
-__all__ = ["PANELS", "measured_vs_model", "relaxation_figure"]
+__all__ = ["PANELS", "STYLE", "figure_style", "measured_vs_model", "relaxation_figure"]

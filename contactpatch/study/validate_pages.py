@@ -46,6 +46,19 @@ LOTO_COLUMNS = [
     ("ratios", "its model/meas."),
     ("rms_log_error", "RMS log error"),
 ]
+POINTS_TITLE = "Every compared point"
+POINT_TABLE_COLUMNS = [
+    ("row", "row"),
+    ("quantity", "quantity"),
+    ("tire_id", "tire"),
+    ("pressure_bar", "bar"),
+    ("load_N", "N"),
+    ("surface", "surface"),
+    ("measured", "measured"),
+    ("model", "model"),
+    ("ratio", "model/meas."),
+    ("source", "source"),
+]
 CORNERING_COLUMNS = [
     ("variant", "decay length beyond the patch"),
     ("n", "n"),
@@ -374,6 +387,13 @@ def _sections(data: dict) -> list[tuple[str, str, list, list]]:
             _accounting(data),
             [("status", "status"), ("reason", "reason"), ("n", "n")],
         ),
+        (
+            POINTS_TITLE,
+            "Model / measured for every compared row (leave-one-tire-out values; row = "
+            "data row of the CSV, its line is row + 1).",
+            [p for p in data["points"] if p["status"] == "compared"],
+            POINT_TABLE_COLUMNS,
+        ),
     ]
 
 
@@ -429,8 +449,10 @@ def html_fragment(data: dict, figures: dict[str, bytes]) -> str:
     ]
     parts += [_img(n, figures[n], c) for n, c in FIGURE_CAPTIONS.items() if n in figures]
     for title, intro, rows, cols in _sections(data):
-        parts += [f"<h3>{html.escape(title)}</h3>", f"<p>{html.escape(intro)}</p>"]
-        parts.append(_html_table(rows, cols))
+        table = _html_table(rows, cols)
+        if title == POINTS_TITLE:  # long: folded
+            table = f"<details><summary>{len(rows)} points</summary>{table}</details>"
+        parts += [f"<h3>{html.escape(title)}</h3>", f"<p>{html.escape(intro)}</p>", table]
     parts.append("</section>")
     return "\n".join(parts)
 

@@ -3,7 +3,9 @@
 individual values are lost, so the model is summarised the same way over the
 measured conditions it can reproduce.
 
-Agreement rules, stated in every row: a single stated value agrees when the model is
+A check whose measured row is missing from the measurements, or that has no model
+value to compare, reads ``n/a`` with the reason; a named model error reads
+``model error``. Agreement rules, stated in every row: a single stated value agrees when the model is
 within a factor :data:`FACTOR` of it; a stated spread (max / min) when the model's mean
 lies inside it; a stated range when the model's range covers it (``<a to >b``) or
 overlaps it (``a-b``); a correlation when its sign is the same.
@@ -39,14 +41,12 @@ PROGRAM = {"pressure_bar": (3.45, 4.83, 6.21), "load_N": (324.0, 540.0, 731.0)}
 
 
 def _printed(points: list[Point], csv_quantity: str) -> float:
-    """The printed number of the summary row ``csv_quantity`` (NaN if absent)."""
+    """The printed number of the summary row ``csv_quantity``; ValueError if the
+    measurements have no such row (the check then reads 'n/a')."""
     for p in points:
         if p.csv_quantity == csv_quantity:
-            try:
-                return float(p.printed)
-            except ValueError:
-                return math.nan
-    return math.nan
+            return float(p.printed)
+    raise ValueError(f"no row {csv_quantity!r} in the measurements")
 
 
 def _row(item, source, quantity, measured, model, agree, rule, note="", ratio=math.nan):
@@ -182,24 +182,37 @@ def trail_over_length(runner: ModelRunner, conds, points) -> dict:
     )
 
 
+def _numbers(points: list[Point], csv_quantity: str) -> list[float]:
+    """The numbers in the printed text of summary row ``csv_quantity`` ('24 -> 23' ->
+    [24, 23], '~3' -> [3]); ValueError if the row is missing."""
+    text = next((p.printed for p in points if p.csv_quantity == csv_quantity), None)
+    if text is None:
+        raise ValueError(f"no row {csv_quantity!r} in the measurements")
+    return [float(x) for x in re.findall(r"\d*\.?\d+", text)]
+
+
 def rim_width(runner: ModelRunner, points: list[Point]) -> dict:
     """+24 % rim width -> +23 % normalized lateral stiffness (4.1.10 item 2) vs the
     model at every measured lateral-stiffness condition (median)."""
+    rim_pct, stiff_pct = _numbers(points, "rim_width_increase_vs_norm_lat_stiffness_increase")
     conds = distinct_conditions(points, ("lateral_stiffness",))
+    f = 1.0 + rim_pct / 100.0
     up = [
         (
-            runner.value("lateral_stiffness", replace(c, rim_width=c.rim_width * 1.24))
+            runner.value("lateral_stiffness", replace(c, rim_width=c.rim_width * f))
             / runner.value("lateral_stiffness", c)
             - 1
         )
         * 100
         for c in conds
     ]
+    if not up:
+        raise ValueError("no measured lateral-stiffness condition")
     return _single(
         "rim_width",
         "4.1.10 item 2; 6.2.2",
-        "stiffness increase for +24 % rim [%]",
-        23.0,
+        f"stiffness increase for +{rim_pct:g} % rim [%]",
+        stiff_pct,
         float(np.median(up)),
         f"model median over {len(up)} conditions, range {min(up):.3g}..{max(up):.3g} %; "
         "the decay length follows the wider rim's sections",
@@ -209,20 +222,21 @@ def rim_width(runner: ModelRunner, points: list[Point]) -> dict:
 def decay_over_length(runner: ModelRunner, conds, points) -> dict:
     """Decay length / patch length, '~3' when rolling (4.1.9.1), vs the model's taut-beam
     decay length over its ellipse length (Papadopoulos in 6.1.4: 'of order half')."""
+    (stated,) = _numbers(points, "decay_length_over_contact_patch_length")
     v = []
     for c in conds:
         relax = runner.relaxation(c.tire_id)
         ell = relax.length(runner.tire(c), c.pressure_bar * MPA_PER_BAR)
         v.append(ell / runner.value("ellipse_length", c))
     note = (
-        f"model {_spread(v)}; the source says '~3'; Papadopoulos found Rotta's decay "
-        "length 'of order half the contact length' (6.1.4)"
+        f"model {_spread(v)}; the source says '~{stated:g}'; Papadopoulos found Rotta's "
+        "decay length 'of order half the contact length' (6.1.4)"
     )
     return _single(
         "decay_over_length",
         "4.1.9.1",
         "decay length / patch length",
-        3.0,
+        stated,
         float(np.median(v)),
         note,
     )
@@ -238,6 +252,8 @@ def _bounds(text: str) -> tuple[float, float, bool]:
 def stated_range(item, source, quantity, csv_quantity, points, model_values, note="") -> dict:
     """A stated range of a quantity vs the model's values at its measured conditions."""
     text = next((p.printed for p in points if p.csv_quantity == csv_quantity), "")
+    if not text or not model_values:
+        raise ValueError(f"no row {csv_quantity!r} or no model value to compare")
     lo, hi, cover = _bounds(text)
     mn, mx = min(model_values), max(model_values)
     ok = (mn <= lo and mx >= hi) if cover else (mn <= hi and mx >= lo)
@@ -312,6 +328,8 @@ def table_4_3(runner: ModelRunner, points: list[Point]) -> list[dict]:
         stats["min"].append(min(v))
         stats["avg"].append(float(np.mean(v)))
         size.append(2.0 * runner.tire(c0).tire_radius)
+    if len(size) < 3:
+        raise ValueError(f"a correlation needs 3 or more tires; the measurements name {len(size)}")
     rows = []
     for s, vals in stats.items():
         r_model = float(np.corrcoef(size, vals)[0, 1])
@@ -366,13 +384,15 @@ def summary_table(runner: ModelRunner, points: list[Point]) -> list[dict]:
         try:
             out = fn(*args)
         except (TireModelError, ContactPatchError, ValueError) as exc:
+            model_error = isinstance(exc, TireModelError | ContactPatchError)
+            verdict = "model error" if model_error else "n/a"
             out = _row(
-                fn.__name__,
+                fn.__name__.strip("_"),
                 "",
-                fn.__name__,
+                fn.__name__.strip("_"),
                 "",
                 "",
-                "model error",
+                verdict,
                 "",
                 f"{type(exc).__name__}: {exc}",
             )

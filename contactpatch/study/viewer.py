@@ -137,7 +137,7 @@ def viewer_html(cases: list[dict]) -> str:
     )
     data = json.dumps({"cases": cases}, separators=(",", ":")).replace("</", "<\\/")
     return (
-        '<figure id="viewer" class="viewer">'
+        '<figure id="tire3d" class="viewer">'
         f'<div class="viewer-controls">{buttons}<span class="sep"></span>{views}</div>'
         '<p class="viewer-title"></p>'
         '<canvas width="800" height="500" aria-label="deformed tire, drag to turn"></canvas>'

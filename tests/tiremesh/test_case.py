@@ -118,3 +118,12 @@ def test_solve_many_mixes_load_and_deflection_cases():
     out = tm.solve_many([a, b])
     assert_allclose(out["vertical_force"][0], 300.0, rtol=1e-8)
     assert_allclose(out["deflection"][1], 3.0)
+
+
+def test_contactpatch_repr_is_short_and_html_escapes():
+    tire = tm.TireGeometry(15.0, 15.0, name="<b>$x$</b>")
+    p = tm.solve(tire, pressure=0.4, load=300.0)
+    assert len(repr(p)) < 250 and "length" in repr(p)
+    html = p._repr_html_()
+    assert "<b>$x$</b>" not in html and "&lt;b&gt;" in html
+    assert "length_mm" in html

@@ -71,8 +71,9 @@ def test_solve_patch_outline_area_matches_integral():
 
 @pytest.fixture(scope="module")
 def camber_thrust():
-    # sections 5.3, 7.2: 37 mm tire, 18.7 mm rim, 4 bar, 400 N, 45 degrees camber
-    kw = dict(load=400.0, pressure=4 * BAR, camber=math.radians(45))
+    # sections 5.3, 7.2: 37 mm tire, 18.7 mm rim, 4 bar, 400 N, 45 degrees camber;
+    # the printed values use Appendix C's length element (force_convention="appendix")
+    kw = dict(load=400.0, pressure=4 * BAR, camber=math.radians(45), force_convention="appendix")
     return {
         "flat": tm.solve(T37, **kw),
         "drum": tm.solve(T37, surface=tm.Drum(2500), **kw),
@@ -237,3 +238,16 @@ def test_surfaces_invalid():
     with pytest.raises(tm.InvalidParameter, match="surface"):
         tm.parse_surface("drum")
     assert tm.parse_surface("disk:3000:away") == tm.Disk(3000.0, "away")
+
+
+def test_force_convention_ground_vs_appendix():
+    # docs/model.md: the true ground length of a cambered slice is shorter than Appendix
+    # C's d[(R - dv) sin phi]; upright on flat ground the two are the same
+    kw = dict(load=400.0, pressure=4 * BAR)
+    for camber, lateral, expected in ((45, 0.0, -0.0183), (10, 0.0, -0.00097), (0, 2.0, 0.0)):
+        case = tm.LoadCase(T37, camber=math.radians(camber), lateral=lateral, **kw)
+        ground = tm.solve(case).lateral_force
+        appendix = tm.solve(case.replace(force_convention="appendix")).lateral_force
+        assert_allclose(ground / appendix - 1, expected, atol=2e-4)
+    p = tm.solve(T37, **kw)  # upright: the weights sum to the patch length
+    assert_allclose(np.sum(p.x_weights), p.length, rtol=1e-6)

@@ -150,3 +150,12 @@ def test_write_relations_files(tmp_path):
         assert np.all(np.isfinite(rel.evaluate_relation(r, inputs))), r.name
     report = (tmp_path / "relations.md").read_text()
     assert "| sinkage | power |" in report and "$" not in report
+
+
+def test_cli_relations_writes_tables_and_figures(tmp_path):
+    from tiremesh.cli import main
+
+    assert main(["relations", "-o", str(tmp_path), "--cases", "1500", "-q"]) == 0
+    names = {p.name for p in tmp_path.iterdir()}
+    assert {"relations.json", "relations_errors.csv", "relations.md"} <= names
+    assert any(n.endswith(".png") for n in names)

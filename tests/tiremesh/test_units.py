@@ -58,7 +58,7 @@ def test_bar_is_one_constant_at_every_edge():
 
 @pytest.mark.parametrize("text", ["60", "0.4", 60, 0.4, "4 "])
 def test_parse_pressure_require_unit_refuses_a_bare_number(text):
-    with pytest.raises(tm.InvalidParameter, match="4bar, 60psi, 400kPa, 0.4MPa") as info:
+    with pytest.raises(tm.InvalidParameter, match=r"4bar, 60psi, 400kPa, 0\.4MPa") as info:
         parse_pressure(text, require_unit=True, name="--pressure")
     assert info.value.name == "--pressure"
 

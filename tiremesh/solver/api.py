@@ -29,7 +29,24 @@ from .patch import ContactPatch, patch_from_arrays
 
 def as_case(case, fields: dict) -> LoadCase:
     """A LoadCase from ``case`` (returned as is, with ``fields`` applied) or from a
-    tire and keyword fields (the keyword convenience of every entry point)."""
+    tire and keyword fields (the keyword convenience of every entry point).
+
+    Parameters
+    ----------
+    case : LoadCase or TireGeometry
+    fields : dict
+        Load-case fields: applied with :meth:`LoadCase.replace` to a LoadCase, or
+        the fields of a new case on a tire.
+
+    Returns
+    -------
+    LoadCase
+
+    Raises
+    ------
+    InvalidParameter
+        ``case`` is neither a LoadCase nor a TireGeometry.
+    """
     if isinstance(case, LoadCase):
         return case.replace(**fields) if fields else case
     if isinstance(case, TireGeometry):
@@ -38,7 +55,28 @@ def as_case(case, fields: dict) -> LoadCase:
 
 
 def check_deflection(dw, cs: CaseArrays, name: str = "deflection"):
-    """``dw`` (m, 1) [mm] if every case is in (0, max deflection], else InvalidParameter."""
+    """``dw`` as given if no case exceeds its largest deflection, else InvalidParameter.
+
+    Only the upper bound (:meth:`CaseArrays.max_deflection`) is checked here;
+    ``dw > 0`` is validated where a deflection is given (LoadCase, solve_many).
+
+    Parameters
+    ----------
+    dw : (m, 1) float [mm]
+        Wheel deflection.
+    cs : CaseArrays
+    name : str
+        Parameter named in the error.
+
+    Returns
+    -------
+    dw : (m, 1) float [mm]
+
+    Raises
+    ------
+    InvalidParameter
+        For the first case with ``dw > cs.max_deflection()``.
+    """
     dmax = cs.max_deflection()
     if np.any(dw > dmax):
         i = int(np.argmax((dw > dmax).ravel()))
@@ -192,7 +230,20 @@ def solve(case: LoadCase | TireGeometry, /, **fields) -> ContactPatch:
 
 
 def solve_patch(case: LoadCase | TireGeometry, deflection: float | None = None, /, **fields):
-    """:func:`solve` at a given wheel ``deflection`` [mm] (keyword convenience)."""
+    """:func:`solve` at a given wheel ``deflection`` (keyword convenience).
+
+    Parameters
+    ----------
+    case : LoadCase or TireGeometry
+    deflection : float [mm], optional
+        Replaces the case's load; None keeps the case's load or deflection.
+    **fields
+        Load-case fields, as for :func:`solve`.
+
+    Returns
+    -------
+    ContactPatch
+    """
     if deflection is not None:
         fields = {**fields, "deflection": deflection, "load": None}
     return solve(case, **fields)
@@ -231,8 +282,21 @@ def find_sinkage(case: LoadCase | TireGeometry, load: float | None = None, /, **
 
 
 def max_load(case: LoadCase | TireGeometry, /, **fields) -> float:
-    """Largest vertical load [N] the model carries at this pressure (deflection at
-    ``tol.rim_clearance`` of the point where a bead reaches the surface)."""
+    """Largest vertical load the model carries at this pressure: ``p A`` at
+    :meth:`CaseArrays.max_deflection` (``tol.rim_clearance`` times the deflection at
+    which a bead reaches the surface or a side bulge runs out of carcass).
+
+    Parameters
+    ----------
+    case : LoadCase or TireGeometry
+        The case's own load or deflection is not used; a tire needs neither.
+    **fields
+        Load-case fields (``pressure``, ``camber``...).
+
+    Returns
+    -------
+    float [N]
+    """
     if isinstance(case, TireGeometry) and "load" not in fields and "deflection" not in fields:
         fields = {**fields, "deflection": 1.0}
     case = as_case(case, fields)

@@ -8,6 +8,7 @@ case's surface never changes how its batch companions are solved.
 
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass
 
 import numpy as np
@@ -32,6 +33,9 @@ class CaseArrays:
     lateral : (m, 1) float [mm]
     pressure : (m, 1) float [N/mm^2]
     surface : Surface
+    appendix_forces : (m, 1) bool, optional
+        Cases whose lateral force uses Appendix C's length element
+        (``force_convention='appendix'``).
     """
 
     r0: np.ndarray
@@ -42,6 +46,7 @@ class CaseArrays:
     lateral: np.ndarray
     pressure: np.ndarray
     surface: Surface
+    appendix_forces: np.ndarray | None = None
 
     @property
     def m(self) -> int:
@@ -55,9 +60,7 @@ class CaseArrays:
 
     def with_lateral(self, lateral) -> CaseArrays:
         """The same cases with another lateral displacement (m, 1) [mm]."""
-        return CaseArrays(
-            self.r0, self.w, self.R, self.gamma, self.slip, lateral, self.pressure, self.surface
-        )
+        return dataclasses.replace(self, lateral=lateral)
 
     def take(self, index) -> CaseArrays:
         """The cases ``index`` (int array) as new arrays."""
@@ -68,6 +71,7 @@ class CaseArrays:
                 for f in ("r0", "w", "R", "gamma", "slip", "lateral", "pressure")
             ),
             take_surface(self.surface, index),
+            None if self.appendix_forces is None else self.appendix_forces[index],
         )
 
     def max_deflection(self) -> np.ndarray:
@@ -112,6 +116,9 @@ def case_arrays(table: CaseTable, surface: Surface) -> CaseArrays:
         col(table.lateral),
         col(table.pressure),
         surface,
+        np.array([c == "appendix" for c in table.force_convention], bool).reshape(-1, 1)
+        if table.force_convention
+        else None,
     )
 
 
@@ -133,7 +140,17 @@ def single_case_arrays(case: LoadCase) -> CaseArrays:
 def group_by_surface(table: CaseTable) -> list[np.ndarray]:
     """Row indices of ``table`` in groups that one vectorized solve can take:
     cases on surfaces of one class that stacks (:meth:`SurfaceBase.stack`), else on
-    equal surfaces; in first-seen order."""
+    equal surfaces; in first-seen order.
+
+    Parameters
+    ----------
+    table : CaseTable
+
+    Returns
+    -------
+    list of (k,) int
+        One array of row indices per group.
+    """
     groups: dict = {}
     for i, s in enumerate(table.surface):
         key = type(s) if getattr(type(s), "stack_fields", ()) else s

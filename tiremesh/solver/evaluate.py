@@ -25,7 +25,8 @@ class PatchArrays:
     sections : SectionSolution of (m, n) arrays
     dv, dh : (m, n) float [mm]
     x_weights : (m, n) float [mm]
-        ``integral f dx = sum(x_weights * f)`` along the patch.
+        Quadrature weights of the lateral-force integral along the patch, in the
+        case's ``force_convention``: ``integral f dl = sum(x_weights * f)``.
     rear, front : (m, 1) float [rad]
         Patch-end angles.
     offset : (m,) float [mm]
@@ -72,6 +73,43 @@ class PatchArrays:
         offset : (m, 1) float [mm]
         """
         return (self.rear, self.front), self.offset[:, None]
+
+
+def _appendix(cs: CaseArrays) -> np.ndarray:
+    return np.zeros(cs.r0.shape, bool) if cs.appendix_forces is None else cs.appendix_forces
+
+
+def ground_length(sol: SectionSolution, d, phi, cs: CaseArrays) -> np.ndarray:
+    """Ground length per radian of each patch slice [mm/rad]: the speed of the
+    contact segment's midpoint along the surface as ``phi`` advances (the true length
+    of the slice on the ground; ``force_convention='ground'``).
+
+    For an upright tire on flat ground it is ``d[(R - dv) sin phi] / dphi`` (Appendix
+    C's ``dy``); a cambered section's contact lies off the wheel plane, at a smaller
+    distance from the axle, and the slices are shorter there (-1.5 % of the patch
+    length at 45 degrees).
+
+    Parameters
+    ----------
+    sol : SectionSolution of (m, n) arrays
+    d : Displacements
+        Section displacements and their ``phi`` derivatives.
+    phi : (m, n) float [rad]
+    cs : CaseArrays
+
+    Returns
+    -------
+    (m, n) float [mm/rad]
+    """
+    c, s = np.cos(cs.gamma), np.sin(cs.gamma)
+    xs, zs = 0.5 * (sol.edge1 + sol.edge2), sol.ground_z
+    dxs, dzs = sol.dmid_ddv * d.ddv + sol.dmid_ddh * d.ddh, d.ddv
+    rho = cs.R - cs.r0 - (s * xs + c * zs)
+    drho = -(s * dxs + c * dzs)
+    sp, cp = np.sin(phi), np.cos(phi)
+    dx = drho * sp + rho * cp
+    dy = c * (c * dxs - s * dzs) - s * (drho * cp - rho * sp)
+    return np.hypot(dx, dy) * cs.surface.stretch(rho * sp)
 
 
 def refined_extreme(phi, f, sign):
@@ -165,7 +203,9 @@ def evaluate(cs: CaseArrays, dw, n: int, *, ends=None, offset=None) -> PatchArra
     width = np.maximum(sol.width, 0.0)
     # integral of (e2 - e1) dy of equation 5-26, dy the exact ground area element
     area = half[:, 0] * (wts * width * area_jacobian(sol, d.dv, d.ddv, phi, cs)).sum(-1)
-    x_weights = half * wts * d.dx
+    x_weights = np.where(
+        _appendix(cs), half * wts * d.dx, half * wts * ground_length(sol, d, phi, cs)
+    )
     lat = cs.pressure[:, 0] * (x_weights * (sol.radius1 - sol.radius2)).sum(-1)  # Eq. 5-25
     e1, e2, centre, edge_z, surface_z = _ground_outline(sol, phi, dw, cs)
     (x1, y1), (x2, y2) = e1, e2

@@ -41,7 +41,27 @@ from .quadrature import clenshaw_curtis
 
 
 def area_and_slope(cs: CaseArrays, dw, n: int, guess=None):
-    """Patch area A(dw) and dA/ddw (m, 1); cases out of contact give A = 0."""
+    """Patch area A(dw) and its slope dA/ddw, with the patch ends; cases out of
+    contact give A = 0 and dA/ddw = 0.
+
+    Parameters
+    ----------
+    cs : CaseArrays
+    dw : (m, 1) float [mm]
+        Wheel deflection.
+    n : int
+        Clenshaw-Curtis sections per patch.
+    guess : (rear, front) of (m, 1) float [rad], optional
+        Warm start of the patch ends (straight track).
+
+    Returns
+    -------
+    area : (m, 1) float [mm^2]
+    slope : (m, 1) float [mm]
+        dA/ddw.
+    ends : (rear, front) of (m, 1) float [rad]
+        0 for cases out of contact.
+    """
     offset, ends = track_offset(dw, cs)
     if ends is None:
         rear, front, touching = touching_patch_ends(dw, cs, offset, guess)
@@ -68,6 +88,21 @@ def area_and_slope(cs: CaseArrays, dw, n: int, guess=None):
 
 
 def max_load_arrays(cs: CaseArrays, n: int):
+    """Largest load of each case: ``p A`` (equation 5-26) at the largest deflection
+    (:meth:`CaseArrays.max_deflection`).
+
+    Parameters
+    ----------
+    cs : CaseArrays
+    n : int
+        Clenshaw-Curtis sections per patch.
+
+    Returns
+    -------
+    fmax : (m, 1) float [N]
+    dmax : (m, 1) float [mm]
+        The deflection at which ``fmax`` is carried.
+    """
     dmax = cs.max_deflection()
     area, _, _ = area_and_slope(cs, dmax, n)
     return cs.pressure * area, dmax
@@ -107,15 +142,10 @@ def _start(cs: CaseArrays, load, dmax, start) -> _NewtonState:
 def joint_newton(cs: CaseArrays, load, n: int, offset=0.0, start=None):
     """Deflection and patch ends together: one section solve per Newton step.
 
-    Unknowns per case: wheel deflection ``dw`` and the end angles ``phi_r, phi_f``.
-    Equations: zero width at both ends (section 5.2) and ``log(p A) = log(load)``.
-    The Clenshaw-Curtis nodes span [phi_r, phi_f], so every step evaluates the end
-    widths and the area in one call. The Jacobian is nearly triangular
-    (``dA/dphi_end = +-width_end * dx/dphi``, which vanishes at the solution), so the
-    3 x 3 step is solved in closed form. A case whose step leaves Rotta's
-    construction goes back to its last valid iterate with half the step; after five
-    halvings it has met a limit of the model (its message is returned). Cases are
-    independent: one case's failure never changes another's iterate.
+    Unknowns per case: ``dw`` and both end angles; equations: zero width at both ends
+    (section 5.2) and ``log(p A) = log(load)``. The nearly triangular 3 x 3 step is solved
+    in closed form, each case independently. A step leaving Rotta's construction is halved
+    from the last valid iterate; after five halvings the case has met a limit of the model.
 
     Parameters
     ----------
@@ -123,9 +153,9 @@ def joint_newton(cs: CaseArrays, load, n: int, offset=0.0, start=None):
     load : (m, 1) float [N]
     n : int
         Clenshaw-Curtis sections per patch.
-    offset : (m, 1) float [mm]
-        Fixed track offset (section 5.3.2).
-    start : (dw, (rear, front)), optional
+    offset : (m, 1) float [mm], optional
+        Fixed track offset (section 5.3.2; default 0).
+    start : (dw, (rear, front)) of (m, 1) float [mm, rad], optional
         Warm start.
 
     Returns
@@ -331,13 +361,33 @@ def _nested_each(sub: CaseArrays, load, n: int, idx) -> tuple[np.ndarray, dict]:
 
 
 def find_deflection(cs: CaseArrays, load, n: int | None = None, *, start=None):
-    """Wheel deflection (m, 1) [mm] carrying ``load`` (m, 1) [N], the patch ends
-    (rear, front) and the track offset (m, 1) [mm].
+    """Wheel deflection carrying ``load``, with the patch ends and the track offset.
 
-    The joint Newton solves every case it can; the cases it does not converge on
-    (and only those) go to the nested, fully bracketed search. Cases that meet a
-    limit of the model raise the first one's error, with every failed case's error
-    in its ``case_errors`` (``{case index: error}``).
+    :func:`joint_newton` solves every case it can; the cases it does not converge on
+    (and only those) go to the fully bracketed :func:`nested_search`.
+
+    Parameters
+    ----------
+    cs : CaseArrays
+    load : (m, 1) float [N]
+    n : int, optional
+        Clenshaw-Curtis sections per patch (default ``tol.search_sections``).
+    start : (dw, (rear, front)) of (m, 1) float [mm, rad], optional
+        Warm start.
+
+    Returns
+    -------
+    dw : (m, 1) float [mm]
+    ends : (rear, front) of (m, 1) float [rad]
+    offset : (m, 1) float [mm]
+        Track offset (section 5.3.2; 0 on a straight track).
+
+    Raises
+    ------
+    TireModelError
+        The first failed case's error, with every failed case's error in its
+        ``case_errors`` (``{case index: error}``) and the solution in ``partial``
+        (``(dw, ends)``, valid for the other cases).
     """
     n = tol.search_sections if n is None else n
     dw, ends, done, offset, failed = _joint_with_offset(cs, load, n, start)
@@ -363,7 +413,28 @@ def find_deflection(cs: CaseArrays, load, n: int | None = None, *, start=None):
 
 
 def nested_search(cs: CaseArrays, load, n: int):
-    """Fully bracketed fallback: Newton in log(dw), patch ends solved at each step."""
+    """Fully bracketed fallback: Newton in ``log dw`` on ``log(p A) = log(load)``, the
+    patch ends solved at each step; all cases together.
+
+    Parameters
+    ----------
+    cs : CaseArrays
+    load : (m, 1) float [N]
+    n : int
+        Clenshaw-Curtis sections per patch.
+
+    Returns
+    -------
+    dw : (m, 1) float [mm]
+    ends : (rear, front) of (m, 1) float [rad]
+
+    Raises
+    ------
+    LoadTooHigh
+        A load exceeds ``p A`` at the largest deflection (the first such case).
+    NotConverged
+        The search fails otherwise.
+    """
     target = np.log(load)
     dmax = cs.max_deflection()
     # power-law start, A ~ 3.7 sqrt(R) dw^1.5 (fits the catalogue tires to ~20 %)

@@ -140,6 +140,45 @@ class ContactPatch:
             ground_z=self.surface_z,
         )
 
+    def __repr__(self) -> str:
+        c = self.case
+        return (
+            f"ContactPatch({c.tire.name or 'tire'}, {c.pressure / MPA_PER_BAR:.4g} bar, "
+            f"{self.vertical_force:.4g} N, {c.surface.spec}: length {self.length:.2f} mm, "
+            f"width {self.width:.2f} mm, area {self.area:.1f} mm^2, "
+            f"lateral force {self.lateral_force:.4g} N)"
+        )
+
+    def _repr_html_(self) -> str:
+        """A summary table for notebooks."""
+        return summary_html("ContactPatch", self.summary())
+
+    def to_dataframe(self):
+        """Per-section arrays as a pandas DataFrame (pandas is optional).
+
+        Returns
+        -------
+        pandas.DataFrame
+            Columns ``phi_rad, x_mm, edge1_mm, edge2_mm, width_mm, radius1_mm,
+            radius2_mm, dS_N_mm, dN_N_mm, weight_mm``, one row per section.
+        """
+        pd = _pandas()
+        sec = self.sections
+        return pd.DataFrame(
+            {
+                "phi_rad": self.phi,
+                "x_mm": self.x,
+                "edge1_mm": sec.edge1,
+                "edge2_mm": sec.edge2,
+                "width_mm": sec.width,
+                "radius1_mm": sec.radius1,
+                "radius2_mm": sec.radius2,
+                "dS_N_mm": self.lateral_force_density,
+                "dN_N_mm": self.vertical_force_density,
+                "weight_mm": self.x_weights,
+            }
+        )
+
     def summary(self) -> dict[str, float | str]:
         """Scalar results with unit-carrying names (for tables, JSON, CSV)."""
         t = self.tire
@@ -166,6 +205,40 @@ class ContactPatch:
             "disk_offset_mm": self.disk_offset,
             "flatness_mm": self.flatness,
         }
+
+
+def summary_html(title: str, values: dict) -> str:
+    """An HTML table of ``values`` (names with units, numbers to 5 significant
+    figures), escaped, for ``_repr_html_``.
+
+    Parameters
+    ----------
+    title : str
+    values : dict
+
+    Returns
+    -------
+    str
+    """
+    import html
+
+    def cell(v):
+        return f"{v:.5g}" if isinstance(v, float) else html.escape(str(v))
+
+    rows = "".join(
+        f"<tr><th style='text-align:left'>{html.escape(str(k))}</th>"
+        f"<td style='text-align:right'>{cell(v)}</td></tr>"
+        for k, v in values.items()
+    )
+    return f"<table><caption>{html.escape(title)}</caption>{rows}</table>"
+
+
+def _pandas():
+    try:
+        import pandas as pd
+    except ImportError as exc:  # optional dependency
+        raise ImportError("to_dataframe needs pandas: pip install pandas") from exc
+    return pd
 
 
 def _row(sol: SectionSolution, i: int, shape) -> SectionSolution:

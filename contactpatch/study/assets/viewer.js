@@ -5,7 +5,7 @@
    indices base64 Uint32. Drag to turn, wheel or pinch to zoom, buttons to switch. */
 (function () {
   "use strict";
-  var root = document.getElementById("viewer");
+  var root = document.getElementById("tire3d");
   var dataEl = document.getElementById("viewer-data");
   if (!root || !dataEl) return;
   var canvas = root.querySelector("canvas");
@@ -55,8 +55,8 @@
     "varying vec3 vn; varying vec3 vc; void main(){ gl_Position = m * vec4(p, 1.0);" +
     " vn = n; vc = c; gl_PointSize = 1.0; }";
   var FS = "precision mediump float; varying vec3 vn; varying vec3 vc; uniform vec3 l;" +
-    " uniform float lit; void main(){ vec3 nn = normalize(vn); if (!gl_FrontFacing) nn = -nn;" +
-    " float d = abs(dot(nn, l)); float k = mix(1.0, 0.35 + 0.65 * d, lit);" +
+    " uniform float lit; void main(){ float k = 1.0; if (lit > 0.5) {" +
+    " vec3 nn = normalize(vn); k = 0.35 + 0.65 * abs(dot(nn, l)); }" +
     " gl_FragColor = vec4(vc * k, 1.0); }";
   function shader(type, src) {
     var s = gl.createShader(type);

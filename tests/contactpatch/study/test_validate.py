@@ -236,6 +236,31 @@ def test_trends_against_the_dissertation(run):
     assert t[("cornering_stiffness", "load")]["n_pairs"] == 5  # Table 4-6 load pairs
 
 
+def test_no_sign_mismatch_left_out(run):
+    v, _ = run
+    assert all(s["n_not_positive"] == 0 for s in v.statistics)
+    from contactpatch.study.validate_stats import ratio_stats
+
+    assert ratio_stats([1.0, 2.0, -1.0])["n_not_positive"] == 1
+
+
+def test_figures_plain_text(run):
+    import matplotlib
+    from matplotlib.text import Text
+
+    from contactpatch.study.validate_figures import figure_style, measured_vs_model
+
+    v, _ = run
+    data = v.to_dict()
+    with figure_style():
+        fig = measured_vs_model(data["points"], data["statistics"])
+        fig.canvas.draw()
+        texts = [t.get_text() for t in fig.findobj(Text) if t.get_text()]
+    assert any("1:1" in t for t in texts)
+    assert not any("$" in t for t in texts)  # no mathtext anywhere, tick labels included
+    assert matplotlib.rcParams["text.parse_math"] is True  # global style untouched
+
+
 def test_outputs_written(run):
     v, out = run
     rows = read_table(out / "points.csv")
@@ -319,6 +344,10 @@ def test_cli_validate_on_a_subset(tmp_path):
     st = {r["quantity"]: r for r in data}
     assert st["lateral_stiffness"]["n"] == 3  # tire 1 (5.52 bar) and tire 6 (two loads)
     assert (tmp_path / "v" / "index.html").is_file()
+    checks = {r["item"]: r["agree"] for r in read_table(tmp_path / "v" / "summary_checks.json")}
+    # Table 4-3 names tires 5, 10, 11, 12, none in the subset: no verdict, not a 'no'
+    assert checks["table_4_3"] == "n/a"
+    assert checks["table_4_1"] == "yes"
 
 
 def test_cli_keeps_the_other_commands():

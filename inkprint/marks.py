@@ -1,0 +1,638 @@
+"""Sort a sheet's ink into prints and marks that are not prints (issue 11, item 3).
+
+Thresholds are fields of :class:`inkprint.AnalysisOptions`. The sorting works on a
+copy of the ink mask pooled to ~``stroke_width_mm / 5`` per pixel (area-weighted:
+a pooled pixel is ink when most of it is), then carries the result back to the full
+resolution.
+
+1. **Thick and thin.** An opening with a disk ``stroke_width_mm`` wide keeps the ink
+   that is wider than a pen stroke: tread elements (knobs, blocks, ribs, a slick
+   print's body); what survives in pieces of less than :data:`MIN_THICK_DISKS`
+   disks (where two lines cross, a letter's junction, a dust dot) does not count.
+   The rest is *thin*: pen writing, ruler lines and their ticks, gridlines, dust,
+   pixel noise, and the thin edges of prints (clipped knobs, rib tails, halo specks).
+2. **Footprints.** The thick elements are linked into prints by the footprint rule
+   of :mod:`inkprint.group`.
+3. **Thin ink.** Each connected piece of thin ink is judged against the prints'
+   convex hulls:
+
+   * ``line`` / ``gridlines`` / ``noise`` / ``text``: at least ``line_length_mm``
+     long and mostly outside every print (a ruler crossing a print, chart paper,
+     a pixel-noise page, a line of writing); set aside whole. The parts of a line
+     inside a print's grooves stay (they are short and do not move the hull).
+   * the print's own edge: within ``group_distance_mm`` of a print and reaching no
+     farther than ``mark_overhang_mm`` out of its hull (rib tails, slivers), a
+     compact blob apart from the print's thick ink (a clipped knob), or a dot no
+     longer than :data:`DOT_MM` (halo specks: the edge-spot rule of section 7.1.1
+     decides about them). The hull judging this is the prints' *core*: their thick
+     ink opened by two stroke widths, so the foot of a pen stroke meeting the edge
+     does not widen it;
+   * ``text``: thin strokes reaching farther out (a pen label touching a print), or
+     strokes away from every print;
+   * ``dust``: small dots away from every print.
+
+Nothing set aside is ever merged into a print; every mark is reported with its kind
+and box (:class:`Mark`), and drawn on the QA overlay.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from .coords import area_px_to_mm2, mm_to_px_length
+from .group import (
+    Group,
+    element_graph,
+    linked_edges,
+    merge_overlapping,
+    union_labels,
+)
+from .options import AnalysisOptions, resolve_options
+
+#: thin ink no longer than this near a print is a dot (halo speck, clipped knob)
+DOT_MM = 1.5
+#: the Voronoi partition of the elements is sampled every this many mm
+GRAPH_STEP_MM = 0.5
+#: thick ink smaller than this many stroke disks is thin (the crossing of two lines,
+#: a letter's junction, a dust dot): a tread element is larger
+MIN_THICK_DISKS = 3
+#: thick ink under this many stroke disks, with more thin ink attached than its own
+#: area, is a letter's junction (thin)
+SMALL_THICK_DISKS = 12
+#: a compact thin blob is at most this many times longer than wide
+COMPACT_ASPECT = 4.0
+#: ... and fills at least this fraction of its convex hull
+COMPACT_SOLIDITY = 0.85
+#: straight segments at least this long are a line's (Hough, on the long marks)
+LINE_SEGMENT_MM = 5.0
+
+
+@dataclass(frozen=True)
+class Mark:
+    """Ink set aside: not a print, never merged into one.
+
+    Attributes
+    ----------
+    kind : str
+        'line', 'gridlines', 'text', 'dust', 'noise', 'texture', 'writing',
+        'fragment'.
+    bbox : (row0, col0, row1, col1) int [px]
+        Box on the sheet.
+    area_mm2 : float [mm^2]
+        Its ink.
+    reason : str
+        Why it is not a print.
+    """
+
+    kind: str
+    bbox: tuple[int, int, int, int]
+    area_mm2: float
+    reason: str = ""
+
+
+@dataclass(frozen=True)
+class SortedInk:
+    """A sheet's ink sorted into candidate prints and marks.
+
+    Attributes
+    ----------
+    groups : list of Group
+        Candidate prints (full resolution), top to bottom.
+    marks : list of Mark
+        Ink set aside.
+    mark_map : (H, W) bool or None
+        Where marks were set aside, on the pooled grid (``q`` sheet pixels a side).
+    q : int
+        Pooling factor of ``mark_map``.
+    """
+
+    groups: list
+    marks: list = field(default_factory=list)
+    mark_map: np.ndarray | None = field(default=None, repr=False)
+    q: int = 1
+
+    def marks_near(self, rows: slice, cols: slice) -> np.ndarray:
+        """Sheet pixels of a box that lie on or next to a mark set aside.
+
+        Parameters
+        ----------
+        rows, cols : slice [px]
+            A box of the sheet.
+
+        Returns
+        -------
+        (h, w) bool
+        """
+        import cv2
+
+        h, w = rows.stop - rows.start, cols.stop - cols.start
+        if self.mark_map is None:
+            return np.zeros((h, w), bool)
+        q = self.q
+        r0, c0 = rows.start // q, cols.start // q
+        r1, c1 = -(-rows.stop // q), -(-cols.stop // q)
+        small = cv2.dilate(self.mark_map[r0:r1, c0:c1].astype(np.uint8), np.ones((3, 3), np.uint8))
+        big = np.repeat(np.repeat(small.astype(bool), q, axis=0), q, axis=1)
+        return big[rows.start - r0 * q :, cols.start - c0 * q :][:h, :w]
+
+
+@dataclass(frozen=True)
+class _Pooled:
+    """The pooled mask: ``mask`` (H, W) bool, factor ``q`` and pixel size [mm]."""
+
+    mask: np.ndarray
+    q: int
+    px_mm: float
+
+
+def _pool(mask: np.ndarray, mm_per_px: float, opts: AnalysisOptions) -> _Pooled:
+    import cv2
+
+    q = max(1, int(opts.stroke_width_mm / 5.0 / mm_per_px))
+    m8 = mask.view(np.uint8) if mask.dtype == bool else (mask > 0).astype(np.uint8)
+    if q == 1:
+        return _Pooled(m8.astype(bool, copy=False), 1, mm_per_px)
+    h, w = mask.shape
+    hh, ww = -(-h // q), -(-w // q)
+    padded = cv2.copyMakeBorder(m8 * np.uint8(255), 0, hh * q - h, 0, ww * q - w, cv2.BORDER_CONSTANT, value=0)
+    small = cv2.resize(padded, (ww, hh), interpolation=cv2.INTER_AREA)
+    return _Pooled(small >= 128, q, mm_per_px * q)
+
+
+def _disk(diameter_px: float) -> np.ndarray:
+    """A digital disk of the given diameter [px] (pixel centres within the radius;
+    OpenCV's small "ellipses" are closer to a plus sign, which fits in the
+    crossing of two thin lines)."""
+    r = max(diameter_px, 2.0) / 2.0
+    n = int(np.floor(r))
+    y, x = np.mgrid[-n : n + 1, -n : n + 1]
+    return (x * x + y * y <= r * r).astype(np.uint8)
+
+
+@dataclass(frozen=True)
+class _Parts:
+    """Thick elements and thin pieces of the pooled mask (labels and stats)."""
+
+    thick: np.ndarray
+    n_thick: int
+    thick_stats: np.ndarray
+    thin: np.ndarray
+    n_thin: int
+    thin_stats: np.ndarray
+
+
+def _split(pooled: _Pooled, opts: AnalysisOptions) -> _Parts:
+    """Thick elements and thin pieces of the pooled mask.
+
+    Thick: what an opening with a stroke-wide disk keeps, less the small blobs
+    that belong to thin ink - under :data:`MIN_THICK_DISKS` disks (where two
+    lines cross, a dust dot), or under :data:`SMALL_THICK_DISKS` disks with more
+    thin ink attached than their own area (a letter's junction).
+    """
+    import cv2
+
+    m = pooled.mask.view(np.uint8)
+    kernel = _disk(opts.stroke_width_mm / pooled.px_mm)
+    disk = int(kernel.sum())
+    opened = cv2.morphologyEx(m, cv2.MORPH_OPEN, kernel)
+    n1, l1, s1, _ = cv2.connectedComponentsWithStats(opened, connectivity=8)
+    area = s1[:, cv2.CC_STAT_AREA]
+    keep = area >= MIN_THICK_DISKS * disk
+    keep[0] = False
+    check = np.flatnonzero(keep & (area < SMALL_THICK_DISKS * disk))
+    if len(check):
+        _, l2, s2, _ = cv2.connectedComponentsWithStats(m & (l1 == 0).view(np.uint8), connectivity=8)
+        for k in check:
+            keep[k] = _attached_thin(l1, l2, s2, s1, k) <= 0.5 * area[k]
+    if not keep[1:].all():
+        n1, l1, s1, _ = cv2.connectedComponentsWithStats(keep[l1].view(np.uint8), connectivity=8)
+    thin = m & (l1 == 0).view(np.uint8)
+    n2, l2, s2, _ = cv2.connectedComponentsWithStats(thin, connectivity=8)
+    return _Parts(l1, n1 - 1, s1, l2, n2 - 1, s2)
+
+
+def _attached_thin(thick_lab, thin_lab, thin_stats, thick_stats, k: int) -> int:
+    """Pixels of the thin pieces touching thick blob ``k``."""
+    import cv2
+
+    x, y, w, h = thick_stats[k, :4]
+    r0, c0 = max(y - 1, 0), max(x - 1, 0)
+    box = (slice(r0, y + h + 1), slice(c0, x + w + 1))
+    ring = cv2.dilate((thick_lab[box] == k).view(np.uint8), np.ones((3, 3), np.uint8))
+    ids = np.unique(thin_lab[box][ring.astype(bool)])
+    ids = ids[ids > 0]
+    return int(thin_stats[ids, cv2.CC_STAT_AREA].sum())
+
+
+def _groups_of_elements(parts: _Parts, pooled: _Pooled, opts: AnalysisOptions) -> np.ndarray:
+    """Print index of each thick element (footprint rule, then hull overlaps)."""
+    n = parts.n_thick
+    if n == 0:
+        return np.zeros(0, int)
+    step = max(1, int(GRAPH_STEP_MM / pooled.px_mm))
+    graph = element_graph(parts.thick, n, px_mm=pooled.px_mm, step=step)
+    link = linked_edges(graph, options=opts)
+    comp = union_labels(n, graph.a[link], graph.b[link])
+    return merge_overlapping(_hulls(parts.thick, comp), comp)
+
+
+def _hulls(labels: np.ndarray, comp: np.ndarray, core=None) -> list:
+    """Convex hull (cv2 float32 points, pooled x=col, y=row) of each group, from the
+    ``core`` pixels of its elements where given and they are most of the element
+    (a fine tread like a file pattern has little core: whole)."""
+    import cv2
+
+    src = (labels > 0).astype(np.uint8)
+    if core is not None:
+        n = len(comp) + 1
+        share = np.bincount(labels[core], minlength=n) / np.maximum(np.bincount(labels.ravel(), minlength=n), 1)
+        cored = share >= 0.5
+        cored[0] = False
+        src = (core & cored[labels]) | ((labels > 0) & ~cored[labels])
+        src = src.astype(np.uint8)
+    contours, _ = cv2.findContours(src, cv2.RETR_EXTERNAL, cv2.CHAIN_APPROX_SIMPLE)
+    pts: list[list] = [[] for _ in range(int(comp.max()) + 1 if len(comp) else 0)]
+    for c in contours:
+        x, y = c[0, 0]
+        pts[comp[labels[y, x] - 1]].append(c)
+    return [
+        cv2.convexHull(np.concatenate(p)).astype(np.float32) if p else None for p in pts
+    ]
+
+
+def _core(parts: _Parts, pooled: _Pooled, opts: AnalysisOptions) -> np.ndarray:
+    """Thick ink that is wider than two strokes: the prints' bodies without the
+    bumps where a pen stroke meets their edge (the hulls that judge thin ink)."""
+    import cv2
+
+    kernel = _disk(2.0 * opts.stroke_width_mm / pooled.px_mm)
+    return cv2.morphologyEx((parts.thick > 0).view(np.uint8), cv2.MORPH_OPEN, kernel).view(bool)
+
+
+def _line_kind(crop: np.ndarray, extent_mm: float, px_mm: float) -> tuple[str, str]:
+    """What a long thin piece (its bool crop) is: line, gridlines, noise or text."""
+    import cv2
+
+    h, w = crop.shape
+    fill = float(crop.mean())
+    big = min(h, w) * px_mm
+    pts = cv2.findNonZero(crop.astype(np.uint8)).astype(np.float32)
+    (_, _), (a, b), _ = cv2.minAreaRect(pts)
+    aspect = max(a, b) / max(min(a, b), 1.0)
+    size = f"{extent_mm:.0f} mm"
+    if fill >= 0.2 and big >= 20:
+        return "noise", f"pixel noise spread over {size}"
+    if aspect >= 5:
+        return "line", f"a straight line {size} long (a ruler or a drawn line)"
+    if big >= 30:
+        return "gridlines", f"gridlines over {size}"
+    return "text", f"writing or a pen stroke {size} long"
+
+
+def _hull_map(hulls: list, shape) -> np.ndarray:
+    """Pooled map of the prints' hulls (0: none, k + 1: print k)."""
+    import cv2
+
+    out = np.zeros(shape, np.int32)
+    for k, hull in enumerate(hulls):
+        if hull is not None:
+            cv2.fillPoly(out, [np.round(hull).astype(np.int32)], k + 1)
+    return out
+
+
+@dataclass(frozen=True)
+class _ThinStats:
+    """Per thin piece 1..n (index 0 unused): extent [mm], area [mm^2], gap to the
+    nearest print hull and farthest reach out of it [mm], that print (-1: none),
+    and the fraction of its pixels inside a hull."""
+
+    extent: np.ndarray
+    area: np.ndarray
+    gap: np.ndarray
+    reach: np.ndarray
+    target: np.ndarray
+    inside: np.ndarray
+    touch: np.ndarray
+
+
+def _thin_stats(parts: _Parts, hull_map, near_dist, near_id, pooled: _Pooled) -> _ThinStats:
+    import cv2
+
+    n = parts.n_thin + 1
+    st = parts.thin_stats
+    extent = np.maximum(st[:, cv2.CC_STAT_WIDTH], st[:, cv2.CC_STAT_HEIGHT]) * pooled.px_mm
+    area = area_px_to_mm2(st[:, cv2.CC_STAT_AREA].astype(float), pooled.px_mm)
+    on = parts.thin > 0
+    lab, d, ids = parts.thin[on], near_dist[on] * pooled.px_mm, near_id[on]
+    gap, reach = np.full(n, np.inf), np.zeros(n)
+    target = np.full(n, -1)
+    if len(lab):
+        order = np.lexsort((d, lab))
+        first = order[np.r_[True, lab[order][1:] != lab[order][:-1]]]
+        gap[lab[first]], target[lab[first]] = d[first], ids[first] - 1
+        np.maximum.at(reach, lab, d)
+    inside = np.bincount(lab, weights=(hull_map[on] > 0), minlength=n) / np.maximum(
+        st[:, cv2.CC_STAT_AREA], 1
+    )
+    thick_near = cv2.dilate((parts.thick > 0).view(np.uint8), np.ones((3, 3), np.uint8))
+    touch = np.bincount(lab, weights=thick_near[on], minlength=n) > 0
+    return _ThinStats(extent, area, gap, reach, target, inside, touch)
+
+
+def _compact(parts: _Parts, k: int) -> bool:
+    """Whether thin piece ``k`` is a compact blob (a clipped tread block: convex,
+    filling :data:`COMPACT_SOLIDITY` of its hull, at most :data:`COMPACT_ASPECT`
+    times longer than wide), not a stroke (a letter, a tick)."""
+    import cv2
+
+    pts = cv2.findNonZero(_crop(parts.thin, parts.thin_stats, k).view(np.uint8))
+    (_, _), (a, b), _ = cv2.minAreaRect(pts)
+    a, b = max(a, b) + 1.0, min(a, b) + 1.0
+    hull = cv2.convexHull(pts)
+    solid = len(pts) / max(cv2.contourArea(hull) + 0.5 * cv2.arcLength(hull, True) + 1.0, 1.0)
+    return solid >= COMPACT_SOLIDITY and a <= COMPACT_ASPECT * b
+
+
+def _judge_thin(t: _ThinStats, parts: _Parts, opts: AnalysisOptions):
+    """Per thin piece: the print it belongs to (-1: set aside), and the kind of mark
+    for the short ones ('' for long ones, judged by shape later).
+
+    Near a print (within ``group_distance_mm`` of its hull), a thin piece is the
+    print's own when it is a dot, reaches no farther than ``mark_overhang_mm`` out
+    of the hull (a rib's tail, a sliver along the edge), or, apart from the print's
+    thick ink, is a compact blob (a clipped tread block). A pen stroke, a letter or a
+    ruler's tick sticking out is not.
+    """
+    long = t.extent >= opts.line_length_mm
+    near = (t.target >= 0) & (t.gap <= opts.group_distance_mm)
+    dot = t.extent <= DOT_MM
+    own = near & (dot | (t.reach <= opts.mark_overhang_mm))
+    for k in np.flatnonzero(near & ~own & ~t.touch & ~long):
+        own[k] = _compact(parts, k)
+    keep = np.where(long, t.inside >= 0.5, own)
+    owner = np.where(keep, t.target, -1)
+    kind = np.where(long, "", np.where(dot, "dust", "text"))
+    return owner, kind
+
+
+def _short_reason(kind: str, t: _ThinStats, k: int, opts: AnalysisOptions) -> str:
+    if kind == "dust":
+        return "a speck away from the prints"
+    if t.target[k] >= 0 and t.gap[k] <= opts.group_distance_mm:
+        return f"a pen mark or tick reaching {t.reach[k]:.1f} mm out of a print"
+    return f"writing or a mark ({t.extent[k]:.1f} mm) away from the prints"
+
+
+def _nearest_hull(hull_map: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Distance [pooled px] to the nearest print hull and that print's map id."""
+    import cv2
+
+    if not hull_map.any():
+        return np.full(hull_map.shape, np.inf, np.float32), np.zeros(hull_map.shape, np.int32)
+    free = (hull_map == 0).astype(np.uint8)
+    dist, nearest = cv2.distanceTransformWithLabels(
+        free, cv2.DIST_L2, 3, labelType=cv2.DIST_LABEL_PIXEL
+    )
+    lut = np.zeros(int(nearest.max()) + 1, np.int32)
+    inside = hull_map > 0
+    lut[nearest[inside]] = hull_map[inside]
+    return dist, lut[nearest]
+
+
+@dataclass(frozen=True)
+class _Sorted:
+    """One sorting pass on the pooled grid."""
+
+    parts: _Parts
+    comp: np.ndarray
+    hulls: list
+    hull_map: np.ndarray
+    stats: _ThinStats
+    owner: np.ndarray
+    kind: np.ndarray
+
+
+def _sort_pooled(pooled: _Pooled, opts: AnalysisOptions) -> _Sorted:
+    parts = _split(pooled, opts)
+    comp = _groups_of_elements(parts, pooled, opts)
+    hulls = _hulls(parts.thick, comp, _core(parts, pooled, opts)) if len(comp) else []
+    hull_map = _hull_map(hulls, pooled.mask.shape)
+    near_dist, near_id = _nearest_hull(hull_map)
+    stats = _thin_stats(parts, hull_map, near_dist, near_id, pooled)
+    owner, kind = _judge_thin(stats, parts, opts)
+    owner[0] = -1
+    for k in np.flatnonzero((stats.extent >= opts.line_length_mm) & (owner >= 0)):
+        ids = hull_map[_box(parts.thin_stats, k)][_crop(parts.thin, parts.thin_stats, k)]
+        owner[k] = int(np.bincount(ids[ids > 0]).argmax()) - 1  # the print holding most
+    return _Sorted(parts, comp, hulls, hull_map, stats, owner, kind)
+
+
+def _line_pixels(crop: np.ndarray, px_mm: float) -> np.ndarray:
+    """The pixels of a thin network that lie on straight segments at least
+    :data:`LINE_SEGMENT_MM` long (rulers, gridlines), as a bool crop."""
+    import cv2
+
+    m = crop.view(np.uint8) * np.uint8(255)
+    n = max(8, int(LINE_SEGMENT_MM / px_mm))
+    segs = cv2.HoughLinesP(m, 1, np.pi / 360, threshold=n // 2, minLineLength=n, maxLineGap=2)
+    out = np.zeros(crop.shape, np.uint8)
+    if segs is None:
+        return out.view(bool)
+    dt = cv2.distanceTransform(m, cv2.DIST_L2, 3)
+    width = int(np.ceil(2.0 * np.percentile(dt[crop], 95))) + 1
+    for x0, y0, x1, y1 in segs.reshape(-1, 4):
+        cv2.line(out, (int(x0), int(y0)), (int(x1), int(y1)), 1, width)
+    return out.view(bool) & crop
+
+
+def _lines(first: _Sorted, pooled: _Pooled, opts: AnalysisOptions) -> tuple:
+    """Straight-line pixels of the long marks set aside (pooled bool), and their marks.
+
+    Taking only the lines (not the whole network) leaves what merely touches a line
+    - a tread block a gridline crosses, a ruler's tick - to be judged on its own."""
+    parts, st = first.parts, first.stats
+    lines = np.zeros(pooled.mask.shape, bool)
+    marks = []
+    for k in np.flatnonzero((first.owner < 0) & (st.extent >= opts.line_length_mm)):
+        if k == 0:
+            continue
+        box, crop = _box(parts.thin_stats, k), _crop(parts.thin, parts.thin_stats, k)
+        kind, why = _line_kind(crop, st.extent[k], pooled.px_mm)
+        if kind in ("line", "gridlines"):
+            px = _line_pixels(crop, pooled.px_mm)
+            if px.any():
+                lines[box] |= px
+                area = area_px_to_mm2(int(np.count_nonzero(px)), pooled.px_mm)
+                marks.append(_mark(kind, box[0], box[1], pooled, None, area, why))
+    return lines, marks
+
+
+def sort_ink(
+    mask, *, mm_per_px: float, options: AnalysisOptions | None = None
+) -> SortedInk:
+    """Sort a sheet's ink into candidate prints and marks (see the module's notes).
+
+    Parameters
+    ----------
+    mask : (rows, cols) bool
+        Ink of the sheet.
+    mm_per_px : float [mm / px]
+    options : AnalysisOptions, optional
+        Defaults when None.
+
+    Returns
+    -------
+    SortedInk
+    """
+    opts = resolve_options(options)
+    mask = np.asarray(mask, bool)
+    pooled = _pool(mask, mm_per_px, opts)
+    first = _sort_pooled(pooled, opts)
+    lines, line_marks = _lines(first, pooled, opts)
+    sorted_ = first
+    if lines.any():  # sort again without the lines
+        sorted_ = _sort_pooled(_Pooled(pooled.mask & ~lines, pooled.q, pooled.px_mm), opts)
+    parts, st, owner = sorted_.parts, sorted_.stats, sorted_.owner
+    # group map: k + 1 for print k; -1 a line mark; -2 another mark; 0 paper
+    group_map = np.concatenate([[0], sorted_.comp + 1])[parts.thick]
+    thin_lut = np.where(owner >= 0, owner + 1, np.where(st.extent >= opts.line_length_mm, -1, -2))
+    thin_lut[0] = 0
+    on = parts.thin > 0
+    group_map[on] = thin_lut[parts.thin[on]]
+    group_map[lines] = -1
+    shape = mask.shape
+    marks = line_marks + _thin_marks(parts, st, owner, sorted_.kind, pooled, shape, opts)
+    marks = [_clip_mark(m, shape) for m in marks]
+    groups = [g for g in _full_groups(mask, group_map, sorted_.hulls, pooled, opts) if g]
+    groups.sort(key=lambda g: (g.rows.start + g.rows.stop, g.cols.start))
+    return SortedInk(groups, marks, group_map < 0, pooled.q)
+
+
+def _box(stats: np.ndarray, k: int) -> tuple[slice, slice]:
+    x, y, w, h = stats[k, :4]
+    return slice(y, y + h), slice(x, x + w)
+
+
+def _crop(labels: np.ndarray, stats: np.ndarray, k: int) -> np.ndarray:
+    return labels[_box(stats, k)] == k
+
+
+def _thin_marks(parts, stats: _ThinStats, owner, kind, pooled, shape, opts) -> list:
+    """Marks for the thin pieces set aside."""
+    out = []
+    for k in np.flatnonzero(owner[1:] < 0) + 1:
+        rows, cols = _box(parts.thin_stats, k)
+        if kind[k]:
+            why = _short_reason(str(kind[k]), stats, k, opts)
+            kk = str(kind[k])
+        else:
+            kk, why = _line_kind(_crop(parts.thin, parts.thin_stats, k), stats.extent[k], pooled.px_mm)
+        out.append(_mark(kk, rows, cols, pooled, shape, stats.area[k], why))
+    return out
+
+
+def _mark(kind, rows, cols, pooled: _Pooled, shape, area, why) -> Mark:
+    q = pooled.q
+    h, w = shape if shape is not None else (1 << 62, 1 << 62)
+    box = (
+        int(rows.start * q),
+        int(cols.start * q),
+        int(min(rows.stop * q, h)),
+        int(min(cols.stop * q, w)),
+    )
+    return Mark(kind, box, float(area), why)
+
+
+def _clip_mark(m: Mark, shape) -> Mark:
+    r0, c0, r1, c1 = m.bbox
+    return Mark(m.kind, (r0, c0, min(r1, shape[0]), min(c1, shape[1])), m.area_mm2, m.reason)
+
+
+def _full_groups(mask, group_map, hulls: list, pooled: _Pooled, opts: AnalysisOptions):
+    """Each print's ink at full resolution (None for one without ink)."""
+    n_groups = len(hulls)
+    on = group_map > 0
+    ids = group_map[on] - 1
+    ys, xs = np.nonzero(on)
+    big = np.iinfo(np.int64).max
+    r0, c0 = np.full(n_groups, big), np.full(n_groups, big)
+    r1, c1 = np.full(n_groups, -1), np.full(n_groups, -1)
+    np.minimum.at(r0, ids, ys)
+    np.minimum.at(c0, ids, xs)
+    np.maximum.at(r1, ids, ys)
+    np.maximum.at(c1, ids, xs)
+    for k in range(n_groups):
+        if r1[k] < 0:
+            yield None
+            continue
+        box = (r0[k], c0[k], r1[k], c1[k])
+        yield _full_group(mask, group_map, k + 1, box, hulls[k], pooled, opts)
+
+
+def _full_group(mask, group_map, gid: int, box, hull, pooled: _Pooled, opts: AnalysisOptions):
+    """Group ``gid``'s ink at full resolution (None if it has none)."""
+    import cv2
+
+    q, (h, w) = pooled.q, mask.shape
+    y0, x0, y1, x1 = box
+    r0, r1 = max(y0 - 1, 0), min(y1 + 2, group_map.shape[0])
+    c0, c1 = max(x0 - 1, 0), min(x1 + 2, group_map.shape[1])
+    local = group_map[r0:r1, c0:c1]
+    region = cv2.dilate((local == gid).astype(np.uint8), np.ones((3, 3), np.uint8))
+    region &= ((local == 0) | (local == gid)).astype(np.uint8)  # not a mark, not another print
+    rows = slice(r0 * q, min(r1 * q, h))
+    cols = slice(c0 * q, min(c1 * q, w))
+    ink = mask[rows, cols] & _upsample(region, q, rows, cols)
+    # a line's stub inside the print's pooled pixels is as thin as the line; a pen
+    # stroke lying along the print's edge fills a stroke disk: take two
+    for code, k in ((-1, 1.0), (-2, 2.0)):
+        near = cv2.dilate((local == code).astype(np.uint8), _disk(k * opts.stroke_width_mm / pooled.px_mm))
+        near &= region
+        if near.any():
+            near_full = _upsample(near, q, rows, cols) & ~_inside(hull, q, rows, cols)
+            ink = _drop_thin_near(ink, near_full, k * opts.stroke_width_mm / (pooled.px_mm / q))
+    if not ink.any():
+        return None
+    return _tight(Group(rows, cols, ink))
+
+
+def _upsample(small: np.ndarray, q: int, rows: slice, cols: slice) -> np.ndarray:
+    big = np.repeat(np.repeat(small.astype(bool), q, axis=0), q, axis=1) if q > 1 else small.astype(bool)
+    return big[: rows.stop - rows.start, : cols.stop - cols.start]
+
+
+def _inside(hull, q: int, rows: slice, cols: slice) -> np.ndarray:
+    """Sheet pixels of the box inside a print's pooled hull (none without a hull)."""
+    import cv2
+
+    inside = np.zeros((rows.stop - rows.start, cols.stop - cols.start), np.uint8)
+    if hull is not None:
+        pts = (hull.reshape(-1, 2) + 0.5) * q - np.array([cols.start, rows.start]) - 0.5
+        cv2.fillPoly(inside, [np.round(pts * 16).astype(np.int32)], 1, cv2.LINE_8, 4)
+    return inside.view(bool)
+
+
+def _drop_thin_near(ink: np.ndarray, near: np.ndarray, width_px: float) -> np.ndarray:
+    """Remove, at full resolution, the ink in ``near`` narrower than ``width_px``
+    (the stub of a line, the foot of a pen stroke where a mark touches a print)."""
+    import cv2
+
+    thick = cv2.morphologyEx(ink.view(np.uint8), cv2.MORPH_OPEN, _disk(width_px))
+    return ink & ~(near & ~thick.view(bool))
+
+
+def _tight(g: Group) -> Group:
+    """The group with its box shrunk to its ink."""
+    rows = np.flatnonzero(g.mask.any(axis=1))
+    cols = np.flatnonzero(g.mask.any(axis=0))
+    r0, r1, c0, c1 = rows[0], rows[-1] + 1, cols[0], cols[-1] + 1
+    return Group(
+        slice(g.rows.start + r0, g.rows.start + r1),
+        slice(g.cols.start + c0, g.cols.start + c1),
+        g.mask[r0:r1, c0:c1],
+    )
+
+
+__all__ = ["DOT_MM", "Mark", "SortedInk", "sort_ink"]
