@@ -355,7 +355,7 @@ def _compact(parts: _Parts, k: int) -> bool:
     return solid >= COMPACT_SOLIDITY and a <= COMPACT_ASPECT * b
 
 
-def _judge_thin(t: _ThinStats, parts: _Parts, opts: AnalysisOptions):
+def _judge_thin(t: _ThinStats, parts: _Parts, opts: AnalysisOptions, network=None):
     """Per thin piece: the print it belongs to (-1: set aside), and the kind of mark
     for the short ones ('' for long ones, judged by shape later).
 
@@ -363,13 +363,20 @@ def _judge_thin(t: _ThinStats, parts: _Parts, opts: AnalysisOptions):
     print's own when it is a dot, reaches no farther than ``mark_overhang_mm`` out
     of the hull (a rib's tail, a sliver along the edge), or, apart from the print's
     thick ink, is a compact blob (a clipped tread block). A pen stroke, a letter or a
-    ruler's tick sticking out is not.
+    ruler's tick sticking out is not. A piece that was part of a line set aside
+    (``network``: a ruler's tick, what a gridline touched) is the print's only as
+    a compact blob (a tread block the line crossed).
     """
     long = t.extent >= opts.line_length_mm
     near = (t.target >= 0) & (t.gap <= opts.group_distance_mm)
     dot = t.extent <= DOT_MM
     own = near & (dot | (t.reach <= opts.mark_overhang_mm))
-    for k in np.flatnonzero(near & ~own & ~t.touch & ~long):
+    on_line = np.zeros(len(own), bool)
+    if network is not None:
+        on_line = np.bincount(parts.thin[network], minlength=len(own)) > 0
+        on_line[0] = False
+    own &= ~on_line
+    for k in np.flatnonzero(near & ~own & (~t.touch | on_line) & ~long):
         own[k] = _compact(parts, k)
     keep = np.where(long, t.inside >= 0.5, own)
     owner = np.where(keep, t.target, -1)
@@ -414,14 +421,14 @@ class _Sorted:
     kind: np.ndarray
 
 
-def _sort_pooled(pooled: _Pooled, opts: AnalysisOptions) -> _Sorted:
+def _sort_pooled(pooled: _Pooled, opts: AnalysisOptions, network=None) -> _Sorted:
     parts = _split(pooled, opts)
     comp = _groups_of_elements(parts, pooled, opts)
     hulls = _hulls(parts.thick, comp, _core(parts, pooled, opts)) if len(comp) else []
     hull_map = _hull_map(hulls, pooled.mask.shape)
     near_dist, near_id = _nearest_hull(hull_map)
     stats = _thin_stats(parts, hull_map, near_dist, near_id, pooled)
-    owner, kind = _judge_thin(stats, parts, opts)
+    owner, kind = _judge_thin(stats, parts, opts, network)
     owner[0] = -1
     for k in np.flatnonzero((stats.extent >= opts.line_length_mm) & (owner >= 0)):
         ids = hull_map[_box(parts.thin_stats, k)][_crop(parts.thin, parts.thin_stats, k)]
@@ -448,12 +455,14 @@ def _line_pixels(crop: np.ndarray, px_mm: float) -> np.ndarray:
 
 
 def _lines(first: _Sorted, pooled: _Pooled, opts: AnalysisOptions) -> tuple:
-    """Straight-line pixels of the long marks set aside (pooled bool), and their marks.
+    """Straight-line pixels of the long marks set aside (pooled bool), the whole
+    networks they are part of, and their marks.
 
     Taking only the lines (not the whole network) leaves what merely touches a line
     - a tread block a gridline crosses, a ruler's tick - to be judged on its own."""
     parts, st = first.parts, first.stats
     lines = np.zeros(pooled.mask.shape, bool)
+    network = np.zeros(pooled.mask.shape, bool)
     marks = []
     for k in np.flatnonzero((first.owner < 0) & (st.extent >= opts.line_length_mm)):
         if k == 0:
@@ -464,9 +473,10 @@ def _lines(first: _Sorted, pooled: _Pooled, opts: AnalysisOptions) -> tuple:
             px = _line_pixels(crop, pooled.px_mm)
             if px.any():
                 lines[box] |= px
+                network[box] |= crop
                 area = area_px_to_mm2(int(np.count_nonzero(px)), pooled.px_mm)
                 marks.append(_mark(kind, box[0], box[1], pooled, None, area, why))
-    return lines, marks
+    return lines, network, marks
 
 
 def sort_ink(
@@ -490,10 +500,11 @@ def sort_ink(
     mask = np.asarray(mask, bool)
     pooled = _pool(mask, mm_per_px, opts)
     first = _sort_pooled(pooled, opts)
-    lines, line_marks = _lines(first, pooled, opts)
+    lines, network, line_marks = _lines(first, pooled, opts)
     sorted_ = first
     if lines.any():  # sort again without the lines
-        sorted_ = _sort_pooled(_Pooled(pooled.mask & ~lines, pooled.q, pooled.px_mm), opts)
+        without = _Pooled(pooled.mask & ~lines, pooled.q, pooled.px_mm)
+        sorted_ = _sort_pooled(without, opts, network & ~lines)
     parts, st, owner = sorted_.parts, sorted_.stats, sorted_.owner
     # group map: k + 1 for print k; -1 a line mark; -2 another mark; 0 paper
     group_map = np.concatenate([[0], sorted_.comp + 1])[parts.thick]

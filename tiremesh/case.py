@@ -15,6 +15,12 @@ Slip kinematics (one definition for :func:`solve` and :func:`solve_lateral`):
     sideways at ``tan(slip)`` per mm rolled (brush-model kinematics):
     ``dh = lateral + (x - x_lead) tan(slip)``. Gives a cornering force and a positive
     pneumatic trail.
+``'relaxation'``
+    Stretched-string kinematics (Figure 4-15, sections 5.7, 5.8): the carcass ahead of
+    the leading edge is already displaced, decaying as the relaxation beyond the patch
+    (decay length ``l = 1 / (1 - i_lead)``, equation 5-29); continuity of the slope at
+    the leading edge puts the undisplaced point ``l`` ahead of it:
+    ``dh = lateral + (x - x_lead - l) tan(slip)``.
 ``'centre'``
     Appendix C: the patch centre line turns about the patch centre,
     ``dh = lateral + x tan(slip)``; a pure slip angle gives antisymmetric
@@ -36,7 +42,7 @@ from .geometry import TireGeometry
 from .surface import Flat, Surface, parse_surface
 from .units import MPA_PER_BAR
 
-SLIP_KINEMATICS = ("leading", "centre")
+SLIP_KINEMATICS = ("leading", "centre", "relaxation")
 FRICTION_MODELS = ("coulomb", "appendix")
 FORCE_CONVENTIONS = ("ground", "appendix")
 MAX_SECTIONS = 20001
@@ -87,6 +93,27 @@ class Relaxation:
         return cls(rate, rate, rate, rate)
 
 
+def slip_anchor(kinematics: str, relaxation: Relaxation) -> float:
+    """Distance ahead of the leading edge [mm] where a slipping tread is undisplaced:
+    0 for ``'leading'``, the leading decay length for ``'relaxation'``, NaN for
+    ``'centre'`` (no anchor: the centre line turns about the patch centre).
+
+    Parameters
+    ----------
+    kinematics : str
+    relaxation : Relaxation
+
+    Returns
+    -------
+    float [mm]
+    """
+    if kinematics == "centre":
+        return math.nan
+    if kinematics == "relaxation" and relaxation.lead_out > 0:
+        return Relaxation.decay_length(relaxation.lead_out)
+    return 0.0
+
+
 def _relaxation(value) -> Relaxation:
     if isinstance(value, Relaxation):
         return value
@@ -124,7 +151,7 @@ class LoadCase:
         :func:`solve_lateral`; a float sets all four.
     friction : float
         Friction coefficient, >= 0 (``inf``: no sliding), used by :func:`solve_lateral`.
-    slip_kinematics : {'leading', 'centre'}
+    slip_kinematics : {'leading', 'relaxation', 'centre'}
         How a slip angle displaces the tread (module docstring).
     n_beyond : int
         Sections beyond each patch end in :func:`solve_lateral`, 9 .. 20001.
@@ -315,6 +342,9 @@ class CaseTable:
     surface : tuple of Surface, length m
     slip_kinematics : tuple of str, length m
     force_convention : tuple of str, length m
+    slip_anchor : (m,) float [mm]
+        Distance ahead of the leading edge where a slipping tread is undisplaced
+        (:func:`slip_anchor`; NaN: the appendix's centre-line turn).
     """
 
     tire_radius: np.ndarray
@@ -329,6 +359,7 @@ class CaseTable:
     surface: tuple
     slip_kinematics: tuple
     force_convention: tuple = ()
+    slip_anchor: np.ndarray | None = None
 
     def __len__(self) -> int:
         return self.pressure.shape[0]
@@ -354,6 +385,7 @@ class CaseTable:
             surface=tuple(c.surface for c in cases),
             slip_kinematics=tuple(c.slip_kinematics for c in cases),
             force_convention=tuple(c.force_convention for c in cases),
+            slip_anchor=col(lambda c: slip_anchor(c.slip_kinematics, c.relaxation)),
         )
 
     @classmethod
@@ -395,7 +427,9 @@ class CaseTable:
             dw = v.positive("deflection", deflection, unit="mm")
             f = np.full(np.shape(dw), np.nan)
         if slip_kinematics not in SLIP_KINEMATICS:
-            raise InvalidParameter("slip_kinematics", slip_kinematics, "'leading' or 'centre'")
+            raise InvalidParameter(
+                "slip_kinematics", slip_kinematics, "'leading', 'relaxation' or 'centre'"
+            )
         if force_convention not in FORCE_CONVENTIONS:
             raise InvalidParameter("force_convention", force_convention, "'ground' or 'appendix'")
         many = isinstance(surface, list | tuple)
@@ -417,6 +451,7 @@ class CaseTable:
             tuple(surfaces * (m if len(surfaces) == 1 else 1)),
             (slip_kinematics,) * m,
             (force_convention,) * m,
+            np.full(m, slip_anchor(slip_kinematics, Relaxation())),
         )
 
     def take(self, index) -> CaseTable:
@@ -425,7 +460,13 @@ class CaseTable:
         arr = {f.name: getattr(self, f.name) for f in dataclasses.fields(self)}
         return CaseTable(
             **{
-                k: (tuple(val[i] for i in idx) if isinstance(val, tuple) else val[idx])
+                k: (
+                    val
+                    if val is None or (isinstance(val, tuple) and not val)
+                    else tuple(val[i] for i in idx)
+                    if isinstance(val, tuple)
+                    else val[idx]
+                )
                 for k, val in arr.items()
             }
         )

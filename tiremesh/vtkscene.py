@@ -260,7 +260,17 @@ def slice_x(pd):
 
 
 def smooth_normals(pd):
-    """Point normals for smooth shading (no splitting, orientation kept)."""
+    """Point normals for smooth shading (no splitting, orientation kept).
+
+    Parameters
+    ----------
+    pd : vtkPolyData
+
+    Returns
+    -------
+    vtkPolyData
+        With point normals.
+    """
     from vtkmodules.vtkFiltersCore import vtkPolyDataNormals
 
     f = vtkPolyDataNormals()
@@ -276,6 +286,14 @@ def smooth_normals(pd):
 
 def actor(pd, *, colour=None, line_width=None, opacity=1.0):
     """An actor of a polydata in one colour (scalars off).
+
+    Parameters
+    ----------
+    pd : vtkPolyData
+    colour : (float, float, float), optional
+    line_width : float, optional [px]
+        For lines (drawn unlit).
+    opacity : float
 
     Returns
     -------
@@ -300,6 +318,15 @@ def actor(pd, *, colour=None, line_width=None, opacity=1.0):
 
 def scalar_actor(pd, name: str, lut, *, cell: bool):
     """An actor coloured by the named point (or cell) array through ``lut``.
+
+    Parameters
+    ----------
+    pd : vtkPolyData
+    name : str
+        Array name.
+    lut : vtkLookupTable
+    cell : bool
+        A cell array (else a point array).
 
     Returns
     -------

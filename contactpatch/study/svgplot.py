@@ -240,7 +240,7 @@ class Panel:
         )
 
 
-def marker_svg(x, y, marker: str, colour: str, filled: bool, size: float, alpha=1.0) -> str:
+def marker_svg(x, y, marker: str, *, colour: str, filled: bool, size: float, alpha=1.0) -> str:
     """One marker: ``o`` circle, ``s`` square, ``D`` diamond, ``^`` triangle.
 
     Parameters
@@ -277,7 +277,19 @@ def marker_svg(x, y, marker: str, colour: str, filled: bool, size: float, alpha=
 
 @dataclass(frozen=True)
 class LegendItem:
-    """A legend entry: a marker and/or a line sample, and its label."""
+    """A legend entry: a marker and/or a line sample, and its label.
+
+    Attributes
+    ----------
+    label : str
+    colour : str
+    marker : str or None
+        ``o``, ``s``, ``D``, ``^`` or None (no marker).
+    filled : bool
+    line : bool
+        Draw a line sample.
+    dashed : bool
+    """
 
     label: str
     colour: str = "#333"
@@ -387,7 +399,11 @@ class Plot:
                     f'<path d="M{_num(cx)},{_num(mid)}h24" stroke="{it.colour}" stroke-width="1.6"{dash}/>'
                 )
             if it.marker:
-                self.items.append(marker_svg(cx + 12, mid, it.marker, it.colour, it.filled, 4.5))
+                self.items.append(
+                    marker_svg(
+                        cx + 12, mid, it.marker, colour=it.colour, filled=it.filled, size=4.5
+                    )
+                )
             self.items.append(
                 f'<text x="{_num(cx + 30)}" y="{_num(mid)}" dy="0.35em">{_esc(it.label)}</text>'
             )

@@ -212,3 +212,25 @@ def test_solve_lateral_invalid():
         solve_lateral(T37, load=400.0, pressure=0.4, slip_kinematics="middle")
     with pytest.raises(tm.InvalidParameter, match="method"):
         beam_rotta(tm.solve(T37, load=400.0, pressure=0.4), method="magic")
+
+
+def test_slip_kinematics_relaxation_moves_the_anchor_ahead():
+    # Figure 4-15: the tread is displaced ahead of the leading edge; with the
+    # stretched-string continuity the undisplaced point lies one decay length ahead
+    # (1 / (1 - 0.993) = 142.9 mm): more cornering force, a shorter trail
+    case = tm.LoadCase(T37, pressure=4 * BAR, load=400.0, slip=math.radians(1), relaxation=0.993)
+    lead = solve_lateral(case)
+    relax = solve_lateral(case.replace(slip_kinematics="relaxation"))
+    assert abs(relax.lateral_force) > abs(lead.lateral_force)
+    assert 0 < relax.pneumatic_trail < lead.pneumatic_trail
+    # the patch displacement is the leading one shifted by the decay length x tan(slip)
+    shift = relax.patch.sections.horz_deflection - lead.patch.sections.horz_deflection
+    # (to 0.1 %: the patch ends and x move slightly with the new displacement)
+    assert_allclose(shift, -(1 / (1 - 0.993)) * math.tan(math.radians(1)), rtol=2e-3)
+    # without relaxation beyond the patch the two kinematics coincide
+    zero = case.replace(relaxation=0.0)
+    assert_allclose(
+        tm.solve(zero.replace(slip_kinematics="relaxation")).lateral_force,
+        tm.solve(zero).lateral_force,
+        rtol=1e-12,
+    )

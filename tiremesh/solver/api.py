@@ -11,7 +11,7 @@ import numpy as np
 
 from .. import validate as v
 from .._tol import tol
-from ..case import MAX_SECTIONS, CaseTable, LoadCase
+from ..case import MAX_SECTIONS, CaseTable, LoadCase, slip_anchor
 from ..errors import BulgeLimit, InvalidParameter, LoadTooHigh, NotConverged, TireModelError
 from ..geometry import TireGeometry
 from .arrays import (
@@ -151,9 +151,7 @@ def _deflection(cs: CaseArrays, load, deflection, start=None):
     return check_deflection(deflection, cs), None, None
 
 
-def solve_arrays(
-    cs: CaseArrays, *, load=None, deflection=None, leading=None, start=None
-) -> Solved:
+def solve_arrays(cs: CaseArrays, *, load=None, deflection=None, anchor=None, start=None) -> Solved:
     """Wheel deflection, patch ends and slip anchor offset of m cases on one surface.
 
     Parameters
@@ -161,17 +159,21 @@ def solve_arrays(
     cs : CaseArrays
     load, deflection : (m, 1) float [N, mm]
         Exactly one given.
-    leading : (m, 1) bool, optional
-        Cases with the ``'leading'`` slip kinematics: the lateral displacement is
-        shifted by ``-x_lead tan(slip)`` so that ``dh = lateral`` at the leading edge
-        (a fixed point, solved to ``tol.disk_offset_atol``).
+    anchor : (m, 1) float [mm], optional
+        Where a slipping tread is undisplaced, as a distance ahead of the leading edge
+        (:func:`tiremesh.case.slip_anchor`: 0 for ``'leading'``, the decay length for
+        ``'relaxation'``, NaN for the appendix's ``'centre'`` turn). The lateral
+        displacement is shifted by ``-(x_lead + anchor) tan(slip)`` (a fixed point,
+        solved to ``tol.disk_offset_atol``). Default: 0 for every case.
 
     Returns
     -------
     Solved
     """
     ta = np.tan(cs.slip)
-    active = (ta != 0) if leading is None else (np.asarray(leading) & (ta != 0))
+    ahead = np.zeros_like(cs.r0) if anchor is None else np.asarray(anchor, float)
+    active = (ta != 0) & np.isfinite(ahead)
+    ahead = np.where(active, ahead, 0.0)
     base = cs.lateral
     offset, prev = np.zeros_like(cs.r0), None
     for _ in range(tol.max_iter):
@@ -183,7 +185,7 @@ def solve_arrays(
         if ends is None:
             ends, track = evaluate(cs_k, dw, 9).ends_and_offset()
         x_front = displacements(ends[1], dw, cs_k, 0.0).x
-        g = offset + np.where(active, x_front * ta, 0.0)  # zero when dh = lateral at the lead
+        g = offset + np.where(active, (x_front + ahead) * ta, 0.0)  # dh = lateral at the anchor
         if np.all(np.abs(g) <= tol.disk_offset_atol):
             return Solved(cs_k, dw, ends, track, offset)
         step = -g  # fixed-point step, then secant steps (the map is smooth and monotone)
@@ -223,8 +225,8 @@ def solve(case: LoadCase | TireGeometry, /, **fields) -> ContactPatch:
     cs = single_case_arrays(case)
     load = None if case.load is None else np.array([[case.load]])
     dw0 = None if case.deflection is None else np.array([[case.deflection]])
-    leading = np.array([[case.slip_kinematics == "leading"]])
-    sv = solve_arrays(cs, load=load, deflection=dw0, leading=leading)
+    anchor = np.array([[slip_anchor(case.slip_kinematics, case.relaxation)]])
+    sv = solve_arrays(cs, load=load, deflection=dw0, anchor=anchor)
     out = sv.evaluate(case.n_sections)
     return patch_from_arrays(case, out, 0, float(sv.dw[0, 0]), float(sv.slip_offset[0, 0]))
 
@@ -276,7 +278,9 @@ def find_sinkage(case: LoadCase | TireGeometry, load: float | None = None, /, **
         raise InvalidParameter("load", None, "> 0 N (find_sinkage needs a load)")
     cs = single_case_arrays(case)
     sv = solve_arrays(
-        cs, load=np.array([[case.load]]), leading=np.array([[case.slip_kinematics == "leading"]])
+        cs,
+        load=np.array([[case.load]]),
+        anchor=np.array([[slip_anchor(case.slip_kinematics, case.relaxation)]]),
     )
     return float(sv.dw[0, 0])
 
@@ -321,8 +325,8 @@ def _solve_group(table: CaseTable, n: int, start=None) -> dict[str, np.ndarray]:
     by_load = not np.all(np.isnan(table.load))
     load = col(table.load) if by_load else None
     dw0 = None if by_load else v.positive("deflection", col(table.deflection), unit="mm")
-    leading = col(np.array([k == "leading" for k in table.slip_kinematics]))
-    sv = solve_arrays(cs, load=load, deflection=dw0, leading=leading, start=start)
+    anchor = None if table.slip_anchor is None else col(table.slip_anchor)
+    sv = solve_arrays(cs, load=load, deflection=dw0, anchor=anchor, start=start)
     cs, dw = sv.cs, sv.dw
     out = sv.evaluate(n)
     return {
