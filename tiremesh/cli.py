@@ -24,8 +24,6 @@ import sys
 from collections.abc import Sequence
 from pathlib import Path
 
-import numpy as np
-
 from .case import SLIP_KINEMATICS, LoadCase
 from .catalog import get_tire
 from .errors import InvalidParameter, TireModelError
@@ -229,22 +227,9 @@ def _human(patch) -> str:
 
 def _section_rows(patch) -> list[dict]:
     """Per-section arrays of a patch as table rows (unit-carrying names)."""
-    sec = patch.sections
-    cols = {
-        "phi_rad": patch.phi,
-        "x_mm": patch.x,
-        "edge1_mm": sec.edge1,
-        "edge2_mm": sec.edge2,
-        "width_mm": sec.edge2 - sec.edge1,
-        "radius1_mm": sec.radius1,
-        "radius2_mm": sec.radius2,
-        "dv_mm": sec.vert_deflection,
-        "dh_mm": sec.horz_deflection,
-        "dS_N_per_mm": patch.lateral_force_density,
-        "dN_N_per_mm": patch.vertical_force_density,
-    }
+    cols = patch.section_table()
     n = len(patch.phi)
-    return [{k: float(np.broadcast_to(v, (n,))[i]) for k, v in cols.items()} for i in range(n)]
+    return [{k: float(v[i]) for k, v in cols.items()} for i in range(n)]
 
 
 def _slip_note(case: LoadCase) -> str:

@@ -297,32 +297,8 @@ def section_arrays(r0, w, dv, dh, *, camber, delta, broadcast=False):
     dwidth_ddh = -(dd1_dh + dd2_dh)
     dmid_ddv = 0.5 * (dd1_dv - dd2_dv)
     dmid_ddh = 0.5 * (dd1_dh - dd2_dh)
-    if not broadcast:
-        sol = SectionSolution(
-            edge1=e1,
-            edge2=e2,
-            radius1=r1,
-            radius2=r2,
-            angle1=th1,
-            angle2=th2,
-            height1=h1,
-            height2=h2,
-            bead1=(xb1, zb1),
-            bead2=(xb2, zb2),
-            ground_z=zg,
-            vert_deflection=dv,
-            horz_deflection=dh,
-            delta=delta,
-            lowest1=low1,
-            lowest2=low2,
-            dwidth_ddv=dwidth_ddv,
-            dwidth_ddh=dwidth_ddh,
-            dmid_ddv=dmid_ddv,
-            dmid_ddh=dmid_ddh,
-        )
-        return sol, bad_h, bad_c
     shape = np.broadcast(e1, e2).shape
-    b = lambda a: np.broadcast_to(a, shape)
+    b = (lambda a: np.broadcast_to(a, shape)) if broadcast else (lambda a: a)
     sol = SectionSolution(
         edge1=b(e1),
         edge2=b(e2),
@@ -345,6 +321,8 @@ def section_arrays(r0, w, dv, dh, *, camber, delta, broadcast=False):
         dmid_ddv=b(dmid_ddv),
         dmid_ddh=b(dmid_ddh),
     )
+    if not broadcast:
+        return sol, bad_h, bad_c
     return sol, np.broadcast_to(bad_h, shape), np.broadcast_to(bad_c, shape)
 
 

@@ -153,31 +153,41 @@ class ContactPatch:
         """A summary table for notebooks."""
         return summary_html("ContactPatch", self.summary())
 
+    def section_table(self) -> dict[str, np.ndarray]:
+        """Per-section arrays with unit-carrying names (for tables and DataFrames).
+
+        Returns
+        -------
+        dict of (n,) float arrays
+            ``phi_rad, x_mm, edge1_mm, edge2_mm, width_mm, radius1_mm, radius2_mm,
+            dv_mm, dh_mm, dS_N_per_mm, dN_N_per_mm, weight_mm``.
+        """
+        sec, n = self.sections, len(self.phi)
+        cols = {
+            "phi_rad": self.phi,
+            "x_mm": self.x,
+            "edge1_mm": sec.edge1,
+            "edge2_mm": sec.edge2,
+            "width_mm": sec.width,
+            "radius1_mm": sec.radius1,
+            "radius2_mm": sec.radius2,
+            "dv_mm": sec.vert_deflection,
+            "dh_mm": sec.horz_deflection,
+            "dS_N_per_mm": self.lateral_force_density,
+            "dN_N_per_mm": self.vertical_force_density,
+            "weight_mm": self.x_weights,
+        }
+        return {k: np.broadcast_to(np.asarray(v, float), (n,)) for k, v in cols.items()}
+
     def to_dataframe(self):
-        """Per-section arrays as a pandas DataFrame (pandas is optional).
+        """:meth:`section_table` as a pandas DataFrame (pandas is optional).
 
         Returns
         -------
         pandas.DataFrame
-            Columns ``phi_rad, x_mm, edge1_mm, edge2_mm, width_mm, radius1_mm,
-            radius2_mm, dS_N_mm, dN_N_mm, weight_mm``, one row per section.
+            One row per section.
         """
-        pd = _pandas()
-        sec = self.sections
-        return pd.DataFrame(
-            {
-                "phi_rad": self.phi,
-                "x_mm": self.x,
-                "edge1_mm": sec.edge1,
-                "edge2_mm": sec.edge2,
-                "width_mm": sec.width,
-                "radius1_mm": sec.radius1,
-                "radius2_mm": sec.radius2,
-                "dS_N_mm": self.lateral_force_density,
-                "dN_N_mm": self.vertical_force_density,
-                "weight_mm": self.x_weights,
-            }
-        )
+        return _pandas().DataFrame(self.section_table())
 
     def summary(self) -> dict[str, float | str]:
         """Scalar results with unit-carrying names (for tables, JSON, CSV)."""
