@@ -33,7 +33,7 @@ Errors    : ContactPatchError, InvalidInput, NoPatch (also the module ``errors``
 Tolerances: tol (numerical epsilons only)
 """
 
-__version__ = "0.1.0"
+__version__ = "0.2.0"
 
 from . import errors
 from ._tol import tol

@@ -109,7 +109,36 @@ FIGURES = ("measured_vs_model", "relaxation_fit")
 
 @dataclass
 class Validation:
-    """Everything the validation computed (:meth:`to_dict` is what is written)."""
+    """Everything the validation computed (:meth:`to_dict` is what is written).
+
+    Attributes
+    ----------
+    points : list of Point
+        Every row of the measurements, with its status and, where compared, the
+        model's value (:func:`evaluate_points`).
+    statistics : list of dict
+        Ratio statistics per quantity (:func:`.validate_stats.quantity_table`).
+    trends : list of dict
+        Trend signs, measured vs model (:func:`.validate_stats.trend_table`).
+    summaries : list of dict
+        The dissertation's summary statistics vs the model
+        (:func:`.validate_summary.summary_table`).
+    variants : list of dict
+        Lateral-stiffness errors per way of setting the decay length
+        (:func:`.validate_fit.variants`).
+    cornering : list of dict
+        Cornering-stiffness errors under three decay lengths
+        (:func:`.validate_fit.cornering_variants`).
+    loto : list of dict
+        Leave-one-tire-out rows per fitted tire (:func:`.validate_fit.loto_table`).
+    fit : RelaxationFit
+        The fitted casing modulus and decay length.
+    settings : dict
+        The run's inputs and choices (:func:`settings`).
+    curve : dict
+        RMS log error vs casing modulus for the figure
+        (:func:`.validate_fit.error_curve`).
+    """
 
     points: list[Point]
     statistics: list[dict]
@@ -141,7 +170,22 @@ class Validation:
 
 
 def point_row(p: Point) -> dict:
-    """A :class:`Point` as a row of :data:`POINT_COLUMNS`."""
+    """A :class:`Point` as a row of :data:`POINT_COLUMNS`.
+
+    Parameters
+    ----------
+    p : Point
+        A validation point (with or without a condition).
+
+    Returns
+    -------
+    dict
+        Column of :data:`POINT_COLUMNS` -> value: the point's fields, the quantity's
+        label and unit, the condition's fields (``rim_width_mm``, ``arc_length_mm``
+        [mm], ``pressure_bar`` [bar], ``load_N`` [N]; NaN, '' or None without a
+        condition), ``ratio`` (model / measured) and ``decay_length_mm``
+        ``1 / (1 - rate)`` [mm] (NaN unless ``0 <= rate < 1``).
+    """
     c = p.condition
     nan = math.nan
     return {
@@ -179,7 +223,23 @@ def point_row(p: Point) -> dict:
 def evaluate_points(runner: ModelRunner, points: list[Point]) -> None:
     """Set ``model`` (and ``model_alt`` at the alternative load, the modulus and rate
     used) on compared and ambiguous points; a named model error becomes status
-    ``model error`` with its message (in place)."""
+    ``model error`` with its message (in place).
+
+    Parameters
+    ----------
+    runner : ModelRunner
+        Solves the model (with the fitted decay length per tire).
+    points : list of Point
+        From :func:`.validate_points.classify_all`; points of any other status are
+        left alone.
+
+    Returns
+    -------
+    None
+        ``points`` is modified in place: ``model`` and ``model_alt`` in the unit of
+        :data:`.validate_points.QUANTITIES`, ``modulus`` [N/mm^2] and ``rate`` [per
+        mm] for rate-dependent quantities, or ``status`` and ``reason``.
+    """
     from dataclasses import replace
 
     for p in points:
@@ -227,12 +287,38 @@ def run_validation(measurements: str | os.PathLike | None = None) -> Validation:
         settings={},
         curve=error_curve(fit),
     )
-    v.settings = settings(fit, rows, sha, measurements, time.perf_counter() - t0)
+    v.settings = settings(
+        fit, rows, sha=sha, measurements=measurements, seconds=time.perf_counter() - t0
+    )
     return v
 
 
-def settings(fit: RelaxationFit, rows, sha: str, measurements, seconds: float) -> dict:
-    """The run's inputs and choices, for the outputs."""
+def settings(fit: RelaxationFit, rows, *, sha: str, measurements, seconds: float) -> dict:
+    """The run's inputs and choices, for the outputs.
+
+    Parameters
+    ----------
+    fit : RelaxationFit
+        The fitted casing modulus and decay length.
+    rows : list of dict
+        The measurement rows (only counted).
+    sha : str
+        SHA-256 hex digest of the measurement text.
+    measurements : path or None
+        The measurement CSV as given (None: the packaged copy).
+    seconds : float [s]
+        Run time, recorded to 0.01 s.
+
+    Returns
+    -------
+    dict
+        ``validation_version``, ``tiremesh_version``, ``measurements``,
+        ``measurements_sha256``, ``n_rows``, ``cache_key`` (:func:`cache_key`),
+        ``surface``, ``lateral_mm`` [mm], ``slip_deg`` and ``camber_deg`` [deg],
+        ``friction``, ``slip_kinematics``, ``thickness_mm`` [mm], ``modulus_N_mm2``
+        [N/mm^2], ``modulus_times_thickness_N_mm`` [N/mm], ``decay_length_variant_mm``
+        [mm], ``fit_quantity`` and ``seconds`` [s].
+    """
     return {
         "validation_version": VALIDATION_VERSION,
         "tiremesh_version": tm.__version__,
@@ -260,7 +346,19 @@ def settings(fit: RelaxationFit, rows, sha: str, measurements, seconds: float) -
 def cache_key(measurements_sha: str) -> str:
     """Hash of the measurements, the validation version and the source of
     :mod:`tiremesh`, :mod:`contactpatch.ruler` and the validation modules: any change
-    to the model or the method invalidates cached results."""
+    to the model or the method invalidates cached results.
+
+    Parameters
+    ----------
+    measurements_sha : str
+        SHA-256 hex digest of the measurement text
+        (:func:`.validate_data.read_measurements`).
+
+    Returns
+    -------
+    str
+        SHA-256 hex digest (64 characters).
+    """
     h = hashlib.sha256(f"{VALIDATION_VERSION}\n{measurements_sha}\n".encode())
     roots = [Path(tm.__file__).parent, Path(__file__).parent.parent / "ruler"]
     files = [f for r in roots for f in sorted(r.rglob("*.py"))]
@@ -274,6 +372,13 @@ def cache_key(measurements_sha: str) -> str:
 def write_validation(v: Validation, out_dir: str | os.PathLike) -> dict:
     """Write tables (CSV and JSON), figures (PNG and SVG), ``validation.json``,
     ``summary.md`` and ``index.html`` into ``out_dir``, each atomically.
+
+    Parameters
+    ----------
+    v : Validation
+        The results (:func:`run_validation`).
+    out_dir : path
+        Output folder.
 
     Returns
     -------
@@ -338,7 +443,21 @@ def _jsonable(x):
 
 def load_cached(out_dir: str | os.PathLike, key: str) -> dict | None:
     """The results in ``out_dir`` if they were written with cache key ``key`` and all
-    their files are present; else None."""
+    their files are present; else None.
+
+    Parameters
+    ----------
+    out_dir : path
+        Folder of the validation's outputs.
+    key : str
+        The expected cache key (:func:`cache_key`).
+
+    Returns
+    -------
+    dict or None
+        ``validation.json`` as read (JSON nulls in the tables back to NaN), or None
+        if it is missing, unreadable, of another key or a figure PNG is missing.
+    """
     out = Path(out_dir)
     try:
         data = json.loads((out / "validation.json").read_text(encoding="utf-8"))

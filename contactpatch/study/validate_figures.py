@@ -60,7 +60,13 @@ def _plt():
 def figure_style():
     """Context manager with :data:`STYLE` (plain-text labels, no mathtext; fixed SVG
     ids): build *and* save the figures inside it, since tick labels are drawn at save
-    time. Leaves the global matplotlib settings alone."""
+    time. Leaves the global matplotlib settings alone.
+
+    Returns
+    -------
+    context manager
+        :func:`matplotlib.pyplot.rc_context` with :data:`STYLE` (Agg backend).
+    """
     return _plt().rc_context(STYLE)
 
 

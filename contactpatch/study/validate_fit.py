@@ -78,13 +78,39 @@ class RelaxationFit:
 
 
 def fit_points(points: list[Point]) -> list[Point]:
-    """The compared points the parameter is fitted to."""
+    """The compared points the parameter is fitted to.
+
+    Parameters
+    ----------
+    points : list of Point
+
+    Returns
+    -------
+    list of Point
+        The points of :data:`FIT_QUANTITY` with status ``compared``, in input order.
+    """
     return [p for p in points if p.quantity == FIT_QUANTITY and p.status == "compared"]
 
 
 def fit_case(runner: ModelRunner, p: Point) -> FitCase:
     """The :class:`FitCase` of one measured lateral stiffness (model tabulated over
-    decay lengths with exact solves)."""
+    decay lengths with exact solves).
+
+    Parameters
+    ----------
+    runner : ModelRunner
+        Any runner (only its tires and its solves at given rates are used).
+    p : Point
+        A compared point of :data:`FIT_QUANTITY`.
+
+    Returns
+    -------
+    FitCase
+        The foundation stiffness [N/mm^2] and tension [N] (equation 5-32) at the
+        point's pressure, the area moment [mm^4] at the default thickness, the model's
+        lateral stiffness [N/mm] at each of :data:`.validate_relax.FIT_LENGTHS` and
+        the measured value [N/mm].
+    """
     tire = runner.tire(p.condition)
     k, T, _ = BeamRelaxation().parts(tire, p.condition.pressure_bar * MPA_PER_BAR)
     values = tabulate_force(lambda rate: runner.value(FIT_QUANTITY, p.condition, rate))
@@ -127,6 +153,13 @@ def _variant(name, params, fitted, ratios, note="") -> dict:
 
 def variants(runner: ModelRunner, points: list[Point], fit: RelaxationFit) -> list[dict]:
     """Errors of the lateral stiffness under each way of setting the decay length.
+
+    Parameters
+    ----------
+    runner : ModelRunner
+    points : list of Point
+        The fit points among them are used (:func:`fit_points`).
+    fit : RelaxationFit
 
     Returns
     -------
@@ -210,6 +243,13 @@ def cornering_variants(runner: ModelRunner, points: list[Point]) -> list[dict]:
     (about 3 patch lengths; the model's ellipse length). None is fitted. (The trail,
     ``-aligning_moment / patch_lateral_force``, does not depend on the decay length.)
 
+    Parameters
+    ----------
+    runner : ModelRunner
+        Runner with the fitted decay length (its default rate is the taut beam's).
+    points : list of Point
+        The compared cornering-stiffness points are used.
+
     Returns
     -------
     list of dict
@@ -234,9 +274,19 @@ def loto_table(points: list[Point], fit: RelaxationFit) -> list[dict]:
     """Per fitted tire: E and decay length fitted without it, and its points' ratios
     under the leave-one-tire-out E (the reported model values).
 
+    Parameters
+    ----------
+    points : list of Point
+        With ``model`` set (:func:`.validate.evaluate_points`).
+    fit : RelaxationFit
+
     Returns
     -------
     list of dict
+        Per tire id in the fit, in order: ``tire_id``, ``tire``, ``n`` (its fit
+        points), ``modulus_without_tire`` and ``modulus_used`` [N/mm^2],
+        ``length_without_tire`` [mm], ``ratios`` (model / measured, as text) and
+        ``rms_log_error`` (NaN without points).
     """
     out = []
     for tid in sorted(fit.loto_modulus):
@@ -262,11 +312,19 @@ def loto_table(points: list[Point], fit: RelaxationFit) -> list[dict]:
 def error_curve(fit: RelaxationFit, n: int = 121) -> dict:
     """RMS log error of the fit points vs E (from the tabulated model), for the figure.
 
+    Parameters
+    ----------
+    fit : RelaxationFit
+        Its ``cases`` give the tabulated model.
+    n : int
+        Number of log-spaced moduli from 0.01 N/mm^2 (E = 0 is added in front).
+
     Returns
     -------
     dict
-        ``modulus`` (E = 0, then log-spaced to :data:`.validate_relax.MODULUS_MAX`),
-        ``rms_log_error``, ``fitted`` and ``loto`` (sorted E without each tire).
+        ``modulus`` [N/mm^2] (E = 0, then log-spaced to
+        :data:`.validate_relax.MODULUS_MAX`; ``n + 1`` values), ``rms_log_error`` at
+        each, ``fitted`` and ``loto`` (sorted E without each tire) [N/mm^2].
     """
     from .validate_relax import MODULUS_MAX
 

@@ -51,7 +51,18 @@ KINDS = {
 
 
 def surface_of(cond: Condition):
-    """The model surface of a condition (drum unless the row says flat plate)."""
+    """The model surface of a condition (drum unless the row says flat plate).
+
+    Parameters
+    ----------
+    cond : Condition
+
+    Returns
+    -------
+    tiremesh.Flat or tiremesh.Drum
+        A flat plate for ``surface == 'flat'``, else the drum of diameter
+        :data:`DRUM_DIAMETER` [mm].
+    """
     return tm.Flat() if cond.surface == "flat" else tm.Drum(DRUM_DIAMETER)
 
 
@@ -164,7 +175,24 @@ def trail(r) -> float:
     """Pneumatic trail of a slip result [mm], or :class:`Undefined` when the patch
     carries under :data:`PATCH_SHARE_MIN` of the lateral force: the model spreads the
     force beyond the patch over the patch in proportion to each section's own force, so
-    ``-M / F_patch`` has no meaning when ``F_patch`` is near zero."""
+    ``-M / F_patch`` has no meaning when ``F_patch`` is near zero.
+
+    Parameters
+    ----------
+    r : tiremesh.LateralResult
+        A slip solve (:meth:`ModelRunner.lateral` of kind ``'slip'``).
+
+    Returns
+    -------
+    float [mm]
+        ``r.pneumatic_trail``.
+
+    Raises
+    ------
+    Undefined
+        When ``|patch_lateral_force| / |lateral_force|`` is below
+        :data:`PATCH_SHARE_MIN` (or the lateral force is zero).
+    """
     share = abs(r.patch_lateral_force) / abs(r.lateral_force) if r.lateral_force else 0.0
     if share < PATCH_SHARE_MIN:
         raise Undefined(
@@ -210,7 +238,13 @@ RATE_DEPENDENT = (
 
 
 def slip_kinematics() -> str:
-    """The slip kinematics every lateral case uses (the load case's default)."""
+    """The slip kinematics every lateral case uses (the load case's default).
+
+    Returns
+    -------
+    str
+        ``slip_kinematics`` of a default :class:`tiremesh.LoadCase`.
+    """
     return tm.LoadCase(tm.get_tire(1), pressure=0.4, load=100.0).slip_kinematics
 
 

@@ -120,7 +120,19 @@ WHY = {
 
 
 def fmt(v) -> str:
-    """Cell text: floats to 4 significant digits, NaN/None as empty."""
+    """Cell text: floats to 4 significant digits, NaN/None as empty.
+
+    Parameters
+    ----------
+    v : object
+        A table cell (float, int, str, None...).
+
+    Returns
+    -------
+    str
+        ``''`` for None and non-finite floats, ``f"{v:.4g}"`` for other floats,
+        ``str(v)`` otherwise.
+    """
     if v is None or (isinstance(v, float) and not math.isfinite(v)):
         return ""
     if isinstance(v, float):
@@ -307,7 +319,20 @@ def _html_table(rows: list[dict], columns) -> str:
 
 
 def headline(data: dict) -> str:
-    """One paragraph: what was compared and the fitted parameter."""
+    """One paragraph: what was compared and the fitted parameter.
+
+    Parameters
+    ----------
+    data : dict
+        :meth:`.validate.Validation.to_dict` (or ``validation.json`` read back).
+
+    Returns
+    -------
+    str
+        Plain text (not escaped): the row counts per status, the fitted casing
+        modulus [N/mm^2] and its leave-one-tire-out RMS log error, the slip
+        kinematics and the friction.
+    """
     st, counts = data["settings"], Counter(p["status"] for p in data["points"])
     beam = _variant(data, "taut beam, E fitted (leave")
     return (
@@ -408,7 +433,23 @@ FIGURE_CAPTIONS = {
 
 def markdown_fragment(data: dict, link_base: str = "", level: int = 2) -> str:
     """The validation as Markdown (headings from ``level``; figures linked under
-    ``link_base``)."""
+    ``link_base``).
+
+    Parameters
+    ----------
+    data : dict
+        :meth:`.validate.Validation.to_dict` (or ``validation.json`` read back).
+    link_base : str
+        Prefix of the figure links (``{link_base}figures/{name}.png``).
+    level : int
+        Heading level of the title; sections are one level deeper.
+
+    Returns
+    -------
+    str
+        Markdown: headline, limits, figures, tables and the inputs, ending in a
+        newline.
+    """
     h = "#" * level
     parts = [f"{h} {TITLE}", headline(data), f"{h}# What the model cannot follow"]
     parts += [f"- {s}" for s in data["limits"]]
@@ -425,7 +466,18 @@ def markdown_fragment(data: dict, link_base: str = "", level: int = 2) -> str:
 
 
 def summary_markdown(data: dict) -> str:
-    """``summary.md`` of the output folder (figures under ``figures/``)."""
+    """``summary.md`` of the output folder (figures under ``figures/``).
+
+    Parameters
+    ----------
+    data : dict
+        :meth:`.validate.Validation.to_dict` (or ``validation.json`` read back).
+
+    Returns
+    -------
+    str
+        :func:`markdown_fragment` with a level-1 title and relative links.
+    """
     return markdown_fragment(data, "", level=1)
 
 
@@ -438,7 +490,22 @@ def _img(name: str, png: bytes, caption: str) -> str:
 
 
 def html_fragment(data: dict, figures: dict[str, bytes]) -> str:
-    """A self-contained ``<section id="validation">`` (figures inline as base64 PNG)."""
+    """A self-contained ``<section id="validation">`` (figures inline as base64 PNG).
+
+    Parameters
+    ----------
+    data : dict
+        :meth:`.validate.Validation.to_dict` (or ``validation.json`` read back).
+    figures : dict of str to bytes
+        Figure name (a key of :data:`FIGURE_CAPTIONS`) -> PNG bytes; missing figures
+        are left out.
+
+    Returns
+    -------
+    str
+        HTML (all text escaped) with its own ``<style>``; the table of every
+        compared point is folded in ``<details>``.
+    """
     parts = [
         '<section id="validation">',
         f"<style>{CSS}</style>",
@@ -458,7 +525,20 @@ def html_fragment(data: dict, figures: dict[str, bytes]) -> str:
 
 
 def standalone_html(data: dict, figures: dict[str, bytes]) -> str:
-    """``index.html``: the fragment in a page."""
+    """``index.html``: the fragment in a page.
+
+    Parameters
+    ----------
+    data : dict
+        :meth:`.validate.Validation.to_dict` (or ``validation.json`` read back).
+    figures : dict of str to bytes
+        Figure name -> PNG bytes (:func:`html_fragment`).
+
+    Returns
+    -------
+    str
+        A complete HTML document around :func:`html_fragment`, ending in a newline.
+    """
     return (
         '<!DOCTYPE html><html lang="en"><head><meta charset="utf-8">'
         f"<title>{html.escape(TITLE)}</title></head>"

@@ -122,6 +122,24 @@ class Condition:
 
     ``load_N`` is NaN for unloaded rows, ``pressure_bar`` NaN for off-test rows;
     ``surface`` is ``'drum'`` (TU Delft 2.5 m), ``'flat'`` or ``''`` (off-test).
+
+    Attributes
+    ----------
+    tire_id : int
+        Tire number of Table 3-2.
+    tire : str
+        Tire name.
+    arc_length : float [mm]
+        Carcass arc length, bead to bead (Table 3-2).
+    rim_width : float [mm]
+        Rim width (Table 3-2).
+    pressure_bar : float [bar]
+        Inflation pressure (NaN off-test).
+    load_N : float [N]
+        Vertical load (NaN unloaded).
+    surface : str
+        ``'drum'``, ``'flat'``, ``''`` (off-test / not stated) or ``'device 1'``
+        (rim width not recorded; not modelled).
     """
 
     tire_id: int
@@ -135,7 +153,38 @@ class Condition:
 
 @dataclass
 class Point:
-    """One CSV row as a validation point (module docstring for ``status``)."""
+    """One CSV row as a validation point (module docstring for ``status``).
+
+    Attributes
+    ----------
+    row : int
+        1-based data-row number of the CSV.
+    csv_quantity, source, locator, value_kind, printed, printed_unit : str
+        The row's ``quantity``, ``table_or_figure``, ``locator``, ``value_kind``,
+        ``value`` and ``unit`` cells, as printed.
+    status : str
+        ``compared``, ``duplicate``, ``ambiguous``, ``summary``... (module docstring).
+    quantity : str
+        Key of :data:`QUANTITIES` ('' if none).
+    measured : float
+        The value in the quantity's unit (:data:`QUANTITIES`; NaN if none).
+    condition : Condition or None
+        Where it was measured.
+    reason : str
+        Why the status (or a caveat).
+    item : str
+        Summary item (:data:`SUMMARY_ITEMS`) of a ``summary`` row.
+    alt_load_N : float [N]
+        The second load the source states (NaN if it states only one).
+    model, model_alt : float
+        The model's value at the load and at ``alt_load_N`` (unit of ``measured``).
+    modulus : float [N/mm^2]
+        Casing modulus used (rate-dependent quantities).
+    rate : float [per mm]
+        Relaxation rate used (rate-dependent quantities).
+    extra : dict
+        Free-form extras.
+    """
 
     row: int
     csv_quantity: str
@@ -176,6 +225,11 @@ def parse_load(text: str) -> tuple[float, float]:
     """A load cell in N: ``'304'`` -> 304, ``'33 kg'`` -> 33 x 9.81 (Appendix C's g);
     ``'450 or 540 (...)'`` -> (450, 540); anything else -> NaN.
 
+    Parameters
+    ----------
+    text : str
+        The ``load_N`` cell of a CSV row.
+
     Returns
     -------
     (load, alternative) : (float, float) [N]
@@ -193,7 +247,19 @@ def parse_load(text: str) -> tuple[float, float]:
 
 def parse_surface(text: str) -> str | None:
     """``'drum'``, ``'flat'``, ``''`` (off-test / not stated) or None (device 1, whose
-    rim width was not recorded: Table 4-5)."""
+    rim width was not recorded: Table 4-5).
+
+    Parameters
+    ----------
+    text : str
+        The ``surface`` cell of a CSV row.
+
+    Returns
+    -------
+    str or None
+        ``'drum'`` or ``'flat'`` if the text names a drum or a flat plate (and no
+        comparison, "vs"); None if it names device 1; else ``''``.
+    """
     t = str(text).lower()
     if "device 1" in t:
         return None
@@ -206,7 +272,21 @@ def parse_surface(text: str) -> str | None:
 
 def condition_of(row: dict) -> tuple[Condition | None, float]:
     """The row's condition and its alternative load (NaN if none); None if the row
-    names no Table 3-2 tire."""
+    names no Table 3-2 tire.
+
+    Parameters
+    ----------
+    row : dict
+        A row of :func:`.validate_data.read_measurements`.
+
+    Returns
+    -------
+    condition : Condition or None
+        None unless the ``tire`` cell reads ``'<id>: <name>'`` and the arc length and
+        rim width are numbers; ``surface`` is ``'device 1'`` for device 1 rows.
+    alt_load : float [N]
+        The second load the source states (:func:`parse_load`), else NaN.
+    """
     m = re.match(r"\s*(\d+):\s*(.*)", row.get("tire", ""))
     arc, rim = _number(row.get("arc_length_mm")), _number(row.get("rim_width_mm"))
     if not m or not (math.isfinite(arc) and math.isfinite(rim)):
@@ -362,6 +442,18 @@ def mark_duplicates(points: list[Point]) -> list[Point]:
     tables the same condition with a value equal within :data:`SAME_VALUE_RTOL`;
     two rows of one table at one condition (Table 4-4's runs) are both kept. A Table
     4-3 extreme equal to an Appendix B point at its inferred condition is a duplicate.
+
+    Parameters
+    ----------
+    points : list of Point
+        From :func:`classify`; only ``compared`` and ``ambiguous`` points are
+        considered.
+
+    Returns
+    -------
+    list of Point
+        ``points`` itself, the repeats with status ``duplicate`` and the kept row
+        named in ``reason``.
     """
     live = [p for p in points if p.status in ("compared", "ambiguous")]
     kept: list[Point] = []
@@ -385,7 +477,18 @@ def mark_duplicates(points: list[Point]) -> list[Point]:
 
 
 def classify_all(rows: list[dict]) -> list[Point]:
-    """:func:`classify` every row, then :func:`mark_duplicates`."""
+    """:func:`classify` every row, then :func:`mark_duplicates`.
+
+    Parameters
+    ----------
+    rows : list of dict
+        Rows of :func:`.validate_data.read_measurements`.
+
+    Returns
+    -------
+    list of Point
+        One point per row, in row order.
+    """
     return mark_duplicates([classify(r) for r in rows])
 
 

@@ -143,7 +143,18 @@ def point_load_decay(k: float, T: float, EI: float) -> float:
 
 
 def rate_of(length_mm: float) -> float:
-    """Relaxation rate ``i = 1 - 1 / l`` (equations 5-28 and 5-29); 0 for ``l <= 1`` mm."""
+    """Relaxation rate ``i = 1 - 1 / l`` (equations 5-28 and 5-29); 0 for ``l <= 1`` mm.
+
+    Parameters
+    ----------
+    length_mm : float [mm]
+        Decay length ``l`` (> 0).
+
+    Returns
+    -------
+    float [per mm]
+        ``max(0, 1 - 1 / l)``: the fraction of the displacement left after each mm.
+    """
     return max(0.0, 1.0 - 1.0 / float(length_mm))
 
 
@@ -250,9 +261,19 @@ def _sse(cases: Sequence[FitCase], predict) -> np.ndarray:
 def golden_min(f, lo: float, hi: float, xtol: float) -> tuple[float, float]:
     """Minimum of a unimodal ``f`` on ``[lo, hi]`` by golden-section search.
 
+    Parameters
+    ----------
+    f : callable
+        ``float -> float``, unimodal on ``[lo, hi]``.
+    lo, hi : float
+        The bracket (same unit as ``x``).
+    xtol : float
+        The search stops when the bracket is no wider than this.
+
     Returns
     -------
     (x, f(x)) : (float, float)
+        The better of the last two interior points (the ends are never evaluated).
     """
     g = (math.sqrt(5.0) - 1.0) / 2.0
     a, b = lo, hi
@@ -303,7 +324,18 @@ LENGTH_GRID = np.geomspace(FIT_LENGTHS[0], FIT_LENGTHS[-1], 281)
 
 def fit_modulus(cases: Sequence[FitCase]) -> float:
     """The casing modulus E [N/mm^2] (in ``[0, MODULUS_MAX]``) that minimizes the
-    squared log error of ``cases``; NaN without cases."""
+    squared log error of ``cases``; NaN without cases.
+
+    Parameters
+    ----------
+    cases : sequence of FitCase
+
+    Returns
+    -------
+    float [N/mm^2]
+        :func:`fit_scalar` over the modulus grid (0, then log-spaced from 1e-3 to
+        :data:`MODULUS_MAX`); NaN if ``cases`` is empty.
+    """
     if not cases:
         return math.nan
     return fit_scalar(cases, lambda c, e: c.model(e), MODULUS_GRID)
@@ -311,7 +343,18 @@ def fit_modulus(cases: Sequence[FitCase]) -> float:
 
 def fit_length(cases: Sequence[FitCase]) -> float:
     """One decay length [mm] for every case (a constant relaxation rate) that
-    minimizes the squared log error of ``cases``; NaN without cases."""
+    minimizes the squared log error of ``cases``; NaN without cases.
+
+    Parameters
+    ----------
+    cases : sequence of FitCase
+
+    Returns
+    -------
+    float [mm]
+        :func:`fit_scalar` over lengths log-spaced across :data:`FIT_LENGTHS`
+        (2 to 400 mm); NaN if ``cases`` is empty.
+    """
     if not cases:
         return math.nan
     return fit_scalar(cases, lambda c, ell: c.at_length(ell), LENGTH_GRID)

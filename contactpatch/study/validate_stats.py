@@ -137,7 +137,22 @@ def quantity_table(points: list[Point]) -> list[dict]:
 
 def trend_value(quantity: str, value: float, cond: Condition) -> float:
     """The value whose trend is counted: normalized (per load) for lateral stiffness,
-    as 6.2.4 counts it; the value itself otherwise."""
+    as 6.2.4 counts it; the value itself otherwise.
+
+    Parameters
+    ----------
+    quantity : str
+        Key of :data:`.validate_points.QUANTITIES`.
+    value : float
+        Measured or model value (unit of the quantity).
+    cond : Condition
+        Its condition (``load_N`` [N] normalizes the lateral stiffness).
+
+    Returns
+    -------
+    float
+        ``value / load_N`` [1/mm] for ``lateral_stiffness``, else ``value``.
+    """
     return value / cond.load_N if quantity == "lateral_stiffness" else value
 
 
@@ -165,6 +180,15 @@ def _differs_only_in(a: Condition, b: Condition, variable: str) -> bool:
 def measured_pairs(points: list[Point], quantity: str, variable: str) -> list[tuple]:
     """Pairs of compared points of one tire differing only in ``variable``.
 
+    Parameters
+    ----------
+    points : list of Point
+    quantity : str
+        Key of :data:`.validate_points.QUANTITIES`.
+    variable : str
+        ``'pressure'`` or ``'load'`` (others give no pairs); the two conditions
+        differ in it by more than :data:`SAME_RTOL` and agree in the other within it.
+
     Returns
     -------
     list of (Point, Point)
@@ -183,7 +207,20 @@ def measured_pairs(points: list[Point], quantity: str, variable: str) -> list[tu
 
 
 def stepped(cond: Condition, variable: str) -> Condition:
-    """``cond`` with ``variable`` increased by its :data:`STEPS` fraction."""
+    """``cond`` with ``variable`` increased by its :data:`STEPS` fraction.
+
+    Parameters
+    ----------
+    cond : Condition
+    variable : str
+        A key of :data:`STEPS`: ``'pressure'``, ``'load'``, ``'rim_width'`` or
+        ``'arc_length'``.
+
+    Returns
+    -------
+    Condition
+        A copy with that field multiplied by ``1 + STEPS[variable]``.
+    """
     f = 1.0 + STEPS[variable]
     field = {"pressure": "pressure_bar", "load": "load_N"}.get(variable, variable)
     return replace(cond, **{field: getattr(cond, field) * f})
@@ -191,7 +228,22 @@ def stepped(cond: Condition, variable: str) -> Condition:
 
 def model_signs(runner: ModelRunner, quantity: str, conds, variable: str) -> list:
     """Sign of the model's change when ``variable`` steps up, at each condition (None
-    where the model raises a named error at either point)."""
+    where the model raises a named error at either point).
+
+    Parameters
+    ----------
+    runner : ModelRunner
+    quantity : str
+        Key of :data:`.validate_points.QUANTITIES`.
+    conds : iterable of Condition
+    variable : str
+        A key of :data:`STEPS` (:func:`stepped`).
+
+    Returns
+    -------
+    list of int or None
+        Per condition the sign (-1, 0 or 1) of the change of :func:`trend_value`.
+    """
     signs = []
     for c in conds:
         c2 = stepped(c, variable)
@@ -206,7 +258,19 @@ def model_signs(runner: ModelRunner, quantity: str, conds, variable: str) -> lis
 
 
 def direction(signs) -> str:
-    """'rises', 'falls', 'mixed (k of n rise)' or '' for no signs."""
+    """'rises', 'falls', 'mixed (k of n rise)' or '' for no signs.
+
+    Parameters
+    ----------
+    signs : iterable of int
+        Signs of changes (-1, 0, 1).
+
+    Returns
+    -------
+    str
+        'rises' if all are positive, 'falls' if all are negative, '' if there are
+        none, else 'mixed (k of n rise)' (zeros count as not rising).
+    """
     signs = list(signs)
     if not signs:
         return ""
@@ -230,7 +294,24 @@ def _agree(measured: str, model: str) -> str:
 
 
 def pair_exponents(quantity: str, pairs: list[tuple], variable: str) -> tuple[float, float]:
-    """Mean log-log slope ``d log y / d log x`` over ``pairs``: (measured, model)."""
+    """Mean log-log slope ``d log y / d log x`` over ``pairs``: (measured, model).
+
+    Parameters
+    ----------
+    quantity : str
+        Key of :data:`.validate_points.QUANTITIES` (``y`` is its
+        :func:`trend_value`).
+    pairs : list of (Point, Point)
+        From :func:`measured_pairs`, with ``model`` set.
+    variable : str
+        ``'pressure'`` or ``'load'`` (``x``).
+
+    Returns
+    -------
+    (measured, model) : (float, float)
+        NaN for no pairs or another variable; a pair with a non-positive value makes
+        its mean NaN.
+    """
     var = {"pressure": "pressure_bar", "load": "load_N"}.get(variable)
     if not pairs or var is None:
         return math.nan, math.nan
@@ -247,7 +328,23 @@ def pair_exponents(quantity: str, pairs: list[tuple], variable: str) -> tuple[fl
 
 
 def trend_row(runner: ModelRunner, points: list[Point], statement: tuple) -> dict:
-    """One row of :func:`trend_table`."""
+    """One row of :func:`trend_table`.
+
+    Parameters
+    ----------
+    runner : ModelRunner
+    points : list of Point
+        With ``model`` set.
+    statement : tuple
+        An entry of :data:`TREND_STATEMENTS`: (quantity, variable, measured
+        direction, statement).
+
+    Returns
+    -------
+    dict
+        The columns listed in :func:`trend_table`, plus ``model_errors`` (measured
+        conditions where the model raised a named error).
+    """
     quantity, variable, measured, text = statement
     pairs = measured_pairs(points, quantity, variable)
     m_signs, model_pair_signs = [], []
@@ -305,7 +402,21 @@ def trend_table(runner: ModelRunner, points: list[Point]) -> list[dict]:
 
 def distinct_conditions(points: list[Point], quantities=None, surface: str = "drum") -> list:
     """The distinct conditions of compared points (of ``quantities``, on ``surface``),
-    in row order."""
+    in row order.
+
+    Parameters
+    ----------
+    points : list of Point
+    quantities : collection of str, optional
+        Quantities whose points count (default: all).
+    surface : str
+        ``'drum'``, ``'flat'``...
+
+    Returns
+    -------
+    list of Condition
+        Each once, in the order first met.
+    """
     seen: dict[Condition, None] = {}
     for p in points:
         if p.status != "compared" or p.condition is None or p.condition.surface != surface:
@@ -316,7 +427,19 @@ def distinct_conditions(points: list[Point], quantities=None, surface: str = "dr
 
 
 def group_by(points: list[Point], key) -> dict:
-    """``points`` grouped by ``key(point)``."""
+    """``points`` grouped by ``key(point)``.
+
+    Parameters
+    ----------
+    points : list of Point
+    key : callable
+        ``Point -> hashable``.
+
+    Returns
+    -------
+    dict
+        Key -> list of Point, in input order.
+    """
     out = defaultdict(list)
     for p in points:
         out[key(p)].append(p)

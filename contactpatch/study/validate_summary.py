@@ -94,7 +94,27 @@ def _single(item, source, quantity, measured: float, model: float, note="", unit
 
 def table_4_1(runner: ModelRunner, conds: list[Condition], points: list[Point]) -> list[dict]:
     """Drum / plate ratios of length, width and area (Table 4-1) vs the model's over
-    ``conds`` (ellipse length and width; patch area, which is load / pressure on both)."""
+    ``conds`` (ellipse length and width; patch area, which is load / pressure on both).
+
+    Parameters
+    ----------
+    runner : ModelRunner
+    conds : list of Condition
+        Measured drum conditions; each is also solved on a flat plate.
+    points : list of Point
+        Holding the printed summary rows ``drum_over_plate_*`` [%].
+
+    Returns
+    -------
+    list of dict
+        Three rows of :func:`summary_table` (length, width, area); agreement when
+        the model's mean ratio lies inside the measured min..max.
+
+    Raises
+    ------
+    ValueError
+        If a printed row is missing or ``conds`` is empty.
+    """
     rows = []
     for q, key in (("length", "ellipse_length"), ("width", "ellipse_width"), ("area", "ink_area")):
         model = [
@@ -124,7 +144,22 @@ def table_4_1(runner: ModelRunner, conds: list[Condition], points: list[Point]) 
 
 
 def length_over_width(runner: ModelRunner, conds, points) -> dict:
-    """Patch length / width (4.1.10 item 8) vs the model's ellipse on the drum."""
+    """Patch length / width (4.1.10 item 8) vs the model's ellipse on the drum.
+
+    Parameters
+    ----------
+    runner : ModelRunner
+    conds : list of Condition
+        Measured drum conditions.
+    points : list of Point
+        Holding the printed summary rows ``contact_patch_length_over_width_*``.
+
+    Returns
+    -------
+    dict
+        A row of :func:`summary_table`; agreement when the model's mean lies inside
+        the measured min..max.
+    """
     v = [runner.value("ellipse_length", c) / runner.value("ellipse_width", c) for c in conds]
     m = {
         s: _printed(points, f"contact_patch_length_over_width_{s}")
@@ -146,7 +181,22 @@ def length_over_width(runner: ModelRunner, conds, points) -> dict:
 
 
 def length_over_area(runner: ModelRunner, conds, points) -> dict:
-    """Length / area 'about 0.076' per mm (1.2.1) vs the model's ellipse length / area."""
+    """Length / area 'about 0.076' per mm (1.2.1) vs the model's ellipse length / area.
+
+    Parameters
+    ----------
+    runner : ModelRunner
+    conds : list of Condition
+        Measured drum conditions.
+    points : list of Point
+        Holding the printed summary row.
+
+    Returns
+    -------
+    dict
+        A row of :func:`summary_table`: the model's mean [1/mm] (ellipse length over
+        patch area) within a factor :data:`FACTOR` of the stated value.
+    """
     v = [runner.value("ellipse_length", c) / runner.value("ink_area", c) for c in conds]
     stated = _printed(points, "contact_patch_length_over_area")
     return _single(
@@ -163,7 +213,22 @@ def trail_over_length(runner: ModelRunner, conds, points) -> dict:
     """Mean trail / patch length, 12.76 % (4.1.8), vs the model's trail over its
     ellipse length (median over ``conds``, the conditions of the cornering and trail
     measurements; conditions where the model's trail is undefined,
-    :func:`.validate_model.trail`, are counted in the note)."""
+    :func:`.validate_model.trail`, are counted in the note).
+
+    Parameters
+    ----------
+    runner : ModelRunner
+    conds : list of Condition
+        Measured drum conditions of the cornering-stiffness and trail points.
+    points : list of Point
+        Holding the printed summary row.
+
+    Returns
+    -------
+    dict
+        A row of :func:`summary_table`: the model's median [%] within a factor
+        :data:`FACTOR` of the stated value.
+    """
     v, skipped = [], 0
     for c in conds:
         try:
@@ -193,7 +258,27 @@ def _numbers(points: list[Point], csv_quantity: str) -> list[float]:
 
 def rim_width(runner: ModelRunner, points: list[Point]) -> dict:
     """+24 % rim width -> +23 % normalized lateral stiffness (4.1.10 item 2) vs the
-    model at every measured lateral-stiffness condition (median)."""
+    model at every measured lateral-stiffness condition (median).
+
+    Parameters
+    ----------
+    runner : ModelRunner
+    points : list of Point
+        The compared lateral-stiffness points give the conditions; the printed
+        summary row gives both percentages.
+
+    Returns
+    -------
+    dict
+        A row of :func:`summary_table`: the model's median stiffness increase [%] for
+        the stated rim-width increase, within a factor :data:`FACTOR` of the stated
+        one.
+
+    Raises
+    ------
+    ValueError
+        If the row is missing or there is no measured lateral-stiffness condition.
+    """
     rim_pct, stiff_pct = _numbers(points, "rim_width_increase_vs_norm_lat_stiffness_increase")
     conds = distinct_conditions(points, ("lateral_stiffness",))
     f = 1.0 + rim_pct / 100.0
@@ -221,7 +306,23 @@ def rim_width(runner: ModelRunner, points: list[Point]) -> dict:
 
 def decay_over_length(runner: ModelRunner, conds, points) -> dict:
     """Decay length / patch length, '~3' when rolling (4.1.9.1), vs the model's taut-beam
-    decay length over its ellipse length (Papadopoulos in 6.1.4: 'of order half')."""
+    decay length over its ellipse length (Papadopoulos in 6.1.4: 'of order half').
+
+    Parameters
+    ----------
+    runner : ModelRunner
+        Its relaxation per tire gives the decay length.
+    conds : list of Condition
+        Measured drum conditions.
+    points : list of Point
+        Holding the printed summary row.
+
+    Returns
+    -------
+    dict
+        A row of :func:`summary_table`: the model's median ratio within a factor
+        :data:`FACTOR` of the stated one.
+    """
     (stated,) = _numbers(points, "decay_length_over_contact_patch_length")
     v = []
     for c in conds:
@@ -249,8 +350,35 @@ def _bounds(text: str) -> tuple[float, float, bool]:
     return nums[0], nums[-1], "<" in text
 
 
-def stated_range(item, source, quantity, csv_quantity, points, model_values, note="") -> dict:
-    """A stated range of a quantity vs the model's values at its measured conditions."""
+def stated_range(item, source, quantity, *, csv_quantity, points, model_values, note="") -> dict:
+    """A stated range of a quantity vs the model's values at its measured conditions.
+
+    Parameters
+    ----------
+    item : str
+        Name of the check.
+    source : str
+        Where the dissertation states it.
+    quantity : str
+        Label, with its unit in brackets.
+    csv_quantity : str
+        The summary row whose printed text is the range (``'<a to >b'`` or ``'a-b'``).
+    points : list of Point
+    model_values : list of float
+        The model's values (unit of the range).
+    note : str
+
+    Returns
+    -------
+    dict
+        A row of :func:`summary_table`: agreement when the model's range covers a
+        ``'<a to >b'`` range or overlaps an ``'a-b'`` range.
+
+    Raises
+    ------
+    ValueError
+        If the row is missing or there are no model values.
+    """
     text = next((p.printed for p in points if p.csv_quantity == csv_quantity), "")
     if not text or not model_values:
         raise ValueError(f"no row {csv_quantity!r} or no model value to compare")
@@ -282,32 +410,50 @@ def _ranges(points: list[Point]) -> list[dict]:
             "cornering_range",
             "abstract; 8.1.2",
             "normalized cornering stiffness [1/deg]",
-            "normalized_cornering_stiffness_range",
-            points,
-            model("cornering_stiffness"),
+            csv_quantity="normalized_cornering_stiffness_range",
+            points=points,
+            model_values=model("cornering_stiffness"),
         ),
         stated_range(
             "camber_range",
             "abstract; 8.1.2",
             "normalized camber stiffness [1/deg]",
-            "normalized_camber_stiffness_range",
-            points,
-            model("camber_stiffness"),
+            csv_quantity="normalized_camber_stiffness_range",
+            points=points,
+            model_values=model("camber_stiffness"),
         ),
         stated_range(
             "maxxis_camber_range",
             "7.2.1",
             "Maxxis normalized camber stiffness [1/deg]",
-            "normalized_camber_stiffness_range_TU_Delft",
-            points,
-            model("camber_stiffness", 6),
+            csv_quantity="normalized_camber_stiffness_range_TU_Delft",
+            points=points,
+            model_values=model("camber_stiffness", 6),
         ),
     ]
 
 
 def table_4_3(runner: ModelRunner, points: list[Point]) -> list[dict]:
     """Table 4-3: correlation of true size with the max / min / avg normalized lateral
-    stiffness of four 37-622 tires, vs the model over the test program's 3 x 3 grid."""
+    stiffness of four 37-622 tires, vs the model over the test program's 3 x 3 grid.
+
+    Parameters
+    ----------
+    runner : ModelRunner
+    points : list of Point
+        The ``table_4_3`` summary rows name the tires and print the correlations.
+
+    Returns
+    -------
+    list of dict
+        Three rows of :func:`summary_table` (max, min, avg): agreement when the
+        model's correlation over :data:`PROGRAM` on the drum has the printed sign.
+
+    Raises
+    ------
+    ValueError
+        If fewer than 3 tires are named or a printed correlation is missing.
+    """
     tires = {
         p.condition.tire_id: p.condition
         for p in points

@@ -56,3 +56,24 @@ def test_cli_compare_and_report(print_table, tmp_path):
         timeout=120,
     )
     assert bad.returncode == 2 and "Traceback" not in bad.stderr
+
+
+def test_main_conventions_version_exit_codes_and_errors(tmp_path, capsys):
+    from contactpatch.study.cli import main
+
+    import contactpatch
+
+    assert main(["--version"]) == 0
+    assert contactpatch.__version__ in capsys.readouterr().out
+    assert main(["compare", str(tmp_path / "missing.csv"), "-o", str(tmp_path / "p.csv")]) == 2
+    assert "missing.csv" in capsys.readouterr().err
+    prints = tmp_path / "prints.csv"
+    prints.write_text("file,tire,length_mm\na.png,5,100\n")
+    assert main(["compare", str(prints), "-o", "/proc/x.csv"]) == 2
+    assert "cannot write /proc/x.csv" in capsys.readouterr().err
+    assert main(["compare", str(prints), "-o", str(tmp_path / "p.xlsx")]) == 2
+    # a row the model cannot pair: the table is written, exit 1 with the count on stderr
+    assert main(["-q", "compare", str(prints), "-o", str(tmp_path / "p.csv")]) == 1
+    captured = capsys.readouterr()
+    assert "1 rows not paired" in captured.err and captured.out == ""
+    assert (tmp_path / "p.csv").is_file()
