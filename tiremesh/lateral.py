@@ -50,6 +50,10 @@ from .section import section_arrays
 from .solver import ContactPatch, clenshaw_curtis, solve
 from .solver.api import as_case
 
+TRAIL_MIN_PATCH_SHARE = 0.1
+"""Below this share of the lateral force carried by the patch's own sections, the
+pneumatic trail is reported as NaN (undefined)."""
+
 
 @dataclass(frozen=True)
 class LateralResult:
@@ -107,6 +111,34 @@ class LateralResult:
     friction_share: float = 1.0
     reaction: np.ndarray = field(default=None, repr=False)
 
+    def __repr__(self) -> str:
+        return (
+            f"LateralResult(lateral_force={self.lateral_force:.4g} N, "
+            f"patch {self.patch_lateral_force:.4g} N + beyond {self.beyond_lateral_force:.4g} N, "
+            f"vertical_force={self.vertical_force:.4g} N, "
+            f"pneumatic_trail={self.pneumatic_trail:.4g} mm, sliding={int(self.sliding.sum())})"
+        )
+
+    def _repr_html_(self) -> str:
+        """A summary table for notebooks."""
+        from .solver.patch import summary_html
+
+        return summary_html(
+            "LateralResult",
+            {
+                "lateral_force_N": self.lateral_force,
+                "patch_lateral_force_N": self.patch_lateral_force,
+                "beyond_lateral_force_N": self.beyond_lateral_force,
+                "vertical_force_N": self.vertical_force,
+                "aligning_moment_Nmm": self.aligning_moment,
+                "pneumatic_trail_mm": self.pneumatic_trail,
+                "sliding_sections": int(self.sliding.sum()),
+                "friction_iterations": self.iterations,
+                **{k: v for k, v in self.case.describe().items() if k != "tire"},
+                "tire": self.case.tire.name,
+            },
+        )
+
     @property
     def case(self) -> LoadCase:
         """The load case solved."""
@@ -126,10 +158,15 @@ class LateralResult:
     def pneumatic_trail(self) -> float:
         """``-aligning_moment / patch_lateral_force`` [mm] (positive: force behind the centre).
 
-        NaN when the patch carries no net lateral force (below ``tol.force_rtol`` of
-        the vertical force): a trail is undefined there, not infinite."""
+        NaN when the patch's own sections carry no net lateral force (below
+        ``tol.force_rtol`` of the vertical force), or less than
+        :data:`TRAIL_MIN_PATCH_SHARE` of the total (most of the force then comes from
+        beyond the patch and the patch's own forces nearly cancel: their centroid, the
+        trail, is meaningless; the validation found -660 mm there)."""
         f = self.patch_lateral_force
         if abs(f) <= tol.force_rtol * abs(self.vertical_force):
+            return math.nan
+        if abs(f) < TRAIL_MIN_PATCH_SHARE * abs(self.lateral_force):
             return math.nan
         return float(-self.aligning_moment / f)
 

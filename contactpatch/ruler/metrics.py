@@ -79,6 +79,25 @@ class PatchMetrics:
     ellipse_direct: EllipseFit
     ellipse_moments: EllipseFit
 
+    def __repr__(self) -> str:
+        return (
+            f"PatchMetrics(length={self.length:.4g}, width={self.width:.4g}, "
+            f"area={self.area:.5g}, hull_area={self.hull_area:.5g}, "
+            f"shape_factor={self.shape_factor:.3g})"
+        )
+
+    def _repr_html_(self) -> str:
+        """A summary table for notebooks (escaped)."""
+        import html
+
+        rows = "".join(
+            f"<tr><th style='text-align:left'>{html.escape(k)}</th>"
+            f"<td style='text-align:right'>{v:.5g}</td></tr>"
+            for k, v in self.as_row().items()
+            if isinstance(v, float | int)
+        )
+        return f"<table><caption>PatchMetrics</caption>{rows}</table>"
+
     def as_row(self, prefix: str = "", unit: str = "mm") -> dict[str, float]:
         """The metrics as a flat table row; names carry the unit.
 
