@@ -278,12 +278,8 @@ class LoadCase:
 
     def describe(self) -> dict[str, float | str]:
         """The case with unit-carrying names (for tables, titles, file metadata)."""
-        t = self.tire
         return {
-            "tire": t.name or f"r0={t.tire_radius:.4g}mm",
-            "tire_radius_mm": t.tire_radius,
-            "rim_width_mm": t.rim_width,
-            "bead_seat_diameter_mm": t.bead_seat_diameter,
+            **self.tire.describe(),
             "pressure_bar": self.pressure / MPA_PER_BAR,
             "load_N": math.nan if self.load is None else self.load,
             "deflection_mm": math.nan if self.deflection is None else self.deflection,

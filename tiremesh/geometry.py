@@ -234,3 +234,21 @@ class TireGeometry:
     def wheel_radius(self) -> float:
         """Unloaded wheel radius (axle to tread), ``D_bead / 2 + h`` [mm] (Appendix C)."""
         return 0.5 * self.bead_seat_diameter + self.rim_height
+
+    def describe(self) -> dict[str, float | str]:
+        """The geometry with unit-carrying names (for tables and file metadata).
+
+        Returns
+        -------
+        dict
+            ``tire, tire_radius_mm, arc_length_mm, rim_width_mm,
+            bead_seat_diameter_mm, rim_height_mm``.
+        """
+        return {
+            "tire": self.name or f"r0={self.tire_radius:.4g}mm",
+            "tire_radius_mm": self.tire_radius,
+            "arc_length_mm": self.arc_length,
+            "rim_width_mm": self.rim_width,
+            "bead_seat_diameter_mm": self.bead_seat_diameter,
+            "rim_height_mm": self.rim_height,
+        }

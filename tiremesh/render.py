@@ -272,6 +272,38 @@ def render(
     return image
 
 
+def render_many(items, *, size: tuple[int, int] = (1200, 900), n_around: int = 360) -> list[Path]:
+    """Solve, mesh and render several load cases (e.g. in a worker process).
+
+    Parameters
+    ----------
+    items : list of dict
+        Each with ``case`` (:class:`tiremesh.LoadCase`), ``path`` (output file),
+        ``view`` and optionally ``zoom`` (relative to the view's framing) and any
+        other keyword option of :func:`render`.
+    size : (width, height) [px]
+    n_around : int
+        Sections around the wheel of each mesh.
+
+    Returns
+    -------
+    list of Path
+        The files written, in order.
+    """
+    from .solver import solve
+
+    out = []
+    for item in items:
+        opts = dict(item)
+        case, path, view = opts.pop("case"), Path(opts.pop("path")), opts.pop("view")
+        mesh = build_mesh(solve(case), n_around=n_around)
+        zoom = opts.pop("zoom", 1.0)
+        cam = view_camera(view, mesh)
+        render(mesh, path, view=view, size=size, camera=(cam.azimuth, cam.elevation, zoom), **opts)
+        out.append(path)
+    return out
+
+
 @dataclass(frozen=True)
 class _Options:
     view: str
@@ -552,8 +584,7 @@ def _text(ren, text: str, x: float, y: float, size: int, ink, *, bold=False, ali
     prop = t.GetTextProperty()
     prop.SetFontSize(size)
     prop.SetColor(*ink)
-    prop.SetBold(bold)
-    prop.SetFontFamilyToArial()
+    vs.use_font(prop, bold=bold)
     prop.SetJustification({"left": 0, "center": 1, "right": 2}[align])
     prop.SetVerticalJustificationToCentered()
     t.GetPositionCoordinate().SetCoordinateSystemToNormalizedViewport()
@@ -607,6 +638,7 @@ def _overlay_bar(win, scalars: str, colour, viewport, ink, h: int) -> None:
     bar.SetBarRatio(0.3)
     bar.UnconstrainedFontSizeOn()
     tp = bar.GetLabelTextProperty()
+    vs.use_font(tp)
     tp.SetFontSize(size)
     tp.SetColor(*ink)
     tp.SetItalic(False)
@@ -633,6 +665,7 @@ def _overlay_triad(win, main, viewport, ink, font_size: int) -> None:
     )
     for cap in captions:
         prop = cap.GetCaptionTextProperty()
+        vs.use_font(prop, bold=True)
         prop.SetColor(*ink)
         prop.SetShadow(False)
         prop.SetItalic(False)
@@ -684,6 +717,7 @@ def _add_ruler(ren, tire_mesh: TireMesh, view: str, ink, font_size: int) -> None
     ruler.GetProperty().SetColor(*ink)
     ruler.UseFontSizeFromPropertyOn()
     for tp in (ruler.GetLabelTextProperty(), ruler.GetTitleTextProperty()):
+        vs.use_font(tp)
         tp.SetColor(*ink)
         tp.SetShadow(False)
         tp.SetItalic(False)
@@ -731,6 +765,7 @@ __all__ = [
     "nice_ticks",
     "output_format",
     "render",
+    "render_many",
     "surface_label",
     "title_lines",
     "to_polydata",

@@ -50,6 +50,53 @@ def _vtk():
         importlib.import_module(f"vtkmodules.{name}")
 
 
+def font_file(bold: bool = False) -> str | None:
+    """A DejaVu Sans TrueType file (the system's, else matplotlib's copy), or None.
+
+    VTK's built-in sans font draws square brackets like parentheses ('[mm]' reads
+    '(mm)'); DejaVu Sans does not.
+
+    Parameters
+    ----------
+    bold : bool
+
+    Returns
+    -------
+    str or None
+    """
+    import importlib.util
+    from pathlib import Path
+
+    name = "DejaVuSans-Bold.ttf" if bold else "DejaVuSans.ttf"
+    places = [Path("/usr/share/fonts/truetype/dejavu")]
+    spec = importlib.util.find_spec("matplotlib")
+    if spec and spec.submodule_search_locations:
+        places.append(Path(spec.submodule_search_locations[0]) / "mpl-data" / "fonts" / "ttf")
+    return next((str(d / name) for d in places if (d / name).is_file()), None)
+
+
+def use_font(prop, *, bold: bool = False) -> None:
+    """Set a ``vtkTextProperty`` to DejaVu Sans (:func:`font_file`) when available.
+
+    Parameters
+    ----------
+    prop : vtkTextProperty
+    bold : bool
+
+    Returns
+    -------
+    None
+        ``prop`` is changed in place.
+    """
+    path = font_file(bold)
+    if path is None:
+        prop.SetFontFamilyToArial()
+        prop.SetBold(bold)
+        return
+    prop.SetFontFamily(4)  # VTK_FONT_FILE
+    prop.SetFontFile(path)
+
+
 def _hex_rgb(h: str) -> tuple[float, float, float]:
     h = h.lstrip("#")
     if len(h) == 3:
@@ -437,6 +484,7 @@ __all__ = [
     "Window",
     "actor",
     "clip_x",
+    "font_file",
     "lines",
     "lookup_table",
     "parse_colour",
@@ -444,4 +492,5 @@ __all__ = [
     "scalar_actor",
     "slice_x",
     "smooth_normals",
+    "use_font",
 ]

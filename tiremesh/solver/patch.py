@@ -191,14 +191,8 @@ class ContactPatch:
 
     def summary(self) -> dict[str, float | str]:
         """Scalar results with unit-carrying names (for tables, JSON, CSV)."""
-        t = self.tire
         return {
-            "tire": t.name or f"r0={t.tire_radius:.4g}mm",
-            "tire_radius_mm": t.tire_radius,
-            "arc_length_mm": t.arc_length,
-            "rim_width_mm": t.rim_width,
-            "bead_seat_diameter_mm": t.bead_seat_diameter,
-            "rim_height_mm": t.rim_height,
+            **self.tire.describe(),
             "surface": self.surface.describe(),
             "pressure_bar": self.pressure / MPA_PER_BAR,
             "camber_deg": float(np.degrees(self.camber)),
