@@ -8,20 +8,26 @@ with the batch options to every worker); there is no global setting.
 
 Public API
 ----------
-Reading   : read_scan, Scan
+Reading   : read_scan, iter_scans (every PDF page), Scan
 Analysis  : analyze_scan, SheetResult, PrintResult, contact_pressure
 Options   : AnalysisOptions
-Steps     : binarize, group_blobs, edge_spots
-Batch     : run_batch, BatchResult (options: inkprint.batch.Options)
+Steps     : prepare_page (light, photo page), binarize, sort_ink (marks that are not
+            prints), group_blobs (whole footprints), edge_spots (section 7.1.1)
+Batch     : run_batch, BatchResult, BatchOptions (= inkprint.batch.Options)
 Overlay   : draw_overlay
 Pixels/mm : inkprint.coords
-Synthetic : inkprint.synth (render_sheet, outline_law, make_sample_set)
+Synthetic : inkprint.synth (render_sheet, outline_law, make_sample_set),
+            inkprint.synth_cases (the failure classes, make_mixed_set),
+            inkprint.accuracy (python -m inkprint.accuracy)
 Errors    : InkPrintError, InvalidInput, ScanReadError, ImageTooLarge, ScaleMissing,
-            NoInk, AllInk
+            ScaleUntrusted, NoInk, AllInk, OutputLocked
 """
+
+__version__ = "0.2.0"
 
 from .analyze import analyze_scan
 from .batch import BatchResult, run_batch
+from .batch import Options as BatchOptions
 from .binarize import binarize
 from .errors import (
     AllInk,
@@ -35,6 +41,8 @@ from .errors import (
     ScanReadError,
 )
 from .group import edge_spots, group_blobs
+from .light import prepare_page
+from .marks import sort_ink
 from .options import AnalysisOptions
 from .overlay import draw_overlay
 from .read import Scan, iter_scans, read_scan
@@ -43,13 +51,16 @@ from .results import PrintResult, SheetResult, contact_pressure
 __all__ = [
     "AllInk",
     "AnalysisOptions",
+    "BatchOptions",
     "BatchResult",
     "ImageTooLarge",
     "InkPrintError",
     "InvalidInput",
     "NoInk",
+    "OutputLocked",
     "PrintResult",
     "ScaleMissing",
+    "ScaleUntrusted",
     "Scan",
     "ScanReadError",
     "SheetResult",
@@ -59,6 +70,9 @@ __all__ = [
     "draw_overlay",
     "edge_spots",
     "group_blobs",
+    "iter_scans",
+    "prepare_page",
     "read_scan",
     "run_batch",
+    "sort_ink",
 ]

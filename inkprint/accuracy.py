@@ -167,7 +167,9 @@ def summary(results: list[dict]) -> str:
     for kind in sorted({r["kind"] for r in results}):
         rs = [r for r in results if r["kind"] == kind]
         c = Counter(r["outcome"] for r in rs)
-        lines.append(f"{kind:<11} {len(rs):>4}  " + ", ".join(f"{k} {v}" for k, v in c.most_common()))
+        lines.append(
+            f"{kind:<11} {len(rs):>4}  " + ", ".join(f"{k} {v}" for k, v in c.most_common())
+        )
     bad = [r for r in results if r["outcome"] not in ("pass", "flagged", "error_ok")]
     if bad:
         lines += ["", "not passing:"]
@@ -225,11 +227,15 @@ def main(argv=None) -> int:
     int
         0 when the bar is met and nothing is silently wrong, else 1.
     """
-    p = argparse.ArgumentParser(prog="python -m inkprint.accuracy", description=__doc__.split("\n")[0])
+    p = argparse.ArgumentParser(
+        prog="python -m inkprint.accuracy", description=__doc__.split("\n")[0]
+    )
     p.add_argument("--files", type=int, default=120, help="files to generate (>= 100 sheets)")
     p.add_argument("--seed", type=int, default=int(time.time()) % 100_000)
     p.add_argument("--workers", type=int)
-    p.add_argument("--keep", metavar="DIR", help="write the set here (default: a temporary folder)")
+    p.add_argument(
+        "--keep", metavar="DIR", help="write the set here (default: a temporary folder)"
+    )
     a = p.parse_args(argv)
     t0 = time.perf_counter()
     if a.keep:

@@ -10,9 +10,10 @@ Each print is measured with :func:`contactpatch.measure` (the definitions shared
 the model) along its rolling direction: ``rolling_axis`` ``'x'`` or ``'y'`` (the
 sheet's axes: x across the image from left to right, y up it) or ``'auto'`` (each
 print's principal axis, the longer direction; the row says ``axis_source = auto``).
-With a given axis, the measuring direction is the print's own symmetry axis when
-that lies within :data:`AXIS_SNAP_DEG` of the given one (a print taped a little
-askew), else the given axis itself. The *gross* outline is the convex hull of the
+A given axis is used as given: a print taped 1 degree askew on the sheet reads
+about (width / length) % longer along it (its own axis is no better: the hull of a
+sparse knob pattern tilts by degrees), so tape prints square or use ``auto``. The
+*gross* outline is the convex hull of the
 ink's sub-pixel edge (the iso-line half-way between the local paper and ink levels,
 :func:`edge_field`), the *net* area the ink pixel count (at most the hull's area).
 With the load and inflation pressure known, load / area is compared with the
@@ -26,6 +27,7 @@ partial number.
 
 from __future__ import annotations
 
+import dataclasses
 import math
 import os
 from dataclasses import dataclass, field
@@ -33,9 +35,9 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from .binarize import Binarization, binarize, remove_specks
-from .coords import area_mm2_to_px, area_px_to_mm2, mm_to_px_length, px_to_mm
+from .coords import area_mm2_to_px, area_px_to_mm2, mm_to_px_length, px_to_mm, px_to_mm_length
 from .errors import InvalidInput, NoInk
-from .group import Group, edge_spots, is_print
+from .group import Group, PrintCheck, edge_spots, is_print
 from .light import Page, prepare_page
 from .marks import Mark, SortedInk, sort_ink
 from .options import AnalysisOptions, resolve_options
@@ -43,12 +45,13 @@ from .read import Scan, read_scan
 from .results import BAND_KEYS, PrintResult, SheetResult, contact_pressure, marks_summary
 
 AXES = ("auto", "x", "y")
-#: a given rolling axis snaps to the print's own axis within this angle [deg]
-AXIS_SNAP_DEG = 20.0
-#: principal moments' ratio below which a print's own axis is not defined
-AXIS_ROUND = 1.15
 #: ``auto`` on a print whose length / width is below this is flagged axis_uncertain
 AXIS_UNCERTAIN_ASPECT = 1.3
+#: a mark set aside covering more than this [mm] of a print's outline flags it
+EDGE_MARK_MM = 2.5
+#: a group with more pen strokes set aside around it than this share of its own ink
+#: is writing
+WRITING_SHARE = 0.5
 
 
 def _hull_px(mask, field, r0: int, c0: int) -> np.ndarray:
@@ -93,7 +96,10 @@ def edge_field(
     so darker or lighter inking does not move the measured outline (a global
     threshold does: the hull then follows the darkest stretch of a long edge). Where
     the local contrast is below half the print's paper-to-ink contrast (inside the
-    ink, on bare paper) the mask decides.
+    ink, on bare paper) the mask decides. Where the locally darkest ink is *faint*
+    (lighter than ``edge_spot_faintness`` of the print's median ink darkness: a halo
+    speck touching the edge, section 7.1.1), the print's median ink stands in for
+    it, so the speck reads as paper instead of adding its width to the outline.
 
     Parameters
     ----------
@@ -103,7 +109,7 @@ def edge_field(
         The print's ink in the box.
     mm_per_px : float [mm / px]
     options : AnalysisOptions, optional
-        Uses ``edge_window_mm`` (defaults when None).
+        Uses ``edge_window_mm`` and ``edge_spot_faintness`` (defaults when None).
 
     Returns
     -------
@@ -122,6 +128,8 @@ def edge_field(
         ink, paper = np.median(sub_g[sub_m]), np.median(sub_g[~sub_m])
     else:
         ink, paper = 0.0, 1.0
+    faint = lo > paper - opts.edge_spot_faintness * (paper - ink)
+    lo = np.where(faint, np.float32(ink), lo)
     sharp = (hi - lo) > 0.5 * max(paper - ink, 1e-6)
     return np.where(sharp, grey - 0.5 * (lo + hi), np.where(mask, -0.5, 0.5)).astype(np.float32)
 
@@ -174,8 +182,8 @@ def measure_mask(
     if field is None:
         field = np.where(mask, -0.5, 0.5)
     hull_px = _hull_px(mask, field, r0, c0)
-    if isinstance(axis, str):
-        axis = rolling_angle(hull_px, axis)
+    if axis is None or isinstance(axis, str):
+        axis = rolling_angle(hull_px, axis or "auto")
     x, y = px_to_mm(hull_px[:, 0], hull_px[:, 1], n_rows=n_rows, mm_per_px=mm_per_px)
     rr, cc = np.nonzero(mask)
     cx, cy = px_to_mm(
@@ -187,8 +195,8 @@ def measure_mask(
     return MaskMeasurement(m, hull_px)
 
 
-def rolling_angle(hull_px, rolling_axis: str) -> float | None:
-    """Measuring direction [rad from the sheet's +x] for a given rolling axis.
+def rolling_angle(hull_px, rolling_axis: str) -> float:
+    """Measuring direction [rad from the sheet's +x] for a rolling axis.
 
     Parameters
     ----------
@@ -198,36 +206,19 @@ def rolling_angle(hull_px, rolling_axis: str) -> float | None:
 
     Returns
     -------
-    float or None
-        None for 'auto' (:func:`contactpatch.measure` takes the principal axis).
-        For 'x' / 'y': the print's own principal axis nearest the given one when
-        the print has a defined axis (principal moments differing by
-        :data:`AXIS_ROUND`) within :data:`AXIS_SNAP_DEG` of it, else the given
-        axis exactly (0 or pi/2).
+    float
+        'x': 0; 'y': pi/2 (as given: tape prints square to the sheet, or use
+        'auto' for prints turned on it); 'auto': the hull's major principal axis.
     """
     import cv2
 
     if rolling_axis not in AXES:
         raise InvalidInput("rolling_axis", rolling_axis, " | ".join(AXES))
-    if rolling_axis == "auto":
-        return None
-    target = 0.0 if rolling_axis == "x" else math.pi / 2
+    if rolling_axis != "auto":
+        return 0.0 if rolling_axis == "x" else math.pi / 2
     # sheet coordinates: x = col, y = -row (the scale does not change directions)
-    pts = np.column_stack([hull_px[:, 1], -hull_px[:, 0]]).astype(np.float32)
-    mo = cv2.moments(pts)
-    if mo["m00"] <= 0:
-        return target
-    a, b, c = mo["mu20"], mo["mu11"], mo["mu02"]
-    spread = math.hypot(a - c, 2 * b)
-    big, small = 0.5 * (a + c + spread), 0.5 * (a + c - spread)
-    if small <= 0 or big / small < AXIS_ROUND:
-        return target
-    major = 0.5 * math.atan2(2 * b, a - c)
-    for cand in (major, major + math.pi / 2):
-        d = (cand - target + math.pi / 2) % math.pi - math.pi / 2
-        if abs(d) <= math.radians(AXIS_SNAP_DEG):
-            return target + d
-    return target
+    mo = cv2.moments(np.column_stack([hull_px[:, 1], -hull_px[:, 0]]).astype(np.float32))
+    return 0.5 * math.atan2(2 * mo["mu11"], mo["mu20"] - mo["mu02"])
 
 
 def _band_values(m) -> dict:
@@ -248,6 +239,14 @@ def _grey(scan: Scan, page: Page, rows: slice, cols: slice) -> np.ndarray:
     if page.flattened or page.sheet is not None:
         return page.work[rows, cols] * np.float32(1 / 255)
     return scan.crop(rows, cols)
+
+
+def _darkness(grey: np.ndarray, mask: np.ndarray) -> np.ndarray:
+    """Darkness relative to the paper around the print: 0 on paper, 1 for black
+    (so faintness compares ink with ink whatever the light or the paper's shade)."""
+    paper_px = grey[::3, ::3][~mask[::3, ::3]]
+    paper = float(np.median(paper_px)) if paper_px.size else 1.0
+    return np.clip((paper - grey) / max(paper, 1e-3), 0.0, 1.0)
 
 
 @dataclass(frozen=True)
@@ -305,10 +304,18 @@ def find_prints(
     ink = sort_ink(mask, mm_per_px=mm_per_px, options=opts)
     marks, kept = list(ink.marks), []
     for g0 in ink.groups:
-        g = Group(g0.rows, g0.cols, remove_specks(g0.mask, speck_px))
+        g = dataclasses.replace(g0, mask=remove_specks(g0.mask, speck_px))
         if not g.mask.any():
             continue
         check = is_print(g, mm_per_px=mm_per_px, options=opts, floor_mm2=floor, image_shape=shape)
+        ink_mm2 = area_px_to_mm2(g.n_pixels, mm_per_px)
+        if check.ok and g.aside_mm2 > WRITING_SHARE * ink_mm2:
+            check = PrintCheck(
+                False,
+                f"writing: {g.aside_mm2:.1f} mm^2 of pen strokes around {ink_mm2:.1f} mm^2 of "
+                f"thicker ink (a letter's junctions)",
+                "writing",
+            )
         if check.ok:
             kept.append(g)
         else:
@@ -317,7 +324,9 @@ def find_prints(
     groups = []
     for g in kept:
         if g.n_pixels < opts.min_patch_fraction * biggest:
-            why = f"a fragment beside the prints ({100 * g.n_pixels / biggest:.1f} % of the largest)"
+            why = (
+                f"a fragment beside the prints ({100 * g.n_pixels / biggest:.1f} % of the largest)"
+            )
             marks.append(_group_mark(g, "fragment", why, mm_per_px))
         else:
             groups.append(g)
@@ -395,7 +404,9 @@ def sensitivity_band(ctx: _Context, group: Group, *, base: dict) -> dict:
         ink = remove_specks((work < level * f) & win.region, speck_px)
         if not ink.any():
             continue
-        spots = edge_spots(Group(win.rows, win.cols, ink), 1.0 - grey, mm_per_px=s, options=opts)
+        spots = edge_spots(
+            Group(win.rows, win.cols, ink), _darkness(grey, ink), mm_per_px=s, options=opts
+        )
         if not spots.load_bearing.any():
             continue
         m = measure_mask(
@@ -412,9 +423,10 @@ def sensitivity_band(ctx: _Context, group: Group, *, base: dict) -> dict:
     return {k: (float(np.nanmin(v)), float(np.nanmax(v))) for k, v in values.items()}
 
 
-def clipped(group: Group, shape, sheet=None) -> str:
-    """Why a print is cut off ('' if it is whole): it touches the image's edge, or
-    the edge of the page found in a photo.
+def clipped(group: Group, shape, sheet=None, *, margin_px: int = 0) -> str:
+    """Why a print may be cut off ('' if it is whole): it comes within
+    ``margin_px`` of the image's edge (a tread running off the sheet can end in a
+    groove short of it), or touches the edge of the page found in a photo.
 
     Parameters
     ----------
@@ -423,6 +435,7 @@ def clipped(group: Group, shape, sheet=None) -> str:
         The image.
     sheet : (rows, cols) bool, optional
         The page inside a photo.
+    margin_px : int [px]
 
     Returns
     -------
@@ -431,12 +444,20 @@ def clipped(group: Group, shape, sheet=None) -> str:
     import cv2
 
     h, w = shape
-    r, c = group.rows, group.cols
-    if r.start <= 0 or c.start <= 0 or r.stop >= h or c.stop >= w:
-        return "touches the image's edge: it may run off the sheet; rescan it with a margin"
+    r, c, m = group.rows, group.cols, margin_px
+    if r.start <= m or c.start <= m or r.stop >= h - m or c.stop >= w - m:
+        return (
+            "reaches the image's edge: it may run off the sheet (measured: only the part "
+            "on it); rescan it with a margin"
+        )
     if sheet is None:
         return ""
-    r0, r1, c0, c1 = max(r.start - 2, 0), min(r.stop + 2, h), max(c.start - 2, 0), min(c.stop + 2, w)
+    r0, r1, c0, c1 = (
+        max(r.start - 2, 0),
+        min(r.stop + 2, h),
+        max(c.start - 2, 0),
+        min(c.stop + 2, w),
+    )
     off = np.zeros((r1 - r0, c1 - c0), np.uint8)
     off[:] = ~sheet[r0:r1, c0:c1]
     near = cv2.dilate(off, np.ones((5, 5), np.uint8))[r.start - r0 :, c.start - c0 :]
@@ -465,9 +486,10 @@ def measure_print(ctx: _Context, group: Group, *, index: int = 0, sensitivity: b
     """
     opts, s = ctx.opts, ctx.scan.mm_per_px
     n_rows = ctx.page.work.shape[0]
-    g = group
+    # paper around the ink: the edge field needs both levels at the outline
+    g = _padded(group, ctx.page.work.shape, 2 + round(mm_to_px_length(opts.edge_window_mm, s)))
     grey = _grey(ctx.scan, ctx.page, g.rows, g.cols)
-    spots = edge_spots(g, 1.0 - grey, mm_per_px=s, options=opts)
+    spots = edge_spots(g, _darkness(grey, g.mask), mm_per_px=s, options=opts)
     kw = dict(n_rows=n_rows, mm_per_px=s, axis=ctx.rolling_axis)
     fld_all = edge_field(grey, g.mask, mm_per_px=s, options=opts)
     fld = edge_field(grey, spots.load_bearing, mm_per_px=s, options=opts)
@@ -475,8 +497,13 @@ def measure_print(ctx: _Context, group: Group, *, index: int = 0, sensitivity: b
     kw["axis"] = m.metrics.orientation  # all ink measured along the same direction
     m_all = measure_mask(g.mask, g.rows.start, g.cols.start, field=fld_all, **kw)
     base = _band_values(m.metrics)
-    band = sensitivity_band(ctx, g, base=base) if sensitivity else {k: (v, v) for k, v in base.items()}
-    flags, warnings = _print_flags(ctx, g, m.metrics, index)
+    band = (
+        sensitivity_band(ctx, g, base=base)
+        if sensitivity
+        else {k: (v, v) for k, v in base.items()}
+    )
+    margin = max(mm_to_px_length(opts.group_distance_mm, s), 1.5 * spots.tread_gap)
+    flags, warnings = _print_flags(ctx, group, m.metrics, index, int(np.ceil(margin)))
     return PrintResult(
         index=index,
         metrics=m.metrics,
@@ -486,15 +513,33 @@ def measure_print(ctx: _Context, group: Group, *, index: int = 0, sensitivity: b
         edge_spot_area=area_px_to_mm2(spots.spot_pixels, s),
         hull_px=m.hull_px,
         band=band,
-        bbox=(g.rows.start, g.cols.start, g.rows.stop, g.cols.stop),
+        bbox=(group.rows.start, group.cols.start, group.rows.stop, group.cols.stop),
         flags=flags,
         warnings=warnings,
     )
 
 
-def _print_flags(ctx: _Context, g: Group, metrics, index: int) -> tuple[tuple, tuple]:
+def _padded(g: Group, shape, pad: int) -> Group:
+    """The group with its box grown by ``pad`` pixels (within the sheet)."""
+    h, w = shape
+    r0, r1 = max(g.rows.start - pad, 0), min(g.rows.stop + pad, h)
+    c0, c1 = max(g.cols.start - pad, 0), min(g.cols.stop + pad, w)
+    mask = np.zeros((r1 - r0, c1 - c0), bool)
+    mask[g.rows.start - r0 : g.rows.stop - r0, g.cols.start - c0 : g.cols.stop - c0] = g.mask
+    return dataclasses.replace(g, rows=slice(r0, r1), cols=slice(c0, c1), mask=mask)
+
+
+def _print_flags(ctx: _Context, g: Group, metrics, index: int, margin: int) -> tuple[tuple, tuple]:
     flags, warnings = [], []
-    cut = clipped(g, ctx.page.work.shape, ctx.page.sheet)
+    contact = px_to_mm_length(g.edge_marks, ctx.scan.mm_per_px)
+    if contact > EDGE_MARK_MM:
+        flags.append("mark_on_edge")
+        warnings.append(
+            f"print #{index}: a mark set aside covers {contact:.1f} mm of its outline (a "
+            f"line along its edge, a label's strokes): the outline there is uncertain by up "
+            f"to the mark's width; see the overlay, remove the mark or rescan"
+        )
+    cut = clipped(g, ctx.page.work.shape, ctx.page.sheet, margin_px=margin)
     if cut:
         flags.append("clipped")
         warnings.append(f"print #{index} {cut}")
@@ -519,7 +564,8 @@ def _as_scan(scan, opts: AnalysisOptions) -> Scan:
 
 
 def no_print_message(found: FoundPrints) -> str:
-    """Why a sheet has no print, from what was set aside.
+    """Why a sheet has no print, from what was set aside (kinds counted, the three
+    largest marks' reasons).
 
     Parameters
     ----------
@@ -531,12 +577,9 @@ def no_print_message(found: FoundPrints) -> str:
     """
     if not found.marks:
         return "no print found on the sheet (no ink group at all)"
-    why = "; ".join(dict.fromkeys(m.reason for m in sorted(found.marks, key=_mark_weight)))
-    return f"no print found on the sheet: set aside {marks_summary(found.marks)} ({why[:400]})"
-
-
-def _mark_weight(m: Mark) -> float:
-    return -m.area_mm2
+    largest = sorted(found.marks, key=lambda m: -m.area_mm2)[:3]
+    why = "; ".join(dict.fromkeys(f"{m.kind}: {m.reason}" for m in largest))
+    return f"no print found on the sheet: set aside {marks_summary(found.marks)} (largest: {why})"
 
 
 def analyze_scan(
@@ -606,7 +649,12 @@ def analyze_scan(
     s = scan.mm_per_px
     page = prepare_page(scan, options=opts)
     b = binarize(
-        page.work, mm_per_px=s, method=method, threshold=threshold, window_mm=window_mm, options=opts
+        page.work,
+        mm_per_px=s,
+        method=method,
+        threshold=threshold,
+        window_mm=window_mm,
+        options=opts,
     )
     sheet_px = b.mask.size if page.sheet is None else int(np.count_nonzero(page.sheet))
     found = find_prints(

@@ -1,60 +1,49 @@
 """Batch analysis of many scans: a folder, a glob, or a manifest CSV.
 
-* One row per print (an error row per failed file), every manifest column carried
-  through; files are identified by the SHA-256 of their content.
+* One row per print (an error row per failed file or page), every manifest column
+  carried through; every page of a PDF is its own sheet (``page`` column).
 * Parallel across local cores (processes) by default, or on a Dask cluster
-  (``scheduler="tcp://host:8786"``, dask.distributed), through
-  :func:`tiremesh.parallel.parallel_map`. The options (judgement thresholds
-  included) travel with every task, so workers use the caller's settings.
-* Resumable: files whose content (SHA-256) already has rows in the output are
-  skipped (a renamed copy reuses those rows); a file whose content changed is
-  analysed again and its old rows dropped. A bad file becomes an error row; the
-  batch goes on.
-* Outputs (CSV, plus the same rows as JSON) are written atomically
-  (:func:`tiremesh.io.write_table`) and checkpointed while the batch runs, so a
-  killed batch leaves complete files and a re-run resumes.
-
-Manifest: CSV with a ``file`` column (relative to the manifest's folder) and any
-others; the recognised ones are ``print`` (0-based, top to bottom; absent = every
-print of the file), ``pressure_bar``, ``load_N``, ``surface`` and ``dpi`` /
-``mm_per_px`` (a per-file scale).
+  (``scheduler="tcp://host:8786"``) through :func:`tiremesh.parallel.parallel_map`.
+  The options travel with every task. Local worker processes watch the batch
+  process and exit when it dies (no orphans after a ``kill -9``).
+* Resume that is never stale: each row carries a ``run_key``, the SHA-256 of the
+  file's content, of every option that changes a number (:class:`Options`, the
+  :class:`~inkprint.AnalysisOptions` with them) and of the file's manifest rows. A
+  re-run keeps a file's rows only when its key is unchanged; changed options, a new
+  manifest row or a new content redo the file. An identical file under another name
+  reuses the rows (once: no duplicate rows).
+* One batch at a time per output: an exclusive lock (``<out>.lock``, released when
+  the process ends, even killed); a second batch on it refuses with
+  :class:`inkprint.OutputLocked`.
+* Outputs (CSV, and the same rows as JSON) are written atomically and checkpointed
+  while the batch runs; the CSV is spreadsheet-safe (:mod:`inkprint.csvsafe`).
+* What is read: see :mod:`inkprint.jobs` (regular files only, links resolved once,
+  manifest paths confined to the manifest's folder).
 """
 
 from __future__ import annotations
 
-import csv
-import glob
+import dataclasses
 import hashlib
+import json
 import os
+import threading
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from tiremesh.io import cell_number, read_table, table_columns, write_table
+from tiremesh.io import cell_number, table_columns, write_table
 from tiremesh.parallel import parallel_map
 from tiremesh.units import MPA_PER_BAR
 
-from .errors import InkPrintError, InvalidInput
+from .errors import InkPrintError, InvalidInput, OutputLocked
+from .jobs import SCAN_SUFFIXES, Job, collect_jobs, read_manifest
 from .options import AnalysisOptions
 
-SCAN_SUFFIXES = {".png", ".jpg", ".jpeg", ".tif", ".tiff", ".pdf", ".bmp"}
-FIRST = ["file", "print", "status", "error", "sha256"]
-
-
-@dataclass(frozen=True)
-class Job:
-    """One file to analyse.
-
-    Attributes
-    ----------
-    path : str
-        The scan file.
-    meta : dict
-        Its manifest rows by print index (-1: a row for every print).
-    """
-
-    path: str
-    meta: dict = field(default_factory=dict)
+FIRST = ["file", "page", "print", "status", "flags", "error", "sha256"]
+#: bump when the rows' meaning changes: older rows are then redone on resume
+ROW_SCHEMA = 2
+AXES = ("auto", "x", "y")
 
 
 @dataclass(frozen=True)
@@ -69,26 +58,44 @@ class Options:
         Scale of every scan; at most one of ``dpi`` and ``mm_per_px``.
     allow_pixels : bool
         Measure scans without a scale in pixels instead of an error row.
+    trust_dpi : bool
+        Accept 72 / 96 dpi metadata (camera and screen defaults, refused otherwise).
     method : {'otsu', 'fixed', 'sauvola'}
         Threshold method.
     threshold : float, optional
         Grey level in (0, 1) for ``method='fixed'``.
     sensitivity : bool
         Compute the threshold sensitivity band.
+    rolling_axis : {'auto', 'x', 'y'}
+        Rolling direction on the sheet (a manifest ``rolling_axis`` wins for its file).
+    pages : tuple of int, optional
+        PDF pages to analyse (0-based); default all.
     overlay_dir : str, optional
-        Write a QA overlay PNG per scan to this folder.
+        Write a QA overlay PNG per sheet to this folder.
     analysis : AnalysisOptions
-        Judgement thresholds.
+        Judgement thresholds (a manifest ``group_mm`` wins for its file).
     """
 
     dpi: float | None = None
     mm_per_px: float | None = None
     allow_pixels: bool = False
+    trust_dpi: bool = False
     method: str = "otsu"
     threshold: float | None = None
     sensitivity: bool = True
+    rolling_axis: str = "auto"
+    pages: tuple | None = None
     overlay_dir: str | None = None
     analysis: AnalysisOptions = field(default_factory=AnalysisOptions)
+
+    def __post_init__(self) -> None:
+        if self.rolling_axis not in AXES:
+            raise InvalidInput("rolling_axis", self.rolling_axis, " | ".join(AXES))
+        if self.pages is not None:
+            pages = tuple(int(p) for p in self.pages)
+            if not pages or min(pages) < 0:
+                raise InvalidInput("pages", self.pages, "0-based page numbers >= 0")
+            object.__setattr__(self, "pages", pages)
 
 
 @dataclass(frozen=True)
@@ -98,13 +105,14 @@ class BatchResult:
     Attributes
     ----------
     rows : list of dict
-        Every row of the output (kept and new), sorted by file and print.
+        Every row of the output (kept and new), sorted by file, page and print.
     n_files : int
         Files in this run.
     n_skipped : int
-        Files not analysed again (their content already had rows).
+        Files not analysed again (their rows, with the same run key, were kept).
     n_errors : int
-        Error rows.
+        Error rows of this run's files (the table may hold older rows of files not
+        in this run).
     outputs : list of Path
         The CSV and its JSON twin.
     """
@@ -114,6 +122,24 @@ class BatchResult:
     n_skipped: int
     n_errors: int
     outputs: list
+
+    def __repr__(self) -> str:
+        n_ok = sum(1 for r in self.rows if r.get("status") == "ok")
+        return (
+            f"BatchResult({self.n_files} files, {self.n_skipped} already done, {n_ok} prints ok, "
+            f"{self.n_errors} errors -> {self.outputs[0] if self.outputs else '-'})"
+        )
+
+    def to_dataframe(self):
+        """The rows as a pandas DataFrame (pandas is optional).
+
+        Returns
+        -------
+        pandas.DataFrame
+        """
+        from .frames import dataframe
+
+        return dataframe(self.rows)
 
 
 def _batch_options(options) -> Options:
@@ -130,7 +156,7 @@ def _batch_options(options) -> Options:
 
 
 def file_hash(path) -> str:
-    """SHA-256 of a file's content.
+    """SHA-256 of a regular file's content (devices and FIFOs refused, not read).
 
     Parameters
     ----------
@@ -140,195 +166,197 @@ def file_hash(path) -> str:
     -------
     str
         64 hex digits.
+
+    Raises
+    ------
+    inkprint.ScanReadError
+        Not a regular file, missing or unreadable.
     """
-    h = hashlib.sha256()
-    with open(path, "rb") as fh:
-        for chunk in iter(lambda: fh.read(1 << 20), b""):
-            h.update(chunk)
-    return h.hexdigest()
+    from .read import read_file_bytes
+
+    return hashlib.sha256(read_file_bytes(path)).hexdigest()
 
 
-def read_manifest(path) -> list[Job]:
-    """Jobs from a manifest CSV (one row per print or per file).
+def run_key(digest: str, options: Options, job: Job) -> str:
+    """The key a file's rows are kept under: content, options, manifest rows.
 
     Parameters
     ----------
-    path : str or PathLike
-        CSV with a ``file`` column (relative to the manifest's folder).
+    digest : str
+        SHA-256 of the file's content.
+    options : Options
+    job : Job
 
     Returns
     -------
-    list of Job
+    str
+        24 hex digits.
     """
-    p = Path(path)
-    if not p.is_file():
-        raise InvalidInput("manifest", str(p), "an existing CSV file")
-    with p.open(newline="", encoding="utf-8-sig") as fh:
-        rows = list(csv.DictReader(fh))
-    if not rows or "file" not in rows[0]:
-        raise InvalidInput("manifest", str(p), "a CSV with a 'file' column")
-    jobs: dict[str, dict] = {}
-    for r in rows:
-        f = r["file"]
-        full = str((p.parent / f).resolve()) if not os.path.isabs(f) else f
-        k = r.get("print", "")
-        idx = int(k) if str(k).strip().lstrip("-").isdigit() else -1
-        jobs.setdefault(full, {})[idx] = {**r, "file": f}
-    return [Job(path, meta) for path, meta in jobs.items()]
+    meta = {
+        f"{p},{i}": {k: v for k, v in m.items() if k != "file"} for (p, i), m in job.meta.items()
+    }
+    blob = json.dumps(
+        [ROW_SCHEMA, digest, dataclasses.asdict(options), meta], sort_keys=True, default=str
+    )
+    return hashlib.sha256(blob.encode()).hexdigest()[:24]
 
 
-def collect_jobs(src, manifest=None) -> list[Job]:
-    """Jobs from a folder, a glob pattern, a single file, and/or a manifest.
-
-    Parameters
-    ----------
-    src : str or PathLike, optional
-        Folder, glob pattern or scan file; with ``manifest``, only the files found
-        here (matched by name) are analysed.
-    manifest : str or PathLike, optional
-        Manifest CSV (:func:`read_manifest`).
-
-    Returns
-    -------
-    list of Job
-    """
-    if manifest is not None:
-        jobs = read_manifest(manifest)
-        if src is None:
-            return jobs
-        wanted = {Path(j.path).name: j for j in jobs}
-        found = _paths(src)
-        return [
-            Job(str(p), wanted[Path(p).name].meta) if Path(p).name in wanted else Job(str(p))
-            for p in found
-        ]
-    if src is None:
-        raise InvalidInput("src", None, "a folder, a glob pattern, a scan file or --manifest")
-    return [Job(str(p)) for p in _paths(src)]
-
-
-def _paths(src) -> list[str]:
-    s = str(src)
-    p = Path(s)
-    if p.is_dir():
-        return sorted(
-            str(q) for q in p.iterdir() if q.suffix.lower() in SCAN_SUFFIXES and q.is_file()
-        )
-    if p.is_file():
-        return [s]
-    hits = sorted(glob.glob(s, recursive=True))
-    if not hits:
-        raise InvalidInput("src", s, "an existing folder, file or glob pattern matching scans")
-    return [h for h in hits if Path(h).is_file()]
-
-
-def _display(job: Job) -> str:
-    """The name a job's rows carry: the manifest's ``file`` entry, else the path."""
-    return next((m.get("file", job.path) for m in job.meta.values()), job.path)
-
-
-def _int(v) -> int:
-    try:
-        return int(v)
-    except (TypeError, ValueError):
-        return -1
-
-
-def _row_meta(job: Job, index: int) -> dict:
-    return dict(job.meta.get(index) or job.meta.get(-1) or {})
-
-
-def _error_row(job: Job, exc: BaseException, *, digest: str, meta: dict) -> dict:
+def _error_row(job: Job, exc, *, digest: str = "", key: str = "", page="") -> dict:
+    text = exc if isinstance(exc, str) else f"{type(exc).__name__}: {exc}"
     return {
-        **meta,
-        "file": _display(job),
+        **job.file_meta(),
+        "file": job.display,
+        "page": page,
         "print": "",
         "status": "error",
+        "error": text,
         "sha256": digest,
-        "error": f"{type(exc).__name__}: {exc}",
+        "run_key": key,
     }
 
 
-@dataclass(frozen=True)
-class ScanScale:
-    """The scale a file is read with (at most one is set; neither: the metadata).
+def _file_options(job: Job, options: Options):
+    """The scale, rolling axis and analysis options of one file (batch settings,
+    else its manifest's ``dpi`` / ``mm_per_px``, ``rolling_axis``, ``group_mm``)."""
+    meta = job.file_meta()
+    dpi, mmpp = options.dpi, options.mm_per_px
+    if dpi is None and mmpp is None:
+        dpi, mmpp = cell_number(meta.get("dpi")), cell_number(meta.get("mm_per_px"))
+        if dpi is not None and mmpp is not None:
+            raise InvalidInput("dpi/mm_per_px", (dpi, mmpp), "one of the two in the manifest")
+    axis = str(meta.get("rolling_axis") or "").strip().lower() or None
+    if axis is not None and axis not in AXES:
+        raise InvalidInput("rolling_axis", axis, " | ".join(AXES) + " (manifest column)")
+    analysis = options.analysis
+    group = cell_number(meta.get("group_mm"))
+    if group is not None:
+        analysis = analysis.replace(group_mm=group)
+    return dpi, mmpp, axis, analysis
 
-    Attributes
-    ----------
-    dpi : float or None [dots per inch]
-    mm_per_px : float or None [mm / px]
-    """
 
-    dpi: float | None
-    mm_per_px: float | None
+def _load_case(meta: dict) -> tuple:
+    """Load [N] and pressure [N/mm^2] of a manifest row (None when absent)."""
+    load = cell_number(meta.get("load_N"))
+    p_bar = cell_number(meta.get("pressure_bar"))
+    if load is not None and load <= 0:
+        raise InvalidInput("load_N", meta.get("load_N"), "> 0 N (manifest column)")
+    if p_bar is not None and p_bar <= 0:
+        raise InvalidInput("pressure_bar", meta.get("pressure_bar"), "> 0 bar (manifest column)")
+    return load, None if p_bar is None else p_bar * MPA_PER_BAR
 
 
-def scan_scale(job: Job, options: Options) -> ScanScale:
-    """The batch's scale if given, else the manifest's ``dpi`` / ``mm_per_px``.
+def _sheet_rows(job: Job, result, digest: str, key: str, overlay: str) -> list[dict]:
+    """One row per print of one sheet: manifest columns, then the measurements."""
+    rows = []
+    for p in result.prints:
+        meta = job.meta_for(result.page, p.index)
+        load, pressure = _load_case(meta)
+        row = result.row(p.index, load=load, pressure=pressure)
+        rows.append(
+            {
+                **meta,
+                **row,
+                "file": job.display,
+                "sha256": digest,
+                "run_key": key,
+                "overlay": overlay,
+            }
+        )
+    return rows
+
+
+def overlay_name(job: Job, page: int) -> str:
+    """QA overlay file name, unique per file and page: the stem, the suffix, a hash
+    of the real path and the page (two ``a.jpg`` in different folders, or ``a.jpg``
+    and ``a.png``, never overwrite each other).
 
     Parameters
     ----------
     job : Job
-    options : Options
+    page : int
 
     Returns
     -------
-    ScanScale
+    str
     """
-    meta0 = _row_meta(job, 0)
-    dpi = options.dpi if options.dpi is not None else cell_number(meta0.get("dpi"))
-    mmpp = (
-        options.mm_per_px if options.mm_per_px is not None else cell_number(meta0.get("mm_per_px"))
-    )
-    if dpi is not None and mmpp is not None:  # the batch's setting wins over the manifest's
-        dpi = None if options.dpi is None else dpi
-        mmpp = None if dpi is not None else mmpp
-    return ScanScale(dpi, mmpp)
+    p = Path(job.path)
+    tag = hashlib.sha256(os.path.normcase(job.path).encode()).hexdigest()[:8]
+    return f"{p.stem}_{p.suffix.lstrip('.').lower()}_{tag}_p{page}_overlay.png"
 
 
-def _print_rows(job: Job, result, digest: str) -> list[dict]:
-    """One row per print: manifest columns, then the measurements."""
-    rows = []
-    for p in result.prints:
-        meta = _row_meta(job, p.index)
-        load = cell_number(meta.get("load_N"))
-        p_bar = cell_number(meta.get("pressure_bar"))
-        pressure = None if p_bar is None else p_bar * MPA_PER_BAR
-        row = result.row(p.index, load=load, pressure=pressure)
-        rows.append({**meta, **row, "file": _display(job), "print": p.index, "sha256": digest})
-    return rows
-
-
-def _analyze_job(job: Job, digest: str, options: Options) -> list[dict]:
+def _analyze_job(job: Job, data: bytes, digest: str, key: str, options: Options) -> list[dict]:
     from .analyze import analyze_scan
-    from .read import read_scan
+    from .errors import NoInk
+    from .read import iter_scans
 
-    scale = scan_scale(job, options)
-    scan = read_scan(
+    dpi, mmpp, axis, analysis = _file_options(job, options)
+    axis_source = "manifest" if axis else ("auto" if options.rolling_axis == "auto" else "given")
+    axis = axis or options.rolling_axis
+    scans = iter_scans(
         job.path,
-        dpi=scale.dpi,
-        mm_per_px=scale.mm_per_px,
+        dpi=dpi,
+        mm_per_px=mmpp,
         allow_pixels=options.allow_pixels,
-        options=options.analysis,
+        trust_dpi=options.trust_dpi,
+        pages=options.pages,
+        options=analysis,
+        data=data,
     )
-    result = analyze_scan(
-        scan,
-        method=options.method,
-        threshold=options.threshold,
-        sensitivity=options.sensitivity,
-        options=options.analysis,
-    )
-    rows = _print_rows(job, result, digest)
-    if options.overlay_dir:
-        from .overlay import draw_overlay
+    rows = []
+    for scan in scans:
+        try:
+            result = analyze_scan(
+                scan,
+                method=options.method,
+                threshold=options.threshold,
+                sensitivity=options.sensitivity,
+                rolling_axis=axis,
+                options=analysis,
+            )
+        except NoInk as exc:  # one page without a print: the other pages go on
+            rows.append(_error_row(job, exc, digest=digest, key=key, page=scan.page))
+            continue
+        result = dataclasses.replace(result, path=job.display, axis_source=axis_source)
+        overlay = ""
+        if options.overlay_dir:
+            from .overlay import draw_overlay
 
-        name = Path(job.path).stem + "_overlay.png"
-        draw_overlay(scan, result, Path(options.overlay_dir) / name)
+            overlay = str(Path(options.overlay_dir) / overlay_name(job, scan.page))
+            draw_overlay(scan, result, overlay)
+        rows.extend(_sheet_rows(job, result, digest, key, overlay))
     return rows
 
 
-def process_file(job: Job, *, options: Options | AnalysisOptions | None = None) -> list[dict]:
-    """Analyse one file; never raises: failures become an error row.
+_WATCHING = threading.Event()
+
+
+def _watch(parent: int, interval: float = 0.5) -> None:
+    """In a worker process: exit as soon as the batch process ``parent`` is gone
+    (a killed batch leaves no worker blocked on its queue)."""
+    if parent == os.getpid() or _WATCHING.is_set():
+        return
+    _WATCHING.set()
+    ppid = os.getppid()
+
+    def loop() -> None:
+        while True:
+            time.sleep(interval)
+            try:
+                os.kill(parent, 0)
+            except ProcessLookupError:
+                os._exit(3)
+            except PermissionError:
+                pass
+            if os.getppid() != ppid:  # our parent (the pool's server) is gone too
+                os._exit(3)
+
+    threading.Thread(target=loop, name="inkprint-parent-watch", daemon=True).start()
+
+
+def process_file(
+    job: Job, *, options: Options | AnalysisOptions | None = None, watch: int | None = None
+) -> list[dict]:
+    """Analyse one file (every page); never raises: failures become error rows.
 
     Parameters
     ----------
@@ -336,27 +364,39 @@ def process_file(job: Job, *, options: Options | AnalysisOptions | None = None) 
     options : Options or AnalysisOptions, optional
         Batch options (an :class:`AnalysisOptions` alone: the other batch options
         at their defaults).
+    watch : int, optional
+        Process id of the batch: a worker process exits when it dies.
 
     Returns
     -------
     list of dict
-        One row per print, or one error row (``status`` 'error', ``error`` the
-        exception's type and message).
+        One row per print, and an error row per file or page that failed
+        (``status`` 'error', ``error`` the exception's type and message).
     """
+    from .read import read_file_bytes
+
+    if watch is not None:
+        _watch(watch)
     opts = _batch_options(options)
+    if job.error:
+        return [_error_row(job, job.error)]
     try:
-        digest = file_hash(job.path)
-    except OSError as exc:
-        return [_error_row(job, exc, digest="", meta=_row_meta(job, -1))]
+        data = read_file_bytes(job.path)
+    except InkPrintError as exc:
+        return [_error_row(job, exc)]
+    digest = hashlib.sha256(data).hexdigest()
+    key = run_key(digest, opts, job)
     try:
-        return _analyze_job(job, digest, opts)
+        return _analyze_job(job, data, digest, key, opts)
     except (InkPrintError, ValueError, OSError, MemoryError) as exc:
-        meta = {**_row_meta(job, -1), **_row_meta(job, 0)}
-        return [_error_row(job, exc, digest=digest, meta=meta)]
+        return [_error_row(job, exc, digest=digest, key=key)]
 
 
 def _sort_key(r):
-    return (str(r.get("file", "")), -1 if r.get("print", "") == "" else int(r["print"]))
+    def num(v):
+        return -1 if v in ("", None) else int(float(v))
+
+    return (str(r.get("file", "")), num(r.get("page")), num(r.get("print")))
 
 
 def _check_out(out) -> Path:
@@ -367,7 +407,7 @@ def _check_out(out) -> Path:
 
 
 def write_outputs(rows: list[dict], out) -> list[Path]:
-    """Write the rows to ``out`` (CSV) and ``out`` with suffix .json, both atomically.
+    """Write the rows to ``out`` (spreadsheet-safe CSV) and its .json twin, atomically.
 
     Parameters
     ----------
@@ -380,11 +420,13 @@ def write_outputs(rows: list[dict], out) -> list[Path]:
     list of Path
         The CSV and the JSON.
     """
+    from .csvsafe import write_csv
+
     out = _check_out(out)
     rows = sorted(rows, key=_sort_key)
     cols = table_columns(rows, first=FIRST)
     return [
-        write_table(rows, out, columns=cols),
+        write_csv(rows, out, columns=cols, lineterminator="\n"),
         write_table(rows, out.with_suffix(".json"), columns=cols),
     ]
 
@@ -396,11 +438,13 @@ class ResumePlan:
     Attributes
     ----------
     rows : list of dict
-        Rows kept from the previous output (files done before, files not in this run).
+        Rows kept from the previous output (files done before with the same run
+        key, files not in this run).
     todo : list of Job
-        Files to analyse: new, changed, failed (with ``retry_errors``) or unreadable.
+        Files to analyse: new, changed (content, options or manifest rows), failed
+        (with ``retry_errors``) or unreadable.
     n_skipped : int
-        Files whose content already had rows.
+        Files whose rows were kept.
     """
 
     rows: list[dict]
@@ -408,25 +452,32 @@ class ResumePlan:
     n_skipped: int
 
 
-def _reused_rows(job: Job, done: list[dict]) -> list[dict]:
-    """Rows of ``job``'s content from the previous output, under ``job``'s name."""
-    same = [r for r in done if r.get("file") == _display(job)]
-    if same:
-        return same
-    # the same content under another name: reuse the rows
-    return [{**r, **_row_meta(job, _int(r.get("print"))), "file": _display(job)} for r in done]
+def _previous(out, resume: bool, retry_errors: bool) -> list[dict]:
+    from .csvsafe import read_csv
+
+    if not (resume and Path(out).is_file()):
+        return []
+    kept = read_csv(out)
+    return [r for r in kept if r.get("status") != "error"] if retry_errors else kept
 
 
 def plan_resume(
-    jobs: list[Job], out, *, resume: bool = True, retry_errors: bool = False
+    jobs: list[Job],
+    out,
+    *,
+    options: Options | None = None,
+    resume: bool = True,
+    retry_errors: bool = False,
 ) -> ResumePlan:
-    """Match the jobs with the rows already in ``out`` (by content hash).
+    """Match the jobs with the rows already in ``out`` by run key (:func:`run_key`).
 
     Parameters
     ----------
     jobs : list of Job
     out : str or PathLike
         The batch's CSV (may not exist yet).
+    options : Options, optional
+        This run's options (part of the key).
     resume : bool
         Keep the rows of ``out`` (else start afresh).
     retry_errors : bool
@@ -436,28 +487,97 @@ def plan_resume(
     -------
     ResumePlan
     """
-    kept = read_table(out) if resume and Path(out).is_file() else []
-    if retry_errors:
-        kept = [r for r in kept if r.get("status") == "ok"]
-    by_hash: dict[str, list[dict]] = {}
+    opts = _batch_options(options)
+    kept = _previous(out, resume, retry_errors)
+    by_key: dict[str, dict[str, list]] = {}
     for r in kept:
-        if r.get("sha256"):
-            by_hash.setdefault(r["sha256"], []).append(r)
-    names = {_display(j) for j in jobs}
-    rows = [r for r in kept if r.get("file") not in names]  # rows of files not in this run
+        if r.get("run_key"):
+            by_key.setdefault(r["run_key"], {}).setdefault(r.get("file", ""), []).append(r)
+    names = {j.display for j in jobs}
+    rows = [r for r in kept if r.get("file") not in names]  # files not in this run
     todo, skipped = [], 0
     for j in jobs:
-        try:
-            digest = file_hash(j.path) if by_hash else None
-        except OSError:
-            digest = None
-        done = by_hash.get(digest) if digest else None
-        if not done:
-            todo.append(j)  # new, changed (its old rows are dropped) or unreadable
+        done = _done_rows(j, by_key, opts) if by_key and not j.error else None
+        if done is None:
+            todo.append(j)
             continue
         skipped += 1
-        rows.extend(_reused_rows(j, done))
+        rows.extend(done)
     return ResumePlan(rows, todo, skipped)
+
+
+def _done_rows(job: Job, by_key: dict, opts: Options) -> list[dict] | None:
+    """The kept rows of a job under this run's key (its own, or an identical
+    file's, renamed), or None."""
+    try:
+        key = run_key(file_hash(job.path), opts, job)
+    except InkPrintError:
+        return None
+    files = by_key.get(key)
+    if not files:
+        return None
+    if job.display in files:
+        return files[job.display]
+    source = files[sorted(files)[0]]  # an identical file under another name: once
+    return [
+        {**r, **job.meta_for(_int(r.get("page")), _int(r.get("print"))), "file": job.display}
+        for r in source
+    ]
+
+
+def _int(v) -> int:
+    try:
+        return int(float(v))
+    except (TypeError, ValueError):
+        return -1
+
+
+class _Lock:
+    """An exclusive lock on ``<out>.lock`` for the life of a batch (the OS releases
+    it when the process ends, however it ends)."""
+
+    def __init__(self, out: Path) -> None:
+        self.path = out.with_name(out.name + ".lock")
+        self.fh = None
+
+    def __enter__(self):
+        self.path.parent.mkdir(parents=True, exist_ok=True)
+        self.fh = open(self.path, "a+b")
+        try:
+            _lock_file(self.fh)
+        except OSError as exc:
+            self.fh.close()
+            raise OutputLocked(
+                f"{self.path.with_suffix('')}: another inkprint batch is writing this output "
+                f"(lock {self.path} is held); wait for it to finish or choose another -o"
+            ) from exc
+        return self
+
+    def __exit__(self, *exc) -> None:
+        _unlock_file(self.fh)
+        self.fh.close()
+
+
+def _lock_file(fh) -> None:
+    if os.name == "nt":  # pragma: no cover - Windows
+        import msvcrt
+
+        msvcrt.locking(fh.fileno(), msvcrt.LK_NBLCK, 1)
+    else:
+        import fcntl
+
+        fcntl.flock(fh.fileno(), fcntl.LOCK_EX | fcntl.LOCK_NB)
+
+
+def _unlock_file(fh) -> None:
+    if os.name == "nt":  # pragma: no cover - Windows
+        import msvcrt
+
+        msvcrt.locking(fh.fileno(), msvcrt.LK_UNLCK, 1)
+    else:
+        import fcntl
+
+        fcntl.flock(fh.fileno(), fcntl.LOCK_UN)
 
 
 def _progress(total: int, enabled: bool):
@@ -473,15 +593,13 @@ def _analyze_jobs(
     rows = list(plan.rows)
     last = time.monotonic()
     bar = _progress(len(plan.todo), progress)
+    kwargs = {"options": options}
+    if scheduler is None:
+        kwargs["watch"] = os.getpid()  # local workers exit when this process dies
     try:
-        results = parallel_map(
-            process_file,
-            plan.todo,
-            workers=workers,
-            scheduler=scheduler,
-            kwargs={"options": options},
-        )
-        for _, new in results:
+        for _, new in parallel_map(
+            process_file, plan.todo, workers=workers, scheduler=scheduler, kwargs=kwargs
+        ):
             rows.extend(new)
             bar.update(1)
             if time.monotonic() - last > checkpoint_seconds:
@@ -504,6 +622,7 @@ def run_batch(
     retry_errors: bool = False,
     progress: bool = True,
     checkpoint_seconds: float = 10.0,
+    allow_outside: bool = False,
 ) -> BatchResult:
     """Analyse every scan of ``src`` / ``manifest`` into the table ``out``.
 
@@ -514,67 +633,80 @@ def run_batch(
     out : str or PathLike
         Path of the CSV (a .json twin is written beside it).
     manifest : str or PathLike, optional
-        Manifest CSV (see the module's documentation).
+        Manifest CSV (see :mod:`inkprint.jobs`).
     options : Options or AnalysisOptions, optional
-        Batch options; an :class:`AnalysisOptions` alone sets the judgement
-        thresholds with the other batch options at their defaults. They reach every
-        worker process or Dask worker.
+        Batch options; they reach every worker process or Dask worker.
     workers : int, optional
         Local worker processes (default: all cores; 1 = in this process).
     scheduler : str, optional
         Address of a dask.distributed scheduler; the work is sent there.
     resume : bool
-        Keep the rows of ``out`` and skip their files (by content hash).
+        Keep the rows of ``out`` whose run key still holds (see the module's notes).
     retry_errors : bool
         With ``resume``, analyse again the files that failed before.
     progress : bool
         Show a progress bar.
     checkpoint_seconds : float [s]
         Rewrite the outputs at most this often while the batch runs.
+    allow_outside : bool
+        Read manifest files outside the manifest's folder.
 
     Returns
     -------
     BatchResult
+
+    Raises
+    ------
+    OutputLocked
+        Another batch is writing ``out``.
+    InvalidInput
+        Bad options, ``out`` not a .csv, no such source or manifest.
+    OSError
+        An output cannot be written (the message names the path).
     """
     opts = _batch_options(options)
-    _check_out(out)
+    out = _check_out(out)
     if workers is not None and workers < 1:
         raise InvalidInput("workers", workers, ">= 1")
-    jobs = collect_jobs(src, manifest)
-    plan = plan_resume(jobs, out, resume=resume, retry_errors=retry_errors)
-    if opts.overlay_dir:
-        Path(opts.overlay_dir).mkdir(parents=True, exist_ok=True)
-    rows = _analyze_jobs(
-        plan,
-        out,
-        options=opts,
-        workers=workers,
-        scheduler=scheduler,
-        progress=progress,
-        checkpoint_seconds=checkpoint_seconds,
-    )
-    outputs = write_outputs(rows, out)
+    jobs = collect_jobs(src, manifest, allow_outside=allow_outside)
+    with _Lock(out):
+        plan = plan_resume(jobs, out, options=opts, resume=resume, retry_errors=retry_errors)
+        if opts.overlay_dir:
+            Path(opts.overlay_dir).mkdir(parents=True, exist_ok=True)
+        rows = _analyze_jobs(
+            plan,
+            out,
+            options=opts,
+            workers=workers,
+            scheduler=scheduler,
+            progress=progress,
+            checkpoint_seconds=checkpoint_seconds,
+        )
+        outputs = write_outputs(rows, out)
+    names = {j.display for j in jobs}
     return BatchResult(
         rows=sorted(rows, key=_sort_key),
         n_files=len(jobs),
         n_skipped=plan.n_skipped,
-        n_errors=sum(1 for r in rows if r.get("status") == "error"),
+        n_errors=sum(1 for r in rows if r.get("status") == "error" and r.get("file") in names),
         outputs=outputs,
     )
 
 
 __all__ = [
+    "FIRST",
+    "SCAN_SUFFIXES",
     "BatchResult",
     "Job",
     "Options",
     "ResumePlan",
-    "ScanScale",
     "collect_jobs",
     "file_hash",
+    "overlay_name",
     "plan_resume",
     "process_file",
     "read_manifest",
     "run_batch",
-    "scan_scale",
+    "run_key",
     "write_outputs",
 ]

@@ -2,20 +2,40 @@
 
 ``inkprint analyze SCAN...`` prints a table (one row per print); ``inkprint batch
 SRC -o results.csv`` runs a whole campaign; ``inkprint synth -o DIR`` writes the
-synthetic sample set.
+synthetic sample set (or, with ``--mixed N``, a set mixing every failure class).
+
+Conventions: ``--version``; ``-q`` (errors only) and ``-v`` (warnings and set-aside
+marks per sheet; tracebacks of unexpected errors); quantities carry their unit
+(``--pressure 4bar|60psi|400kPa|0.4MPa``, ``--load 400N|40kg``: a bare number is
+refused, it could mean anything); errors go to stderr, never as a traceback. Exit
+status: 0 all good, 1 some files or prints failed (the count on stderr), 2 the
+command could not run (bad arguments or options, an output that cannot be
+written, a locked output).
 """
 
 from __future__ import annotations
 
 import argparse
-import csv
-import io
-import json
+import re
 import sys
 from collections.abc import Sequence
 from pathlib import Path
 
-from .errors import InkPrintError
+_NUMBER = re.compile(r"^\s*[-+]?(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?\s*$")
+PRESSURE_FORMS = "4bar, 60psi, 400kPa or 0.4MPa"
+LOAD_FORMS = "400N or 40kg"
+
+
+def _version() -> str:
+    from . import __version__
+
+    return f"inkprint {__version__}"
+
+
+def _common(p: argparse.ArgumentParser) -> None:
+    v = p.add_mutually_exclusive_group()
+    v.add_argument("-q", "--quiet", action="store_true", help="errors only (no progress bar)")
+    v.add_argument("-v", "--verbose", action="store_true", help="warnings and marks set aside")
 
 
 def _scale_options(p: argparse.ArgumentParser) -> None:
@@ -24,20 +44,55 @@ def _scale_options(p: argparse.ArgumentParser) -> None:
     m.add_argument("--dpi", type=float, help="scan resolution [dots per inch]")
     m.add_argument("--mm-per-px", type=float, help="scan scale [mm per pixel]")
     m.add_argument("--pixels", action="store_true", help="no scale: measure in pixels")
-    t = p.add_argument_group("threshold")
+    g.add_argument(
+        "--trust-dpi",
+        action="store_true",
+        help="accept 72 or 96 dpi metadata (camera / screen defaults, refused otherwise)",
+    )
+    g.add_argument("--pages", metavar="LIST", help="PDF pages, 0-based: e.g. 0,2-4 (default all)")
+    t = p.add_argument_group("threshold and measure")
     t.add_argument("--method", choices=["otsu", "fixed", "sauvola"], default="otsu")
     t.add_argument("--threshold", type=float, help="grey level in (0, 1) for --method fixed")
     t.add_argument("--no-band", action="store_true", help="skip the threshold sensitivity band")
+    t.add_argument(
+        "--rolling-axis",
+        choices=["auto", "x", "y"],
+        default="auto",
+        help="rolling direction on the sheet: x across the image, y up it, auto the "
+        "print's longer axis (default; said in axis_source)",
+    )
     p.add_argument("--overlay", metavar="DIR", help="write QA overlay PNGs to DIR")
     _threshold_options(p)
 
 
 # judgement thresholds on the command line: (flag, AnalysisOptions field, metavar, help)
 THRESHOLDS = (
-    ("--group-distance", "group_distance_mm", "MM", "blobs closer than this form one print"),
-    ("--min-patch-area", "min_patch_area_mm2", "MM2", "less ink than this is not a print"),
+    (
+        "--group-mm",
+        "group_mm",
+        "MM",
+        "tread elements closer than this are one print (replaces the footprint rule)",
+    ),
+    (
+        "--group-distance",
+        "group_distance_mm",
+        "MM",
+        "elements closer than this are always one print",
+    ),
+    (
+        "--min-patch-area",
+        "min_patch_area_mm2",
+        "MM2",
+        "less ink than this is not a print (default: scales with the sheet)",
+    ),
     ("--min-patch-width", "min_patch_width_mm", "MM", "narrower than this is a line, not a print"),
     ("--speck-area", "speck_area_mm2", "MM2", "smaller ink blobs are specks (removed)"),
+    (
+        "--stroke-width",
+        "stroke_width_mm",
+        "MM",
+        "marks thinner than this are pen, lines, gridlines",
+    ),
     ("--edge-spot-area", "edge_spot_area_mm2", "MM2", "blobs this large form the print's core"),
     (
         "--edge-spot-distance",
@@ -55,13 +110,29 @@ def _threshold_options(p: argparse.ArgumentParser) -> None:
     defaults = AnalysisOptions()
     g = p.add_argument_group("judgement thresholds (inkprint.AnalysisOptions)")
     for flag, name, metavar, text in THRESHOLDS:
+        d = getattr(defaults, name)
         g.add_argument(
             flag,
             dest=name,
             type=float,
             metavar=metavar,
-            help=f"{text} (default {getattr(defaults, name):g})",
+            help=f"{text}" + ("" if d is None else f" (default {d:g})"),
         )
+
+
+def _pages(text: str | None):
+    """'0,2-4' -> (0, 2, 3, 4); None / 'all' -> None."""
+    from .errors import InvalidInput
+
+    if text is None or text.strip().lower() == "all":
+        return None
+    out = []
+    for part in text.split(","):
+        m = re.fullmatch(r"\s*(\d+)\s*(?:-\s*(\d+)\s*)?", part)
+        if not m or (m.group(2) and int(m.group(2)) < int(m.group(1))):
+            raise InvalidInput("--pages", text, "0-based pages like 0,2-4, or all")
+        out += range(int(m.group(1)), int(m.group(2) or m.group(1)) + 1)
+    return tuple(out)
 
 
 def _analysis_options(a):
@@ -79,18 +150,64 @@ def _options(a):
         dpi=a.dpi,
         mm_per_px=a.mm_per_px,
         allow_pixels=a.pixels,
+        trust_dpi=a.trust_dpi,
         method=a.method,
         threshold=a.threshold,
         sensitivity=not a.no_band,
+        rolling_axis=a.rolling_axis,
+        pages=_pages(a.pages),
         overlay_dir=a.overlay,
         analysis=_analysis_options(a),
     )
 
 
+def quantity(text: str, *, kind: str, flag: str) -> float:
+    """A pressure [N/mm^2] or load [N] given with its unit on the command line.
+
+    Parameters
+    ----------
+    text : str
+        E.g. '4bar', '60psi', '400kPa', '0.4MPa'; '400N', '40kg'.
+    kind : {'pressure', 'load'}
+    flag : str
+        The option's name, for the message.
+
+    Returns
+    -------
+    float
+        [N/mm^2] for a pressure, [N] for a load; always > 0.
+
+    Raises
+    ------
+    inkprint.InvalidInput
+        A bare number (no unit), an unknown unit, or a value <= 0.
+    """
+    from tiremesh.errors import InvalidParameter
+    from tiremesh.units import parse_force, parse_pressure
+
+    from .errors import InvalidInput
+
+    forms = PRESSURE_FORMS if kind == "pressure" else LOAD_FORMS
+    if _NUMBER.match(text):
+        raise InvalidInput(
+            flag, text, f"a number with its unit, e.g. {forms} (a bare number is ambiguous)"
+        )
+    parse = parse_pressure if kind == "pressure" else parse_force
+    try:
+        value = parse(str(text), name=flag)
+    except InvalidParameter as exc:
+        raise InvalidInput(flag, text, f"a number with its unit, e.g. {forms}") from exc
+    if not value > 0:
+        raise InvalidInput(flag, text, f"> 0 (a {kind} must be positive)")
+    return value
+
+
 SUMMARY = [
     "file",
+    "page",
     "print",
     "status",
+    "flags",
     "length_mm",
     "width_mm",
     "hull_area_mm2",
@@ -99,61 +216,152 @@ SUMMARY = [
     "ellipse_length_mm",
     "ellipse_width_mm",
     "angle_deg",
+    "axis_source",
     "n_edge_spots",
     "load_per_hull_area_pct",
     "error",
 ]
 
 
-def _cmd_analyze(a) -> int:
-    from tiremesh.io import table_columns
-    from tiremesh.units import MPA_PER_BAR, parse_force, parse_pressure
+def _line(r: dict, unit: str) -> str:
+    page = f" p{r['page']}" if str(r.get("page", "0")) not in ("0", "") else ""
+    line = (
+        f"{r['file']}{page} #{r['print']}: L {r[f'length_{unit}']:.2f} {unit}, "
+        f"W {r[f'width_{unit}']:.2f} {unit}, gross {r[f'hull_area_{unit}2']:.1f} {unit}2, "
+        f"net {r[f'area_{unit}2']:.1f} {unit}2 ({100 * r['net_to_gross']:.0f} %), ellipse "
+        f"{r[f'ellipse_length_{unit}']:.2f} x {r[f'ellipse_width_{unit}']:.2f} {unit}, "
+        f"axis {r['axis_source']}, {r['n_edge_spots']} edge spots"
+    )
+    pct = r.get("load_per_hull_area_pct")
+    if pct is not None and pct == pct:
+        line += f", load/area {r['load_per_hull_area_N_mm2']:.4f} N/mm2 ({pct:.1f} % of inflation)"
+    if r.get("flags"):
+        line += f"  [{r['flags']}]"
+    return line
 
+
+def _print_rows(rows: list[dict], a) -> None:
+    unit = "px" if a.pixels else "mm"
+    if a.json:
+        import json
+
+        print(json.dumps(rows, indent=1, default=str))
+    elif a.csv:
+        from tiremesh.io import table_columns
+
+        from .csvsafe import write_rows
+
+        write_rows(sys.stdout, rows, table_columns(rows))
+    else:
+        for r in rows:
+            if r["status"] != "error":
+                print(_line(r, unit))
+
+
+def _report_problems(rows: list[dict], a) -> int:
+    """Errors (always) and warnings (with -v) on stderr; the number of error rows."""
+    errors = [r for r in rows if r.get("status") == "error"]
+    for r in errors:
+        page = f" page {r['page']}" if r.get("page") not in ("", None) else ""
+        print(f"{r['file']}{page}: error: {r['error']}", file=sys.stderr)
+    if a.verbose:
+        seen = set()
+        for r in rows:
+            for w in str(r.get("warnings") or "").split("; "):
+                if w and (r["file"], w) not in seen:
+                    seen.add((r["file"], w))
+                    print(f"{r['file']}: warning: {w}", file=sys.stderr)
+            if r.get("set_aside") and (r["file"], "aside") not in seen:
+                seen.add((r["file"], "aside"))
+                print(f"{r['file']}: set aside {r['set_aside']}", file=sys.stderr)
+    flagged = sum(1 for r in rows if r.get("status") == "flagged")
+    if flagged and not a.quiet:
+        print(f"{flagged} print(s) flagged (see the flags column; -v for why)", file=sys.stderr)
+    return len(errors)
+
+
+def _cmd_analyze(a) -> int:
     from .batch import Job, process_file
+    from .jobs import resolve_once
 
     meta = {}
     if a.load is not None:
-        meta["load_N"] = parse_force(a.load, name="--load")
+        meta["load_N"] = quantity(a.load, kind="load", flag="--load")
     if a.pressure is not None:
-        meta["pressure_bar"] = parse_pressure(a.pressure, name="--pressure") / MPA_PER_BAR
+        from tiremesh.units import MPA_PER_BAR
+
+        meta["pressure_bar"] = (
+            quantity(a.pressure, kind="pressure", flag="--pressure") / MPA_PER_BAR
+        )
     opts = _options(a)
     if opts.overlay_dir:
         Path(opts.overlay_dir).mkdir(parents=True, exist_ok=True)
     rows = []
     for f in a.scans:
-        job = Job(f, {-1: {"file": f, **meta}} if meta else {})
+        real, err = resolve_once(f)
+        job = Job(real or f, {(-1, -1): {"file": f, **meta}} if meta else {}, f, err)
         rows.extend(process_file(job, options=opts))
-    if a.json:
-        print(json.dumps(rows, indent=1, default=str))
-    elif a.csv:
-        buf = io.StringIO()
-        cols = table_columns(rows)
-        w = csv.DictWriter(buf, fieldnames=cols, lineterminator="\n")
-        w.writeheader()
-        w.writerows(rows)
-        print(buf.getvalue(), end="")
-    else:
-        unit = "px" if a.pixels else "mm"
-        for r in rows:
-            if r["status"] != "ok":
-                print(f"{r['file']}: error: {r['error']}")
-                continue
-            line = (
-                f"{r['file']} #{r['print']}: L {r[f'length_{unit}']:.2f} {unit}, W {r[f'width_{unit}']:.2f} {unit}, "
-                f"gross {r[f'hull_area_{unit}2']:.1f} {unit}2, net {r[f'area_{unit}2']:.1f} {unit}2 "
-                f"({100 * r['net_to_gross']:.0f} %), ellipse {r[f'ellipse_length_{unit}']:.2f} x "
-                f"{r[f'ellipse_width_{unit}']:.2f} {unit}, {r['n_edge_spots']} edge spots"
-            )
-            pct = r.get("load_per_hull_area_pct")
-            if pct is not None and pct == pct:
-                line += f", load/area {r['load_per_hull_area_N_mm2']:.4f} N/mm2 ({pct:.1f} % of inflation)"
-            print(line)
-    return 2 if any(r["status"] != "ok" for r in rows) else 0
+    _print_rows(rows, a)
+    n_err = _report_problems(rows, a)
+    if n_err:
+        print(f"{n_err} of {len(a.scans)} file(s) or page(s) failed", file=sys.stderr)
+    return 1 if n_err else 0
+
+
+REPORT_COLUMNS = ("pressure_bar", "load_N")
+
+
+def _reportable(rows: list[dict]) -> tuple[list[dict], list[str]]:
+    """Rows the model can be paired with, and the names of the ok prints left out
+    (no manifest row with a tire, pressure_bar and load_N)."""
+    ok, missing = [], []
+    for r in rows:
+        if r.get("status") != "ok":
+            continue
+        has_tire = any(
+            str(r.get(k) or "").strip()
+            for k in ("tire", "tire_id", "arc_length_mm", "tire_radius_mm")
+        )
+        if has_tire and all(str(r.get(k) or "").strip() for k in REPORT_COLUMNS):
+            ok.append(r)
+        else:
+            missing.append(f"{r.get('file')}#{r.get('print')}")
+    return ok, missing
+
+
+def _report(res, a) -> int:
+    from contactpatch import build_report
+
+    rows, missing = _reportable(res.rows)
+    if missing:
+        print(
+            f"report: {len(missing)} print(s) without a manifest row giving the tire, "
+            f"pressure_bar and load_N are left out: {', '.join(missing[:10])}"
+            + (" ..." if len(missing) > 10 else ""),
+            file=sys.stderr,
+        )
+    if not rows:
+        print(
+            "error: --report: no print has a manifest row to pair with the model", file=sys.stderr
+        )
+        return 1
+    index = build_report(rows, a.report, renders=not a.no_renders, source=str(res.outputs[0]))
+    if not a.quiet:
+        print(f"wrote the report: {index}")
+    return 0
 
 
 def _cmd_batch(a) -> int:
     from .batch import run_batch
+    from .errors import InvalidInput
 
+    if a.report and not a.manifest:
+        raise InvalidInput(
+            "--report",
+            a.report,
+            "with --manifest: the report pairs each print with the model, which needs the "
+            "tire, pressure_bar, load_N and surface of every print",
+        )
     res = run_batch(
         a.src,
         a.output,
@@ -164,29 +372,84 @@ def _cmd_batch(a) -> int:
         resume=not a.no_resume,
         retry_errors=a.retry_errors,
         progress=not a.quiet,
+        allow_outside=a.allow_outside,
     )
     n_ok = sum(1 for r in res.rows if r.get("status") == "ok")
-    print(
-        f"{res.n_files} files ({res.n_skipped} already done), {n_ok} prints, {res.n_errors} errors"
-    )
-    for path in res.outputs:
-        print(f"wrote {path}")
-    if a.report:
-        from contactpatch import build_report
-
-        index = build_report(
-            res.rows, a.report, renders=not a.no_renders, source=str(res.outputs[0])
+    if not a.quiet:
+        print(
+            f"{res.n_files} files ({res.n_skipped} already done), {n_ok} prints, "
+            f"{res.n_errors} errors"
         )
-        print(f"wrote the report: {index}")
-    return 0
+        for path in res.outputs:
+            print(f"wrote {path}")
+    _report_problems(res.rows, a)
+    status = 0
+    if res.n_errors:
+        print(f"{res.n_errors} error row(s) in {res.outputs[0]}", file=sys.stderr)
+        status = 1
+    if a.report:
+        status = max(status, _report(res, a))
+    return status
 
 
 def _cmd_synth(a) -> int:
+    if a.mixed:
+        from .synth_cases import make_mixed_set
+
+        manifest, truth = make_mixed_set(a.output, n_files=a.mixed, seed=a.seed)
+        if not a.quiet:
+            print(f"wrote {manifest}, {truth} and {a.mixed} files")
+        return 0
     from .synth import make_sample_set
 
     path = make_sample_set(a.output, dpi=a.dpi)
-    print(f"wrote {path} and its scans")
+    if not a.quiet:
+        print(f"wrote {path} and its scans")
     return 0
+
+
+def _analyze_parser(sub) -> None:
+    p = sub.add_parser("analyze", help="measure the prints on one or more scans")
+    p.add_argument("scans", nargs="+", help="PNG, JPEG, TIFF or PDF files")
+    _scale_options(p)
+    p.add_argument("--load", help=f"vertical load with its unit: {LOAD_FORMS}")
+    p.add_argument("--pressure", help=f"inflation pressure with its unit: {PRESSURE_FORMS}")
+    out = p.add_mutually_exclusive_group()
+    out.add_argument("--csv", action="store_true", help="CSV on stdout (spreadsheet-safe)")
+    out.add_argument("--json", action="store_true")
+    _common(p)
+    p.set_defaults(func=_cmd_analyze)
+
+
+def _batch_parser(sub) -> None:
+    p = sub.add_parser("batch", help="analyse a folder, glob or manifest of scans into one table")
+    p.add_argument(
+        "src", nargs="?", help="folder, glob pattern or file (optional with --manifest)"
+    )
+    p.add_argument(
+        "-o", "--output", required=True, help="results.csv (a .json twin is written too)"
+    )
+    p.add_argument(
+        "--manifest",
+        help="CSV: file, [page], [print], tire, pressure_bar, load_N, surface, [dpi], "
+        "[rolling_axis], [group_mm]",
+    )
+    p.add_argument(
+        "--allow-outside", action="store_true", help="read manifest files outside its folder"
+    )
+    p.add_argument("--workers", type=int, help="local worker processes (default: all cores)")
+    p.add_argument("--scheduler", help="dask.distributed scheduler address, e.g. tcp://host:8786")
+    p.add_argument("--no-resume", action="store_true", help="ignore rows already in the output")
+    p.add_argument(
+        "--retry-errors", action="store_true", help="analyse files that failed before again"
+    )
+    p.add_argument(
+        "--report", metavar="DIR", help="also write the model-vs-print report (needs --manifest)"
+    )
+    p.add_argument("--no-renders", action="store_true", help="report without the 3D renders")
+    _scale_options(p)
+    _common(p)
+    p.set_defaults(func=_cmd_batch)
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -199,44 +462,29 @@ def build_parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(
         prog="inkprint", description="Ink prints of tire contact patches (Dressel 2013, 4.1.1)."
     )
+    parser.add_argument("--version", action="version", version=_version())
     sub = parser.add_subparsers(dest="command", required=True)
-    p = sub.add_parser("analyze", help="measure the prints on one or more scans")
-    p.add_argument("scans", nargs="+", help="PNG, JPEG, TIFF or PDF files")
-    _scale_options(p)
-    p.add_argument("--load", help="vertical load, e.g. 304N or 31kg (load / area vs pressure)")
-    p.add_argument("--pressure", help="inflation pressure, e.g. 100psi or 6.9bar")
-    out = p.add_mutually_exclusive_group()
-    out.add_argument("--csv", action="store_true")
-    out.add_argument("--json", action="store_true")
-    p.set_defaults(func=_cmd_analyze)
-
-    p = sub.add_parser("batch", help="analyse a folder, glob or manifest of scans into one table")
-    p.add_argument(
-        "src", nargs="?", help="folder, glob pattern or file (optional with --manifest)"
-    )
-    p.add_argument(
-        "-o", "--output", required=True, help="results.csv (a .json twin is written too)"
-    )
-    p.add_argument(
-        "--manifest", help="CSV: file, [print], tire, pressure_bar, load_N, surface, [dpi]"
-    )
-    p.add_argument("--workers", type=int, help="local worker processes (default: all cores)")
-    p.add_argument("--scheduler", help="dask.distributed scheduler address, e.g. tcp://host:8786")
-    p.add_argument("--no-resume", action="store_true", help="ignore rows already in the output")
-    p.add_argument(
-        "--retry-errors", action="store_true", help="analyse files that failed before again"
-    )
-    p.add_argument("--quiet", action="store_true", help="no progress bar")
-    p.add_argument("--report", metavar="DIR", help="also write the model-vs-print report to DIR")
-    p.add_argument("--no-renders", action="store_true", help="report without the 3D renders")
-    _scale_options(p)
-    p.set_defaults(func=_cmd_batch)
-
-    p = sub.add_parser("synth", help="write the synthetic sample scans, manifest and truth")
+    _analyze_parser(sub)
+    _batch_parser(sub)
+    p = sub.add_parser("synth", help="write synthetic scans with their manifest and truth")
     p.add_argument("-o", "--output", required=True, help="folder")
-    p.add_argument("--dpi", type=float, default=150.0)
+    p.add_argument("--dpi", type=float, default=150.0, help="sample set resolution")
+    p.add_argument(
+        "--mixed", type=int, metavar="N", help="instead: N files mixing every failure class"
+    )
+    p.add_argument("--seed", type=int, default=0, help="seed of --mixed")
+    _common(p)
     p.set_defaults(func=_cmd_synth)
     return parser
+
+
+def _fail(message: str, a=None, code: int = 2) -> int:
+    print(f"error: {message}", file=sys.stderr)
+    if a is not None and getattr(a, "verbose", False):
+        import traceback
+
+        traceback.print_exc()
+    return code
 
 
 def main(argv: Sequence[str] | None = None) -> int:
@@ -250,18 +498,27 @@ def main(argv: Sequence[str] | None = None) -> int:
     Returns
     -------
     int
-        Exit status: 0 on success, 2 on an error (or a file that failed in
-        ``analyze``).
+        Exit status: 0 all good, 1 some files or prints failed, 2 the command could
+        not run (argparse's own usage errors exit 2 too).
     """
+    from .errors import InkPrintError
+
     a = build_parser().parse_args(argv)
     try:
         return a.func(a)
     except (InkPrintError, ValueError) as exc:
-        print(f"error: {exc}", file=sys.stderr)
-        return 2
+        return _fail(str(exc), a)
     except BrokenPipeError:
         sys.stderr.close()
         return 0
+    except OSError as exc:
+        where = exc.filename or ""
+        why = exc.strerror or str(exc)
+        return _fail(f"cannot write or read {where}: {why}" if where else why, a)
+    except KeyboardInterrupt:
+        return _fail("interrupted", None, 130)
+    except Exception as exc:  # never a traceback for the user; -v shows it
+        return _fail(f"unexpected {type(exc).__name__}: {exc} (run with -v for details)", a, 1)
 
 
 if __name__ == "__main__":

@@ -47,6 +47,10 @@ from .options import AnalysisOptions, resolve_options
 #: a neighbour counts for the tread pattern's gap when no farther than this many
 #: times the narrower element's width
 PATTERN_REACH = 2.0
+#: a print with a hull under this [mm^2] (a tiny print) is solid: it inks at least
+#: SMALL_PRINT_FILL of its hull (a letter, a ring, a tick does not)
+SMALL_PRINT_MM2 = 150.0
+SMALL_PRINT_FILL = 0.8
 
 
 @dataclass(frozen=True)
@@ -59,11 +63,20 @@ class Group:
         Bounding box in the sheet.
     mask : (h, w) bool
         The group's ink inside the box.
+    edge_marks : float [px]
+        Length of the longest stretch of the print's outline covered by a mark set
+        aside (a line along its edge, the feet of a label's strokes): there the
+        outline is uncertain.
+    aside_mm2 : float [mm^2]
+        Ink of the short marks (pen strokes) set aside that touch the group: a group
+        that is mostly such strokes is writing, not a print.
     """
 
     rows: slice
     cols: slice
     mask: np.ndarray
+    edge_marks: float = 0.0
+    aside_mm2: float = 0.0
 
     @property
     def n_pixels(self) -> int:
@@ -338,6 +351,14 @@ def is_print(
         return PrintCheck(
             False, f"writing or marks ({100 * fill:.0f} % of its hull inked)", "writing"
         )
+    hull_mm2 = area_px_to_mm2(cv2.contourArea(hull), mm_per_px)
+    if hull_mm2 < SMALL_PRINT_MM2 and fill < SMALL_PRINT_FILL:
+        return PrintCheck(
+            False,
+            f"a letter or a mark ({hull_mm2:.0f} mm^2, {100 * fill:.0f} % of its hull inked: "
+            f"a print this small is solid)",
+            "writing",
+        )
     return PrintCheck(True)
 
 
@@ -390,12 +411,15 @@ class EdgeSpots:
         Blobs judged edge spots (touched the paper, bore no load).
     spot_pixels : int [px]
         Ink pixels of the edge spots.
+    tread_gap : float [px]
+        The core's typical gap between its blobs (0 for a one-blob core).
     """
 
     load_bearing: np.ndarray
     n_blobs: int
     n_spots: int
     spot_pixels: int
+    tread_gap: float = 0.0
 
 
 @dataclass(frozen=True)
@@ -491,7 +515,7 @@ def edge_spots(
     reach = max(mm_to_px_length(opts.edge_spot_distance_mm, mm_per_px), 1.5 * pattern)
     spot = outside & (faint | (small & (gaps > reach)))
     is_spot = np.concatenate([[False], spot])[blobs.labels]
-    return EdgeSpots(group.mask & ~is_spot, n_blobs, int(spot.sum()), int(is_spot.sum()))
+    return EdgeSpots(group.mask & ~is_spot, n_blobs, int(spot.sum()), int(is_spot.sum()), pattern)
 
 
 __all__ = [

@@ -179,7 +179,9 @@ def _sharp(small: np.ndarray, pts: np.ndarray, contrast: float, border: int) -> 
     if keep.sum() < 8:
         return False
     g = small.astype(np.float32)
-    mag = np.hypot(cv2.Sobel(g, cv2.CV_32F, 1, 0, ksize=3), cv2.Sobel(g, cv2.CV_32F, 0, 1, ksize=3))
+    mag = np.hypot(
+        cv2.Sobel(g, cv2.CV_32F, 1, 0, ksize=3), cv2.Sobel(g, cv2.CV_32F, 0, 1, ksize=3)
+    )
     mag = cv2.dilate(mag, np.ones((3, 3), np.uint8))  # the step's peak near the outline
     return float(np.median(mag[y[keep], x[keep]])) / 8.0 > 0.35 * contrast
 
@@ -233,7 +235,7 @@ def prepare_page(scan, *, options: AnalysisOptions | None = None) -> Page:
 
     opts = resolve_options(options)
     work = to_uint8(scan.pixels)
-    f = max(1, int(round(LIGHT_PX_MM / scan.mm_per_px))) if scan.unit == "mm" else 4
+    f = max(1, round(LIGHT_PX_MM / scan.mm_per_px)) if scan.unit == "mm" else 4
     small = _small(work, f)
     paper = float(np.percentile(small, 95))
     frame = find_page(small, paper)

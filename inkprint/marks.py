@@ -1,7 +1,7 @@
 """Sort a sheet's ink into prints and marks that are not prints (issue 11, item 3).
 
 Thresholds are fields of :class:`inkprint.AnalysisOptions`. The sorting works on a
-copy of the ink mask pooled to ~``stroke_width_mm / 5`` per pixel (area-weighted:
+copy of the ink mask pooled to ~``stroke_width_mm / POOL_STROKES`` per pixel (area-weighted:
 a pooled pixel is ink when most of it is), then carries the result back to the full
 resolution.
 
@@ -37,6 +37,7 @@ and box (:class:`Mark`), and drawn on the QA overlay.
 
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -51,6 +52,8 @@ from .group import (
 )
 from .options import AnalysisOptions, resolve_options
 
+#: the pooled grid has this many pixels across a stroke (``stroke_width_mm``)
+POOL_STROKES = 5.0
 #: thin ink no longer than this near a print is a dot (halo speck, clipped knob)
 DOT_MM = 1.5
 #: the Voronoi partition of the elements is sampled every this many mm
@@ -63,10 +66,14 @@ MIN_THICK_DISKS = 3
 SMALL_THICK_DISKS = 12
 #: a compact thin blob is at most this many times longer than wide
 COMPACT_ASPECT = 4.0
+#: ... or this many, for what a line set aside touched (a ruler's tick is a bar)
+LINE_COMPACT_ASPECT = 2.5
 #: ... and fills at least this fraction of its convex hull
 COMPACT_SOLIDITY = 0.85
 #: straight segments at least this long are a line's (Hough, on the long marks)
 LINE_SEGMENT_MM = 5.0
+#: a line crossing a print is bridged where ink lies this close [mm] on both sides
+BRIDGE_MM = 1.0
 
 
 @dataclass(frozen=True)
@@ -150,13 +157,15 @@ class _Pooled:
 def _pool(mask: np.ndarray, mm_per_px: float, opts: AnalysisOptions) -> _Pooled:
     import cv2
 
-    q = max(1, int(opts.stroke_width_mm / 5.0 / mm_per_px))
+    q = max(1, int(opts.stroke_width_mm / POOL_STROKES / mm_per_px))
     m8 = mask.view(np.uint8) if mask.dtype == bool else (mask > 0).astype(np.uint8)
     if q == 1:
         return _Pooled(m8.astype(bool, copy=False), 1, mm_per_px)
     h, w = mask.shape
     hh, ww = -(-h // q), -(-w // q)
-    padded = cv2.copyMakeBorder(m8 * np.uint8(255), 0, hh * q - h, 0, ww * q - w, cv2.BORDER_CONSTANT, value=0)
+    padded = cv2.copyMakeBorder(
+        m8 * np.uint8(255), 0, hh * q - h, 0, ww * q - w, cv2.BORDER_CONSTANT, value=0
+    )
     small = cv2.resize(padded, (ww, hh), interpolation=cv2.INTER_AREA)
     return _Pooled(small >= 128, q, mm_per_px * q)
 
@@ -181,6 +190,7 @@ class _Parts:
     thin: np.ndarray
     n_thin: int
     thin_stats: np.ndarray
+    core: np.ndarray
 
 
 def _split(pooled: _Pooled, opts: AnalysisOptions) -> _Parts:
@@ -197,20 +207,48 @@ def _split(pooled: _Pooled, opts: AnalysisOptions) -> _Parts:
     kernel = _disk(opts.stroke_width_mm / pooled.px_mm)
     disk = int(kernel.sum())
     opened = cv2.morphologyEx(m, cv2.MORPH_OPEN, kernel)
+    # the prints' bodies: thick ink wider than two strokes
+    core = cv2.morphologyEx(opened, cv2.MORPH_OPEN, _disk(2 * opts.stroke_width_mm / pooled.px_mm))
+    opened &= ~_straight_skinny(opened & ~core, pooled, opts)
     n1, l1, s1, _ = cv2.connectedComponentsWithStats(opened, connectivity=8)
     area = s1[:, cv2.CC_STAT_AREA]
     keep = area >= MIN_THICK_DISKS * disk
     keep[0] = False
     check = np.flatnonzero(keep & (area < SMALL_THICK_DISKS * disk))
     if len(check):
-        _, l2, s2, _ = cv2.connectedComponentsWithStats(m & (l1 == 0).view(np.uint8), connectivity=8)
+        _, l2, s2, _ = cv2.connectedComponentsWithStats(
+            m & (l1 == 0).view(np.uint8), connectivity=8
+        )
         for k in check:
             keep[k] = _attached_thin(l1, l2, s2, s1, k) <= 0.5 * area[k]
     if not keep[1:].all():
         n1, l1, s1, _ = cv2.connectedComponentsWithStats(keep[l1].view(np.uint8), connectivity=8)
     thin = m & (l1 == 0).view(np.uint8)
     n2, l2, s2, _ = cv2.connectedComponentsWithStats(thin, connectivity=8)
-    return _Parts(l1, n1 - 1, s1, l2, n2 - 1, s2)
+    return _Parts(l1, n1 - 1, s1, l2, n2 - 1, s2, core.view(bool) & (l1 > 0))
+
+
+def _straight_skinny(skinny: np.ndarray, pooled: _Pooled, opts: AnalysisOptions) -> np.ndarray:
+    """Of the thick ink narrower than two strokes (``skinny``, uint8), the straight
+    lines: pieces at least ``line_length_mm`` long and at most two strokes wide along
+    their whole length (a ruler's or a drawn line thick enough to survive the
+    opening, where it crosses a print too; a rib follows the outline or is wider)."""
+    import cv2
+
+    _n, lab, stats, _ = cv2.connectedComponentsWithStats(skinny, connectivity=8)
+    out = np.zeros(skinny.shape, np.uint8)
+    long = np.maximum(stats[:, cv2.CC_STAT_WIDTH], stats[:, cv2.CC_STAT_HEIGHT])
+    for k in np.flatnonzero(long * pooled.px_mm >= opts.line_length_mm):
+        if k == 0:
+            continue
+        x, y, w, h = stats[k, :4]
+        piece = (lab[y : y + h, x : x + w] == k).view(np.uint8)
+        (_, _), (a, b), _ = cv2.minAreaRect(cv2.findNonZero(piece))
+        if (min(a, b) + 1) * pooled.px_mm <= 2.0 * opts.stroke_width_mm and (
+            max(a, b) + 1
+        ) * pooled.px_mm >= opts.line_length_mm:
+            out[y : y + h, x : x + w] |= piece
+    return out
 
 
 def _attached_thin(thick_lab, thin_lab, thin_stats, thick_stats, k: int) -> int:
@@ -226,13 +264,29 @@ def _attached_thin(thick_lab, thin_lab, thin_stats, thick_stats, k: int) -> int:
     return int(thin_stats[ids, cv2.CC_STAT_AREA].sum())
 
 
-def _groups_of_elements(parts: _Parts, pooled: _Pooled, opts: AnalysisOptions) -> np.ndarray:
-    """Print index of each thick element (footprint rule, then hull overlaps)."""
+def _groups_of_elements(
+    parts: _Parts, pooled: _Pooled, opts: AnalysisOptions, bridge=None
+) -> np.ndarray:
+    """Print index of each thick element (footprint rule, then hull overlaps). The
+    ``bridge`` pixels (lines taken out) count as the ink of the nearest element, so
+    a line that crossed a print does not widen the gap between its two sides."""
+    import cv2
+
     n = parts.n_thick
     if n == 0:
         return np.zeros(0, int)
+    labels = parts.thick
+    if bridge is not None and bridge.any():
+        free = (labels == 0).view(np.uint8)
+        dist, nearest = cv2.distanceTransformWithLabels(
+            free, cv2.DIST_L2, 3, labelType=cv2.DIST_LABEL_PIXEL
+        )
+        lut = np.zeros(int(nearest.max()) + 1, np.int32)
+        lut[nearest[labels > 0]] = labels[labels > 0]
+        reach = (opts.stroke_width_mm + BRIDGE_MM) / pooled.px_mm  # a line's width, a groove
+        labels = np.where(bridge & (labels == 0) & (dist <= reach), lut[nearest], labels)
     step = max(1, int(GRAPH_STEP_MM / pooled.px_mm))
-    graph = element_graph(parts.thick, n, px_mm=pooled.px_mm, step=step)
+    graph = element_graph(labels, n, px_mm=pooled.px_mm, step=step)
     link = linked_edges(graph, options=opts)
     comp = union_labels(n, graph.a[link], graph.b[link])
     return merge_overlapping(_hulls(parts.thick, comp), comp)
@@ -247,7 +301,9 @@ def _hulls(labels: np.ndarray, comp: np.ndarray, core=None) -> list:
     src = (labels > 0).astype(np.uint8)
     if core is not None:
         n = len(comp) + 1
-        share = np.bincount(labels[core], minlength=n) / np.maximum(np.bincount(labels.ravel(), minlength=n), 1)
+        share = np.bincount(labels[core], minlength=n) / np.maximum(
+            np.bincount(labels.ravel(), minlength=n), 1
+        )
         cored = share >= 0.5
         cored[0] = False
         src = (core & cored[labels]) | ((labels > 0) & ~cored[labels])
@@ -257,18 +313,7 @@ def _hulls(labels: np.ndarray, comp: np.ndarray, core=None) -> list:
     for c in contours:
         x, y = c[0, 0]
         pts[comp[labels[y, x] - 1]].append(c)
-    return [
-        cv2.convexHull(np.concatenate(p)).astype(np.float32) if p else None for p in pts
-    ]
-
-
-def _core(parts: _Parts, pooled: _Pooled, opts: AnalysisOptions) -> np.ndarray:
-    """Thick ink that is wider than two strokes: the prints' bodies without the
-    bumps where a pen stroke meets their edge (the hulls that judge thin ink)."""
-    import cv2
-
-    kernel = _disk(2.0 * opts.stroke_width_mm / pooled.px_mm)
-    return cv2.morphologyEx((parts.thick > 0).view(np.uint8), cv2.MORPH_OPEN, kernel).view(bool)
+    return [cv2.convexHull(np.concatenate(p)).astype(np.float32) if p else None for p in pts]
 
 
 def _line_kind(crop: np.ndarray, extent_mm: float, px_mm: float) -> tuple[str, str]:
@@ -341,10 +386,10 @@ def _thin_stats(parts: _Parts, hull_map, near_dist, near_id, pooled: _Pooled) ->
     return _ThinStats(extent, area, gap, reach, target, inside, touch)
 
 
-def _compact(parts: _Parts, k: int) -> bool:
+def _compact(parts: _Parts, k: int, aspect: float | None = None) -> bool:
     """Whether thin piece ``k`` is a compact blob (a clipped tread block: convex,
-    filling :data:`COMPACT_SOLIDITY` of its hull, at most :data:`COMPACT_ASPECT`
-    times longer than wide), not a stroke (a letter, a tick)."""
+    filling :data:`COMPACT_SOLIDITY` of its hull, at most ``aspect`` (default
+    :data:`COMPACT_ASPECT`) times longer than wide), not a stroke (a letter, a tick)."""
     import cv2
 
     pts = cv2.findNonZero(_crop(parts.thin, parts.thin_stats, k).view(np.uint8))
@@ -352,7 +397,7 @@ def _compact(parts: _Parts, k: int) -> bool:
     a, b = max(a, b) + 1.0, min(a, b) + 1.0
     hull = cv2.convexHull(pts)
     solid = len(pts) / max(cv2.contourArea(hull) + 0.5 * cv2.arcLength(hull, True) + 1.0, 1.0)
-    return solid >= COMPACT_SOLIDITY and a <= COMPACT_ASPECT * b
+    return solid >= COMPACT_SOLIDITY and a <= (aspect or COMPACT_ASPECT) * b
 
 
 def _judge_thin(t: _ThinStats, parts: _Parts, opts: AnalysisOptions, network=None):
@@ -377,7 +422,7 @@ def _judge_thin(t: _ThinStats, parts: _Parts, opts: AnalysisOptions, network=Non
         on_line[0] = False
     own &= ~on_line
     for k in np.flatnonzero(near & ~own & (~t.touch | on_line) & ~long):
-        own[k] = _compact(parts, k)
+        own[k] = _compact(parts, k, LINE_COMPACT_ASPECT if on_line[k] else COMPACT_ASPECT)
     keep = np.where(long, t.inside >= 0.5, own)
     owner = np.where(keep, t.target, -1)
     kind = np.where(long, "", np.where(dot, "dust", "text"))
@@ -392,20 +437,32 @@ def _short_reason(kind: str, t: _ThinStats, k: int, opts: AnalysisOptions) -> st
     return f"writing or a mark ({t.extent[k]:.1f} mm) away from the prints"
 
 
-def _nearest_hull(hull_map: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Distance [pooled px] to the nearest print hull and that print's map id."""
+def _nearest_hull(hull_map: np.ndarray, reach_px: float) -> tuple[np.ndarray, np.ndarray]:
+    """Distance [pooled px] to the nearest print hull and that print's map id, up to
+    ``reach_px`` from the hulls (beyond: inf and 0; computed on the hulls' box only)."""
     import cv2
 
-    if not hull_map.any():
-        return np.full(hull_map.shape, np.inf, np.float32), np.zeros(hull_map.shape, np.int32)
-    free = (hull_map == 0).astype(np.uint8)
-    dist, nearest = cv2.distanceTransformWithLabels(
-        free, cv2.DIST_L2, 3, labelType=cv2.DIST_LABEL_PIXEL
+    dist = np.full(hull_map.shape, np.inf, np.float32)
+    ids = np.zeros(hull_map.shape, np.int32)
+    ys, xs = np.nonzero(hull_map[::4, ::4] if hull_map.size > 4_000_000 else hull_map)
+    if not len(ys):
+        return dist, ids
+    f = 4 if hull_map.size > 4_000_000 else 1
+    pad = int(np.ceil(reach_px)) + f + 1
+    h, w = hull_map.shape
+    r0, r1 = max(ys.min() * f - pad, 0), min(ys.max() * f + pad + 1, h)
+    c0, c1 = max(xs.min() * f - pad, 0), min(xs.max() * f + pad + 1, w)
+    sub = hull_map[r0:r1, c0:c1]
+    d, nearest = cv2.distanceTransformWithLabels(
+        (sub == 0).astype(np.uint8), cv2.DIST_L2, 3, labelType=cv2.DIST_LABEL_PIXEL
     )
     lut = np.zeros(int(nearest.max()) + 1, np.int32)
-    inside = hull_map > 0
-    lut[nearest[inside]] = hull_map[inside]
-    return dist, lut[nearest]
+    lut[nearest[sub > 0]] = sub[sub > 0]
+    far = d > reach_px
+    d[far] = np.inf
+    dist[r0:r1, c0:c1] = d
+    ids[r0:r1, c0:c1] = np.where(far, 0, lut[nearest])
+    return dist, ids
 
 
 @dataclass(frozen=True)
@@ -421,12 +478,12 @@ class _Sorted:
     kind: np.ndarray
 
 
-def _sort_pooled(pooled: _Pooled, opts: AnalysisOptions, network=None) -> _Sorted:
+def _sort_pooled(pooled: _Pooled, opts: AnalysisOptions, network=None, bridge=None) -> _Sorted:
     parts = _split(pooled, opts)
-    comp = _groups_of_elements(parts, pooled, opts)
-    hulls = _hulls(parts.thick, comp, _core(parts, pooled, opts)) if len(comp) else []
+    comp = _groups_of_elements(parts, pooled, opts, bridge)
+    hulls = _hulls(parts.thick, comp, parts.core) if len(comp) else []
     hull_map = _hull_map(hulls, pooled.mask.shape)
-    near_dist, near_id = _nearest_hull(hull_map)
+    near_dist, near_id = _nearest_hull(hull_map, opts.line_length_mm / pooled.px_mm)
     stats = _thin_stats(parts, hull_map, near_dist, near_id, pooled)
     owner, kind = _judge_thin(stats, parts, opts, network)
     owner[0] = -1
@@ -436,52 +493,118 @@ def _sort_pooled(pooled: _Pooled, opts: AnalysisOptions, network=None) -> _Sorte
     return _Sorted(parts, comp, hulls, hull_map, stats, owner, kind)
 
 
-def _line_pixels(crop: np.ndarray, px_mm: float) -> np.ndarray:
-    """The pixels of a thin network that lie on straight segments at least
-    :data:`LINE_SEGMENT_MM` long (rulers, gridlines), as a bool crop."""
+@dataclass(frozen=True)
+class _Band:
+    """A straight line set aside, extended across its network's box: end points
+    (x, y) and width, in sheet pixels."""
+
+    p0: tuple
+    p1: tuple
+    width: float
+
+
+def _line_pixels(crop: np.ndarray, px_mm: float) -> tuple[np.ndarray, list, float]:
+    """The straight lines of a thin network (rulers, gridlines): their pixels (a bool
+    crop), the lines themselves fitted to all their pixels (direction and a point,
+    crop pixels), and their width [px].
+
+    Hough finds segments at least :data:`LINE_SEGMENT_MM` long; segments of one
+    direction are split by their offset into lines, and each line is refitted to
+    every network pixel along it (``cv2.fitLine``): a gridline crossing the sheet
+    is placed to a fraction of a pixel, so its course under a print is known."""
     import cv2
 
     m = crop.view(np.uint8) * np.uint8(255)
     n = max(8, int(LINE_SEGMENT_MM / px_mm))
     segs = cv2.HoughLinesP(m, 1, np.pi / 360, threshold=n // 2, minLineLength=n, maxLineGap=2)
-    out = np.zeros(crop.shape, np.uint8)
     if segs is None:
-        return out.view(bool)
+        return np.zeros(crop.shape, bool), [], 0.0
     dt = cv2.distanceTransform(m, cv2.DIST_L2, 3)
-    width = int(np.ceil(2.0 * np.percentile(dt[crop], 95))) + 1
-    for x0, y0, x1, y1 in segs.reshape(-1, 4):
-        cv2.line(out, (int(x0), int(y0)), (int(x1), int(y1)), 1, width)
-    return out.view(bool) & crop
+    width = float(np.ceil(2.0 * np.percentile(dt[crop], 95))) + 1.0
+    ys, xs = np.nonzero(crop)
+    pts = np.column_stack([xs, ys]).astype(np.float32)
+    lines, on = [], np.zeros(len(pts), bool)
+    for ang in _directions(segs.reshape(-1, 4).astype(float)):
+        nrm = np.array([-np.sin(ang), np.cos(ang)])
+        rho = pts @ nrm
+        for r in _offsets(segs, nrm, width):
+            near = np.abs(rho - r) <= width
+            if near.sum() < n:
+                continue
+            vx, vy, x0, y0 = cv2.fitLine(pts[near], cv2.DIST_HUBER, 0, 0.01, 0.01).ravel()
+            lines.append((np.array([vx, vy]), (float(x0), float(y0))))
+            d = np.abs((pts - [x0, y0]) @ np.array([-vy, vx]))
+            on |= d <= 0.5 * width + 1.0
+    out = np.zeros(crop.shape, bool)
+    out[ys[on], xs[on]] = True
+    return out, lines, width
+
+
+def _directions(segs: np.ndarray) -> list[float]:
+    """Distinct directions [rad, in [0, pi)] of Hough segments (within 2 degrees)."""
+    ang = np.arctan2(segs[:, 3] - segs[:, 1], segs[:, 2] - segs[:, 0]) % np.pi
+    length = np.hypot(segs[:, 2] - segs[:, 0], segs[:, 3] - segs[:, 1])
+    out: list[list] = []
+    for a, w in sorted(zip(ang, length, strict=True)):
+        if out and abs(a - out[-1][0]) < np.radians(2):
+            out[-1][1].append((a, w))
+        else:
+            out.append([a, [(a, w)]])
+    if len(out) > 1 and np.pi - out[-1][0] + out[0][0] < np.radians(2):
+        out[0][1] += [(a - np.pi, w) for a, w in out.pop()[1]]  # wrap around 0 / pi
+    return [float(np.average([a for a, _ in c[1]], weights=[w for _, w in c[1]])) for c in out]
+
+
+def _offsets(segs: np.ndarray, nrm: np.ndarray, width: float) -> list[float]:
+    """Distinct offsets along ``nrm`` of the segments' mid points (lines apart by
+    more than two widths)."""
+    mid = 0.5 * (segs[:, :2] + segs[:, 2:])
+    rho = np.sort(mid @ nrm)
+    groups = np.split(rho, np.flatnonzero(np.diff(rho) > 2 * width) + 1)
+    return [float(np.median(g)) for g in groups if len(g)]
+
+
+def _bands(lines: list, width: float, box, pooled: _Pooled) -> list:
+    """Lines (crop coordinates) extended across the box, in sheet pixels."""
+    q = pooled.q
+    h, w = box[0].stop - box[0].start, box[1].stop - box[1].start
+    out = []
+    for d, (x0, y0) in lines:
+        t = float(np.hypot(h, w))
+        a = (np.array([x0, y0]) - t * d + 0.5) * q - 0.5
+        b = (np.array([x0, y0]) + t * d + 0.5) * q - 0.5
+        off = np.array([box[1].start, box[0].start]) * q
+        out.append(_Band(tuple(a + off), tuple(b + off), width * q))
+    return out
 
 
 def _lines(first: _Sorted, pooled: _Pooled, opts: AnalysisOptions) -> tuple:
     """Straight-line pixels of the long marks set aside (pooled bool), the whole
-    networks they are part of, and their marks.
+    networks they are part of, the lines extended (:class:`_Band`) and their marks.
 
     Taking only the lines (not the whole network) leaves what merely touches a line
     - a tread block a gridline crosses, a ruler's tick - to be judged on its own."""
     parts, st = first.parts, first.stats
     lines = np.zeros(pooled.mask.shape, bool)
     network = np.zeros(pooled.mask.shape, bool)
-    marks = []
+    marks, bands = [], []
     for k in np.flatnonzero((first.owner < 0) & (st.extent >= opts.line_length_mm)):
         if k == 0:
             continue
         box, crop = _box(parts.thin_stats, k), _crop(parts.thin, parts.thin_stats, k)
         kind, why = _line_kind(crop, st.extent[k], pooled.px_mm)
         if kind in ("line", "gridlines"):
-            px = _line_pixels(crop, pooled.px_mm)
+            px, found, width = _line_pixels(crop, pooled.px_mm)
             if px.any():
                 lines[box] |= px
                 network[box] |= crop
+                bands += _bands(found, width, box, pooled)
                 area = area_px_to_mm2(int(np.count_nonzero(px)), pooled.px_mm)
                 marks.append(_mark(kind, box[0], box[1], pooled, None, area, why))
-    return lines, network, marks
+    return lines, network, bands, marks
 
 
-def sort_ink(
-    mask, *, mm_per_px: float, options: AnalysisOptions | None = None
-) -> SortedInk:
+def sort_ink(mask, *, mm_per_px: float, options: AnalysisOptions | None = None) -> SortedInk:
     """Sort a sheet's ink into candidate prints and marks (see the module's notes).
 
     Parameters
@@ -500,11 +623,12 @@ def sort_ink(
     mask = np.asarray(mask, bool)
     pooled = _pool(mask, mm_per_px, opts)
     first = _sort_pooled(pooled, opts)
-    lines, network, line_marks = _lines(first, pooled, opts)
-    sorted_ = first
-    if lines.any():  # sort again without the lines
-        without = _Pooled(pooled.mask & ~lines, pooled.q, pooled.px_mm)
-        sorted_ = _sort_pooled(without, opts, network & ~lines)
+    lines, network, bands, line_marks = _lines(first, pooled, opts)
+    sorted_, lost = first, None
+    if bands:  # take the lines out of the ink, bridge them inside prints, sort again
+        mask, lost = remove_lines(mask, bands, bridge_px=mm_to_px_length(BRIDGE_MM, mm_per_px))
+        pooled = _pool(mask, mm_per_px, opts)
+        sorted_ = _sort_pooled(pooled, opts, network & ~lines & pooled.mask, lines & ~pooled.mask)
     parts, st, owner = sorted_.parts, sorted_.stats, sorted_.owner
     # group map: k + 1 for print k; -1 a line mark; -2 another mark; 0 paper
     group_map = np.concatenate([[0], sorted_.comp + 1])[parts.thick]
@@ -512,13 +636,104 @@ def sort_ink(
     thin_lut[0] = 0
     on = parts.thin > 0
     group_map[on] = thin_lut[parts.thin[on]]
-    group_map[lines] = -1
+    group_map[lines & ~pooled.mask] = -1
     shape = mask.shape
     marks = line_marks + _thin_marks(parts, st, owner, sorted_.kind, pooled, shape, opts)
     marks = [_clip_mark(m, shape) for m in marks]
-    groups = [g for g in _full_groups(mask, group_map, sorted_.hulls, pooled, opts) if g]
+    aside = _aside_ink(st, owner, len(sorted_.hulls), opts)
+    groups = [
+        dataclasses.replace(_lost_on_edge(g, lost) if lost is not None else g, aside_mm2=a)
+        for g, a in zip(
+            _full_groups(mask, group_map, sorted_.hulls, pooled, opts), aside, strict=True
+        )
+        if g
+    ]
     groups.sort(key=lambda g: (g.rows.start + g.rows.stop, g.cols.start))
     return SortedInk(groups, marks, group_map < 0, pooled.q)
+
+
+def _aside_ink(st: _ThinStats, owner: np.ndarray, n: int, opts: AnalysisOptions) -> np.ndarray:
+    """Per print: ink [mm^2] of the short thin pieces set aside that touch its hull."""
+    sel = (owner < 0) & (st.target >= 0) & (st.gap <= 0.0) & (st.extent < opts.line_length_mm)
+    sel[0] = False
+    return np.bincount(st.target[sel], weights=st.area[sel], minlength=n)[:n]
+
+
+def remove_lines(mask: np.ndarray, bands: list, *, bridge_px: float = 0.0):
+    """Take straight lines out of an ink mask, bridging them where they cross ink.
+
+    The line's pixels are removed; where ink lies on both sides of it within
+    ``bridge_px`` (a line crossing a print, its voids and grooves included), a
+    closing across the line puts the ink back. Where a line runs along a print's
+    edge, the part of the print under it is lost (the ``lost`` mask says where: the
+    outline is uncertain there).
+
+    Parameters
+    ----------
+    mask : (rows, cols) bool
+    bands : list of _Band
+        The lines (sheet pixels).
+    bridge_px : float [px]
+        Reach of the bridge on each side of a line.
+
+    Returns
+    -------
+    cleaned : (rows, cols) bool
+    lost : (rows, cols) bool
+        Ink under the lines not bridged.
+    """
+    import cv2
+
+    by_dir: dict[int, np.ndarray] = {}
+    for b in bands:
+        d = np.subtract(b.p1, b.p0)
+        ang = round(np.degrees(np.arctan2(d[1], d[0]))) % 180
+        band = by_dir.setdefault(ang, np.zeros(mask.shape, np.uint8))
+        p0 = tuple(np.round(np.multiply(b.p0, 16)).astype(int))
+        p1 = tuple(np.round(np.multiply(b.p1, 16)).astype(int))
+        cv2.line(band, p0, p1, 1, max(1, int(np.ceil(b.width)) + 2), cv2.LINE_8, 4)
+    m8 = mask.view(np.uint8)
+    all_bands = np.zeros(mask.shape, np.uint8)
+    for band in by_dir.values():
+        all_bands |= band
+    out = m8 & ~all_bands & 1
+    restored = np.zeros(mask.shape, np.uint8)
+    for ang, band in by_dir.items():
+        width = max(int(np.ceil(b.width)) for b in bands) + 4 + 2 * int(np.ceil(bridge_px))
+        restored |= band & cv2.morphologyEx(out, cv2.MORPH_CLOSE, _line_kernel(ang + 90, width))
+    cleaned = (out | (m8 & restored)).view(bool)
+    return cleaned, (m8 & all_bands & ~restored & 1).view(bool)
+
+
+def _line_kernel(angle_deg: float, length: int) -> np.ndarray:
+    """A one-pixel line of ``length`` at ``angle_deg`` (image x, y), as a kernel."""
+    import cv2
+
+    n = length | 1
+    k = np.zeros((n, n), np.uint8)
+    a = np.radians(angle_deg)
+    dx, dy = np.cos(a) * (n // 2), np.sin(a) * (n // 2)
+    c = n // 2
+    cv2.line(k, (round(c - dx), round(c - dy)), (round(c + dx), round(c + dy)), 1, 1)
+    return k
+
+
+def _lost_on_edge(g: Group, lost: np.ndarray) -> Group:
+    """The group with ``edge_marks`` raised to the longest stretch [px] of its
+    outline that a line covered without a bridge (a line along its edge; a line
+    merely crossing the edge covers about its own width)."""
+    import cv2
+
+    r0, r1 = max(g.rows.start - 2, 0), g.rows.stop + 2
+    c0, c1 = max(g.cols.start - 2, 0), g.cols.stop + 2
+    near = np.zeros(lost[r0:r1, c0:c1].shape, np.uint8)
+    near[g.rows.start - r0 : g.rows.stop - r0, g.cols.start - c0 : g.cols.stop - c0] = g.mask
+    touch = cv2.dilate(near, np.ones((5, 5), np.uint8)) & lost[r0:r1, c0:c1].view(np.uint8)
+    n, _, stats, _ = cv2.connectedComponentsWithStats(touch, connectivity=8)
+    if n <= 1:
+        return g
+    longest = float(np.hypot(stats[1:, cv2.CC_STAT_WIDTH], stats[1:, cv2.CC_STAT_HEIGHT]).max())
+    return dataclasses.replace(g, edge_marks=max(g.edge_marks, longest))
 
 
 def _box(stats: np.ndarray, k: int) -> tuple[slice, slice]:
@@ -539,7 +754,9 @@ def _thin_marks(parts, stats: _ThinStats, owner, kind, pooled, shape, opts) -> l
             why = _short_reason(str(kind[k]), stats, k, opts)
             kk = str(kind[k])
         else:
-            kk, why = _line_kind(_crop(parts.thin, parts.thin_stats, k), stats.extent[k], pooled.px_mm)
+            kk, why = _line_kind(
+                _crop(parts.thin, parts.thin_stats, k), stats.extent[k], pooled.px_mm
+            )
         out.append(_mark(kk, rows, cols, pooled, shape, stats.area[k], why))
     return out
 
@@ -596,21 +813,33 @@ def _full_group(mask, group_map, gid: int, box, hull, pooled: _Pooled, opts: Ana
     rows = slice(r0 * q, min(r1 * q, h))
     cols = slice(c0 * q, min(c1 * q, w))
     ink = mask[rows, cols] & _upsample(region, q, rows, cols)
+    # a pen mark set aside touching the print: how far along its outline
+    touching = cv2.dilate((local == gid).astype(np.uint8), np.ones((3, 3), np.uint8))
+    removed = float(np.count_nonzero(touching & (local == -2))) * q / 2.0
     # a line's stub inside the print's pooled pixels is as thin as the line; a pen
     # stroke lying along the print's edge fills a stroke disk: take two
     for code, k in ((-1, 1.0), (-2, 2.0)):
-        near = cv2.dilate((local == code).astype(np.uint8), _disk(k * opts.stroke_width_mm / pooled.px_mm))
+        near = cv2.dilate(
+            (local == code).astype(np.uint8), _disk(k * opts.stroke_width_mm / pooled.px_mm)
+        )
         near &= region
         if near.any():
             near_full = _upsample(near, q, rows, cols) & ~_inside(hull, q, rows, cols)
-            ink = _drop_thin_near(ink, near_full, k * opts.stroke_width_mm / (pooled.px_mm / q))
+            before = int(np.count_nonzero(ink))
+            width = k * opts.stroke_width_mm / (pooled.px_mm / q)
+            ink = _drop_thin_near(ink, near_full, width)
+            removed = max(removed, (before - int(np.count_nonzero(ink))) / width)
     if not ink.any():
         return None
-    return _tight(Group(rows, cols, ink))
+    return _tight(Group(rows, cols, ink, float(removed)))
 
 
 def _upsample(small: np.ndarray, q: int, rows: slice, cols: slice) -> np.ndarray:
-    big = np.repeat(np.repeat(small.astype(bool), q, axis=0), q, axis=1) if q > 1 else small.astype(bool)
+    big = (
+        np.repeat(np.repeat(small.astype(bool), q, axis=0), q, axis=1)
+        if q > 1
+        else small.astype(bool)
+    )
     return big[: rows.stop - rows.start, : cols.stop - cols.start]
 
 
@@ -635,7 +864,7 @@ def _drop_thin_near(ink: np.ndarray, near: np.ndarray, width_px: float) -> np.nd
 
 
 def _tight(g: Group) -> Group:
-    """The group with its box shrunk to its ink."""
+    """The group with its box shrunk to its ink (``edge_marks`` kept)."""
     rows = np.flatnonzero(g.mask.any(axis=1))
     cols = np.flatnonzero(g.mask.any(axis=0))
     r0, r1, c0, c1 = rows[0], rows[-1] + 1, cols[0], cols[-1] + 1
@@ -643,6 +872,7 @@ def _tight(g: Group) -> Group:
         slice(g.rows.start + r0, g.rows.start + r1),
         slice(g.cols.start + c0, g.cols.start + c1),
         g.mask[r0:r1, c0:c1],
+        g.edge_marks,
     )
 
 

@@ -166,7 +166,7 @@ class AnalysisOptions:
     mark_overhang_mm: float = 1.0
     edge_spot_area_mm2: float = 1.5
     edge_spot_faintness: float = 0.6
-    edge_spot_distance_mm: float = 2.0
+    edge_spot_distance_mm: float = 1.0
     edge_window_mm: float = 0.6
     light_tolerance: float = 0.1
     light_scale_mm: float = 30.0

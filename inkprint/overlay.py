@@ -66,7 +66,7 @@ class _Canvas:
         """A rectangle around scan pixels (row0, col0, row1, col1)."""
         import cv2
 
-        r0, c0, r1, c1 = (int(round(v * self.f)) for v in bbox)
+        r0, c0, r1, c1 = (round(v * self.f) for v in bbox)
         cv2.rectangle(self.rgb, (c0 - 1, r0 - 1), (c1, r1), color, max(1, self.thick // 2))
 
 

@@ -175,7 +175,9 @@ def read_file_bytes(path, *, max_bytes: int | None = None) -> bytes:
     try:
         st = os.fstat(fd)
         if not stat.S_ISREG(st.st_mode):
-            raise ScanReadError(f"{p}: not a regular file ({_kind(st.st_mode)}); only files are read")
+            raise ScanReadError(
+                f"{p}: not a regular file ({_kind(st.st_mode)}); only files are read"
+            )
         if max_bytes is not None and st.st_size > max_bytes:
             raise ImageTooLarge(f"{p}: {st.st_size:,} bytes exceeds {max_bytes:,}")
         if st.st_size == 0:

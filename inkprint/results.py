@@ -3,7 +3,8 @@
 Flags say when a number must not be trusted. A print is ``status = 'flagged'`` when
 it cannot be measured from this file (:data:`UNMEASURABLE`: ``clipped`` - it runs
 off the image or the photographed page; ``perspective`` - the page was not
-photographed flat-on); its measurements are still in the row, for inspection, but
+photographed flat-on; ``mark_on_edge`` - a mark set aside, a line along the edge or
+a label's strokes, lay on the outline); its measurements are still in the row, for inspection, but
 :mod:`contactpatch`'s pairing skips it. Advisory flags keep ``status = 'ok'``:
 ``uneven_light`` (flattened before thresholding), ``axis_uncertain`` (``auto``
 rolling axis on a print nearly as wide as long: give ``--rolling-axis``).
@@ -20,7 +21,7 @@ import numpy as np
 from .coords import mm_per_px_to_dpi, px_to_mm
 
 BAND_KEYS = ("length", "width", "hull_area", "area", "ellipse_length", "ellipse_width")
-UNMEASURABLE = ("clipped", "perspective")
+UNMEASURABLE = ("clipped", "perspective", "mark_on_edge")
 
 
 @dataclass(frozen=True, repr=False)

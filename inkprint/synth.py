@@ -525,7 +525,7 @@ def render_sheet(spec: SheetSpec) -> tuple[np.ndarray, list[PrintTruth]]:
     if spec.ruler:
         _draw_ruler(out, grid)
     if spec.photo is not None:
-        out = photograph(out, spec.photo, grid, extra)
+        out = photograph(out, spec.photo, grid, rng=extra)
         b = spec.photo.border
         truths = [_shift_truth(t, b, b) for t in truths]
     order = np.argsort([-t.ink.centroid.y for t in truths])
@@ -553,7 +553,7 @@ def _draw_marks(dark, spec: SheetSpec, grid: _Raster) -> None:
         if isinstance(m, Line):
             draw_line(canvas, m, grid)
         elif isinstance(m, Grid):
-            draw_grid(canvas, m, spec.size, grid)
+            draw_grid(canvas, m, grid, size=spec.size)
         elif isinstance(m, Text):
             draw_text(canvas, m, grid)
         else:

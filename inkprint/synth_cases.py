@@ -13,7 +13,8 @@ sheets: a PDF holds several pages) with what the analysis must give:
 
 Classes (:data:`CLASSES`): ``classic`` (Figure 3-2 sheets), ``mtb`` (wide-groove
 knobs), ``car`` (ribs between wide grooves, often wider than long), ``wide``
-(bicycle prints wider than long), ``label`` (pen labels touching prints),
+(bicycle prints wider than long; the prints of these three are taped square to
+the sheet, within 0.5 degrees, and the manifest gives the rolling axis), ``label`` (pen labels touching prints),
 ``ruler`` (a ruler line across a print), ``grid`` (gridlines across the sheet),
 ``light`` (gradient and shadow), ``photo`` (on a table, flat-on), ``tilted`` (not
 flat-on), ``dpi72`` (72 dpi in the file, the true dpi in the manifest), ``pdf``
@@ -107,7 +108,7 @@ def _bicycle(rng, center, *, angle=None, tread=None, length=None, width=None, **
     )
 
 
-def case_classic(rng, dpi: float) -> Case:
+def _case_classic(rng, dpi: float) -> Case:
     """Figure 3-2 sheets: drum above plate, label, ruler, halo spots."""
     spec = drum_and_plate_sheet(
         tire_radius=float(rng.uniform(9, 24)),
@@ -123,11 +124,11 @@ def case_classic(rng, dpi: float) -> Case:
     return Case("classic", (spec,), str(rng.choice([".png", ".jpg"])), dpi, {}, ((MEASURE,) * 2,))
 
 
-def case_mtb(rng, dpi: float) -> Case:
+def _case_mtb(rng, dpi: float) -> Case:
     """Wide-groove knobby prints (gaps as wide as the knobs): one or two."""
     n = int(rng.integers(1, 3))
     ys = (140.0,) if n == 1 else (205.0, 72.0)
-    angle = float(rng.choice([0.0, 90.0]) + rng.uniform(-4, 4)) if n == 1 else 0.0
+    angle = float(rng.choice([0.0, 90.0]) + rng.uniform(-0.5, 0.5)) if n == 1 else 0.0
     prints = []
     for y in ys:
         b = float(rng.uniform(4, 7))
@@ -148,14 +149,14 @@ def case_mtb(rng, dpi: float) -> Case:
     return Case("mtb", (_sheet(prints, dpi, rng),), ".png", dpi, manifest, ((MEASURE,) * n,))
 
 
-def case_car(rng, dpi: float) -> Case:
+def _case_car(rng, dpi: float) -> Case:
     """A car-like print: ribs between 8-14 mm grooves, often wider than long."""
     w = float(rng.uniform(130, 175))
     p = PrintSpec(
         float(rng.uniform(110, 165)),
         w,
         (108.0, 140.0),
-        float(rng.uniform(-3, 3)),
+        float(rng.uniform(-0.5, 0.5)),
         "car",
         ink=float(rng.uniform(0.7, 0.9)),
         exponent=4.0,
@@ -166,13 +167,11 @@ def case_car(rng, dpi: float) -> Case:
     return Case("car", (_sheet([p], dpi, rng),), ".png", dpi, manifest, ((MEASURE,),))
 
 
-def case_wide(rng, dpi: float) -> Case:
+def _case_wide(rng, dpi: float) -> Case:
     """Bicycle prints wider than long (wide tires at low pressure)."""
-    angle = float(rng.choice([0.0, 90.0]) + rng.uniform(-3, 3))
+    angle = float(rng.choice([0.0, 90.0]) + rng.uniform(-0.5, 0.5))
     w = float(rng.uniform(45, 80))
-    p = _bicycle(
-        rng, (108.0, 140.0), angle=angle, length=w * rng.uniform(0.55, 0.85), width=w
-    )
+    p = _bicycle(rng, (108.0, 140.0), angle=angle, length=w * rng.uniform(0.55, 0.85), width=w)
     manifest = {"rolling_axis": _axis(angle)}
     return Case("wide", (_sheet([p], dpi, rng),), ".png", dpi, manifest, ((MEASURE,),))
 
@@ -193,13 +192,13 @@ def _touching_label(rng, spec: PrintSpec) -> Text:
     """A pen label whose letters touch the top of the print."""
     text = str(rng.choice(["T5 4BAR", "MAXXIS 6.9", "A3 400N", "PLATE 5"]))
     height = float(rng.uniform(3, 5))
-    t = Text(text, (0.0, 0.0), height, float(rng.uniform(0.25, 0.45)), float(rng.uniform(0.7, 0.9)))
+    t = Text(text, (0.0, 0.0), height, float(rng.uniform(0.25, 0.4)), float(rng.uniform(0.7, 0.9)))
     w, _ = text_extent(t)
     x, y = _top_point(spec)
     return Text(text, (x - rng.uniform(0.2, 0.8) * w, y - 0.3), height, t.stroke, t.darkness)
 
 
-def case_label(rng, dpi: float) -> Case:
+def _case_label(rng, dpi: float) -> Case:
     """Pen labels touching a print, another one beside it."""
     p = _bicycle(rng, (108.0, 120.0), angle=float(rng.uniform(-10, 10)), tread="slick")
     marks = (
@@ -210,7 +209,7 @@ def case_label(rng, dpi: float) -> Case:
     return Case("label", (_sheet([p], dpi, rng, marks=marks),), ".png", dpi, {}, ((MEASURE,),))
 
 
-def case_ruler(rng, dpi: float) -> Case:
+def _case_ruler(rng, dpi: float) -> Case:
     """A ruler line with ticks across a print."""
     p = _bicycle(rng, (108.0, 140.0))
     a = math.radians(rng.uniform(20, 160))
@@ -226,7 +225,7 @@ def case_ruler(rng, dpi: float) -> Case:
     return Case("ruler", (_sheet([p], dpi, rng, marks=(line,)),), ".png", dpi, {}, ((MEASURE,),))
 
 
-def case_grid(rng, dpi: float) -> Case:
+def _case_grid(rng, dpi: float) -> Case:
     """Chart-paper gridlines across the sheet and the prints."""
     prints = [_bicycle(rng, (108.0, 200.0), angle=0.0), _bicycle(rng, (108.0, 80.0), angle=0.0)]
     grid = Grid(
@@ -236,7 +235,7 @@ def case_grid(rng, dpi: float) -> Case:
     return Case("grid", (sheet,), ".png", dpi, {}, ((MEASURE,) * 2,))
 
 
-def case_light(rng, dpi: float) -> Case:
+def _case_light(rng, dpi: float) -> Case:
     """A lighting gradient and a soft shadow over a print (a phone photo)."""
     prints = [_bicycle(rng, (108.0, 200.0)), _bicycle(rng, (108.0, 80.0))]
     x = float(rng.uniform(70, 140))
@@ -251,7 +250,7 @@ def case_light(rng, dpi: float) -> Case:
     return Case("light", (sheet,), ".jpg", dpi, {}, ((MEASURE,) * 2,))
 
 
-def case_photo(rng, dpi: float) -> Case:
+def _case_photo(rng, dpi: float) -> Case:
     """The sheet on a table, photographed flat-on (the scale given in the manifest)."""
     prints = [_bicycle(rng, (108.0, 190.0)), _bicycle(rng, (108.0, 90.0))]
     sheet = _sheet(prints, dpi, rng, photo=Photo(border=float(rng.uniform(10, 30))))
@@ -259,7 +258,7 @@ def case_photo(rng, dpi: float) -> Case:
     return Case("photo", (sheet,), ".jpg", 72.0, manifest, ((MEASURE,) * 2,))
 
 
-def case_tilted(rng, dpi: float) -> Case:
+def _case_tilted(rng, dpi: float) -> Case:
     """The sheet photographed at an angle: no single scale, must be flagged."""
     prints = [_bicycle(rng, (108.0, 190.0)), _bicycle(rng, (108.0, 90.0))]
     photo = Photo(border=float(rng.uniform(15, 30)), tilt=float(rng.uniform(8, 20)))
@@ -268,25 +267,25 @@ def case_tilted(rng, dpi: float) -> Case:
     return Case("tilted", (sheet,), ".jpg", 72.0, manifest, ((PERSPECTIVE,) * 2,))
 
 
-def case_dpi72(rng, dpi: float) -> Case:
+def _case_dpi72(rng, dpi: float) -> Case:
     """A file carrying the 72 dpi default; the true resolution is in the manifest."""
-    case = case_classic(rng, dpi)
+    case = _case_classic(rng, dpi)
     return Case("dpi72", case.sheets, ".png", 72.0, {"dpi": dpi}, case.expect)
 
 
-def case_dpi72_bare(rng, dpi: float) -> Case:
+def _case_dpi72_bare(rng, dpi: float) -> Case:
     """A file carrying the 72 dpi default and nothing else: a clear error."""
-    case = case_classic(rng, dpi)
-    return Case("dpi72_bare", case.sheets, ".png", 72.0, {}, (), "ScaleMissing")
+    case = _case_classic(rng, dpi)
+    return Case("dpi72_bare", case.sheets, ".png", 72.0, {}, (), "ScaleUntrusted")
 
 
-def case_pdf(rng, dpi: float) -> Case:
+def _case_pdf(rng, dpi: float) -> Case:
     """A multi-page PDF: each page its own sheet."""
-    pages = tuple(case_classic(rng, dpi).sheets[0] for _ in range(int(rng.integers(2, 4))))
+    pages = tuple(_case_classic(rng, dpi).sheets[0] for _ in range(int(rng.integers(2, 4))))
     return Case("pdf", pages, ".pdf", dpi, {}, ((MEASURE,) * 2,) * len(pages))
 
 
-def case_clipped(rng, dpi: float) -> Case:
+def _case_clipped(rng, dpi: float) -> Case:
     """A print running off the sheet's edge (flagged) beside a whole one."""
     whole = _bicycle(rng, (108.0, 80.0), angle=0.0)
     cut = _bicycle(rng, (0.0, 200.0), angle=0.0)
@@ -297,7 +296,9 @@ def case_clipped(rng, dpi: float) -> Case:
         cut = _moved(cut, (LETTER[0] + rng.uniform(-0.3, 0.3) * cut.length, 200.0))
     else:
         cut = _moved(cut, (108.0, LETTER[1] + rng.uniform(-0.3, 0.3) * cut.width))
-    return Case("clipped", (_sheet([whole, cut], dpi, rng),), ".png", dpi, {}, ((CLIPPED, MEASURE),))
+    return Case(
+        "clipped", (_sheet([whole, cut], dpi, rng),), ".png", dpi, {}, ((CLIPPED, MEASURE),)
+    )
 
 
 def _moved(p: PrintSpec, center) -> PrintSpec:
@@ -306,12 +307,16 @@ def _moved(p: PrintSpec, center) -> PrintSpec:
     return dataclasses.replace(p, center=(float(center[0]), float(center[1])))
 
 
-def case_tiny(rng, dpi: float) -> Case:
+def _case_tiny(rng, dpi: float) -> Case:
     """Prints under 100 mm^2 of ink (a small wheel at high pressure), 600 dpi."""
     dpi = max(dpi, 600.0)
     prints = [
-        _bicycle(rng, (50.0, 65.0), tread="slick", length=rng.uniform(9, 16), width=rng.uniform(4, 7)),
-        _bicycle(rng, (50.0, 25.0), tread="slick", length=rng.uniform(9, 16), width=rng.uniform(4, 7)),
+        _bicycle(
+            rng, (50.0, 65.0), tread="slick", length=rng.uniform(9, 16), width=rng.uniform(4, 7)
+        ),
+        _bicycle(
+            rng, (50.0, 25.0), tread="slick", length=rng.uniform(9, 16), width=rng.uniform(4, 7)
+        ),
     ]
     sheet = SheetSpec(
         tuple(prints), dpi=dpi, size=(100.0, 90.0), seed=int(rng.integers(1 << 30)), specks=30
@@ -319,14 +324,14 @@ def case_tiny(rng, dpi: float) -> Case:
     return Case("tiny", (sheet,), ".png", dpi, {}, ((MEASURE,) * 2,))
 
 
-def case_noise(rng, dpi: float) -> Case:
+def _case_noise(rng, dpi: float) -> Case:
     """A page of noise or texture: no print, a clear reason."""
     kind = str(rng.choice(["noise", "texture"]))
     sheet = SheetSpec((), dpi=min(dpi, 200.0), seed=int(rng.integers(1 << 30)), texture=kind)
     return Case("noise", (sheet,), ".png", min(dpi, 200.0), {}, (), "NoInk")
 
 
-def case_tips(rng, dpi: float) -> Case:
+def _case_tips(rng, dpi: float) -> Case:
     """Knobby prints whose tip blocks are small but dark (load-bearing), and faint
     specks touching the edge (not)."""
     prints = [
@@ -337,23 +342,23 @@ def case_tips(rng, dpi: float) -> Case:
 
 
 CLASSES = {
-    "classic": case_classic,
-    "mtb": case_mtb,
-    "car": case_car,
-    "wide": case_wide,
-    "label": case_label,
-    "ruler": case_ruler,
-    "grid": case_grid,
-    "light": case_light,
-    "photo": case_photo,
-    "tilted": case_tilted,
-    "dpi72": case_dpi72,
-    "dpi72_bare": case_dpi72_bare,
-    "pdf": case_pdf,
-    "clipped": case_clipped,
-    "tiny": case_tiny,
-    "noise": case_noise,
-    "tips": case_tips,
+    "classic": _case_classic,
+    "mtb": _case_mtb,
+    "car": _case_car,
+    "wide": _case_wide,
+    "label": _case_label,
+    "ruler": _case_ruler,
+    "grid": _case_grid,
+    "light": _case_light,
+    "photo": _case_photo,
+    "tilted": _case_tilted,
+    "dpi72": _case_dpi72,
+    "dpi72_bare": _case_dpi72_bare,
+    "pdf": _case_pdf,
+    "clipped": _case_clipped,
+    "tiny": _case_tiny,
+    "noise": _case_noise,
+    "tips": _case_tips,
 }
 
 
@@ -431,8 +436,12 @@ def write_case(case: Case, out_dir, name: str) -> tuple[Path, list[dict], list[d
                 }
             )
     if case.error:
-        truth.append({"file": fname, "kind": case.kind, "page": "", "print": "", "error": case.error})
-    path = save_scan(images if case.suffix == ".pdf" else images[0], out / fname, dpi=case.file_dpi)
+        truth.append(
+            {"file": fname, "kind": case.kind, "page": "", "print": "", "error": case.error}
+        )
+    path = save_scan(
+        images if case.suffix == ".pdf" else images[0], out / fname, dpi=case.file_dpi
+    )
     return path, [{"file": fname, "kind": case.kind, **case.manifest}], truth
 
 

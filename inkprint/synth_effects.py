@@ -24,6 +24,9 @@ import numpy as np
 
 from .errors import InvalidInput
 
+#: OpenCV's Hershey stroke width as a fraction of the letters' height
+STROKE_OF_HEIGHT = 0.145
+
 
 @dataclass(frozen=True)
 class Line:
@@ -148,17 +151,19 @@ def draw_line(canvas, line: Line, grid) -> None:
     import cv2
 
     _check_unit("darkness", line.darkness)
-    value = int(round(255 * line.darkness))
+    value = round(255 * line.darkness)
     (x0, y0), (x1, y1) = line.start, line.end
 
-    def seg(a, b, w):
+    def _seg(a, b, w):
         r0, c0 = grid.to_px(*a)
         r1, c1 = grid.to_px(*b)
         pts = np.round(np.array([[c0, r0], [c1, r1]]) * 16).astype(np.int32)
         thick = max(1, round(grid.px(w)))
-        cv2.line(canvas, tuple(map(int, pts[0])), tuple(map(int, pts[1])), value, thick, cv2.LINE_AA, 4)
+        cv2.line(
+            canvas, tuple(map(int, pts[0])), tuple(map(int, pts[1])), value, thick, cv2.LINE_AA, 4
+        )
 
-    seg((x0, y0), (x1, y1), line.width)
+    _seg((x0, y0), (x1, y1), line.width)
     if line.ticks > 0:
         length = float(np.hypot(x1 - x0, y1 - y0))
         ux, uy = (x1 - x0) / length, (y1 - y0) / length
@@ -166,10 +171,10 @@ def draw_line(canvas, line: Line, grid) -> None:
         for k, s in enumerate(np.arange(0.0, length, line.ticks)):
             t = 5.0 if k % 5 == 0 else 3.0
             bx, by = x0 + ux * s, y0 + uy * s
-            seg((bx, by), (bx + nx * t, by + ny * t), 0.75 * line.width)
+            _seg((bx, by), (bx + nx * t, by + ny * t), 0.75 * line.width)
 
 
-def draw_grid(canvas, spec: Grid, size: tuple[float, float], grid) -> None:
+def draw_grid(canvas, spec: Grid, grid, *, size: tuple[float, float]) -> None:
     """Draw gridlines over the whole sheet.
 
     Parameters
@@ -205,7 +210,10 @@ def text_extent(text: Text) -> tuple[float, float]:
 
 
 def draw_text(canvas, text: Text, grid) -> None:
-    """Draw a :class:`Text` label.
+    """Draw a :class:`Text` label with strokes ``text.stroke`` wide.
+
+    OpenCV's Hershey strokes grow with the font scale (about 14 % of the letters'
+    height); the glyphs are drawn at their size and thinned to the pen's width.
 
     Parameters
     ----------
@@ -217,19 +225,32 @@ def draw_text(canvas, text: Text, grid) -> None:
     import cv2
 
     _check_unit("darkness", text.darkness)
-    _, h = cv2.getTextSize(text.text, cv2.FONT_HERSHEY_SIMPLEX, 1.0, 1)[0]
+    (w, h), base = cv2.getTextSize(text.text, cv2.FONT_HERSHEY_SIMPLEX, 1.0, 1)
     scale = grid.px(text.height) / h
     r, c = grid.to_px(*text.origin)
+    x0, y0 = round(c), round(r)
+    pad = int(scale * h) + 4
+    box = np.zeros((int(scale * (h + base)) + 2 * pad, int(scale * w) + 2 * pad), np.uint8)
     cv2.putText(
-        canvas,
+        box,
         text.text,
-        (int(round(c)), int(round(r))),
+        (pad, pad + int(scale * h)),
         cv2.FONT_HERSHEY_SIMPLEX,
         scale,
-        int(round(255 * text.darkness)),
-        max(1, round(grid.px(text.stroke))),
+        255,
+        1,
         cv2.LINE_AA,
     )
+    thin = max(0, round((STROKE_OF_HEIGHT * grid.px(text.height) - grid.px(text.stroke)) / 2))
+    if thin:
+        box = cv2.erode(box, cv2.getStructuringElement(cv2.MORPH_ELLIPSE, (3, 3)), iterations=thin)
+    top, left = y0 - pad - int(scale * h), x0 - pad
+    r0, c0 = max(top, 0), max(left, 0)
+    r1, c1 = min(top + box.shape[0], canvas.shape[0]), min(left + box.shape[1], canvas.shape[1])
+    if r1 <= r0 or c1 <= c0:
+        return
+    ink = box[r0 - top : r1 - top, c0 - left : c1 - left].astype(np.float32) * text.darkness
+    np.maximum(canvas[r0:r1, c0:c1], ink.astype(np.uint8), out=canvas[r0:r1, c0:c1])
 
 
 def illumination(light: Light, grid) -> np.ndarray:
@@ -266,7 +287,7 @@ def illumination(light: Light, grid) -> np.ndarray:
     return field.astype(np.float32)
 
 
-def photograph(img: np.ndarray, photo: Photo, grid, rng) -> np.ndarray:
+def photograph(img: np.ndarray, photo: Photo, grid, *, rng) -> np.ndarray:
     """Put the sheet on a table and, with ``tilt``, look at it off-axis.
 
     Parameters
@@ -285,7 +306,7 @@ def photograph(img: np.ndarray, photo: Photo, grid, rng) -> np.ndarray:
     """
     import cv2
 
-    b = int(round(grid.px(photo.border)))
+    b = round(grid.px(photo.border))
     t = grid.px(photo.tilt)
     rows, cols = img.shape
     out_shape = (rows + 2 * b, cols + 2 * b)

@@ -51,7 +51,13 @@ def _one_size(m: int) -> dict:
     out = tm.solve_many(errors="flag", **cols)
     dt = time.perf_counter() - t0
     peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0
-    return {"m": m, "seconds": dt, "cases_per_s": m / dt, "peak_MB": peak, "ok": int(out["ok"].sum())}
+    return {
+        "m": m,
+        "seconds": dt,
+        "cases_per_s": m / dt,
+        "peak_MB": peak,
+        "ok": int(out["ok"].sum()),
+    }
 
 
 def scaling() -> None:

@@ -148,7 +148,7 @@ def ratio_summary(paired, colours: dict) -> str:
     left = 20 + max([text_width(n, 12) for n in names] + [40])
     W, top = 900.0, 8.0
     ph = 30.0 * max(len(tires), 2)
-    pw = (W - left - 40) / 3
+    pw = (W - left - 90) / 3
     plot = Plot(W, top + ph + 50)
     rng = np.random.default_rng(0)  # jitter only: the same figure every time
     keys = (("ratio_length", "length"), ("ratio_width", "width"), ("ratio_area", "area"))
@@ -158,7 +158,7 @@ def ratio_summary(paired, colours: dict) -> str:
         }
         allv = np.concatenate([v for v in vals.values() if v.size] or [np.array([1.0])])
         lim = nice_limits(min(allv.min(), 1.0), max(allv.max(), 1.0), pad=0.08)
-        p = plot.panel(left + j * (pw + 20), top, pw, ph, xlim=lim, ylim=(len(tires) - 0.5, -0.5))
+        p = plot.panel(left + j * (pw + 36), top, pw, ph, xlim=lim, ylim=(len(tires) - 0.5, -0.5))
         p.rule(1.0, axis="x", colour="#333")
         for k, t in enumerate(tires):
             v = vals[t]
@@ -232,7 +232,8 @@ def _shade(colour: str, level: int, n: int) -> str:
 
 def tire_trends(paired, tire: str, colour: str, *, name: str = "trends") -> str:
     """Length, width and area vs pressure and vs load for one tire (log-log):
-    prints solid and filled, model dashed and open.
+    prints solid and filled, model dashed and open; with several prints of a case,
+    the lines join the medians and each print is a small dot.
 
     Parameters
     ----------
@@ -277,22 +278,36 @@ def tire_trends(paired, tire: str, colour: str, *, name: str = "trends") -> str:
             )
             for (surface, val), rs in groups.items():
                 c = _shade(colour, levels.index(_f(val)), len(levels))
-                rs = sorted(rs, key=lambda r: _f(r[xkey]))
-                x = [_f(r[xkey]) for r in rs]
                 m = surface_marker(surface)
                 for key, filled in ((pk, True), (mk, False)):
-                    y = [_f(r[key]) for r in rs]
+                    x, y, repeated = _medians(rs, xkey, key)
+                    if repeated and filled:  # many prints per case: each as a dot
+                        xs_all = [_f(r[xkey]) for r in rs]
+                        ys_all = [_f(r[key]) for r in rs]
+                        p.scatter(xs_all, ys_all, colour=c, size=1.8, alpha=0.35)
                     p.line(x, y, colour=c, dashed=not filled)
                     p.scatter(x, y, colour=c, marker=m, filled=filled, size=4)
             few = len(set(xs)) <= 6
             plot.axes(p, xlabel=xlabel, ylabel=ylabel, xticks=sorted(set(xs)) if few else None)
         x_leg = 70 + 2 * dx + pw + 20
-        plot.text(x_leg, y0 + 10, "prints solid, model dashed", size=11)
+        plot.text(x_leg, y0 + 10, "prints: solid", size=11)
+        plot.text(x_leg, y0 + 25, "model: dashed", size=11)
         for k, (s, v) in enumerate(groups):
             c = _shade(colour, levels.index(_f(v)), len(levels))
             item = LegendItem(f"{s}, {_f(v):g} {unit}", c, surface_marker(s), line=True)
-            plot.legend([item], x_leg, y0 + 18 + 20 * k, width=W - x_leg)
+            plot.legend([item], x_leg, y0 + 33 + 20 * k, width=W - x_leg)
     return plot.svg(name, f"{tire}: trends")
+
+
+def _medians(rows, xkey: str, ykey: str):
+    """Per distinct x: the median y; and whether any x has several rows."""
+    by_x = defaultdict(list)
+    for r in rows:
+        x, y = _f(r[xkey]), _f(r[ykey])
+        if math.isfinite(x) and math.isfinite(y):
+            by_x[x].append(y)
+    xs = sorted(by_x)
+    return xs, [float(np.median(by_x[x])) for x in xs], any(len(v) > 1 for v in by_x.values())
 
 
 def _log_limits(values) -> tuple[float, float]:

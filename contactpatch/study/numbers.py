@@ -227,7 +227,9 @@ def estimate(value: float, se: float, dof: int) -> str:
         return ""
     if dof <= 0 or math.isnan(se):
         return f"{fixed(value, 2)} (exact fit, no error estimate)"
-    d = 2 if se <= 0 else min(4, max(2, 1 - math.floor(math.log10(se))))
+    # an error too small to show at 4 decimals (an exact relation, e.g. the model's
+    # area = load / pressure) is shown as 0 beside 2 decimals
+    d = 2 if se < 5e-5 else min(4, max(2, 1 - math.floor(math.log10(se))))
     return f"{fixed(value, d)} ± {fixed(se, d)}"
 
 

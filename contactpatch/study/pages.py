@@ -566,11 +566,12 @@ HTML_SECTIONS = (
 def _toc(parts: list[str], c: ReportContent) -> str:
     items = []
     for part in parts:
-        m = re.match(r'<section id="([^"]+)"[^>]*>\s*(?:<[^>]+>)*?<h2[^>]*>(.*?)</h2>', part, re.S)
-        if not m:
+        sid = re.match(r'\s*<section id="([^"]+)"', part)
+        head = re.search(r"<h2[^>]*>(.*?)</h2>", part, re.S)
+        if not (sid and head):
             continue
-        items.append(f'<li><a href="#{m.group(1)}">{re.sub(r"<[^>]+>", "", m.group(2))}</a>')
-        if m.group(1) == "tires":
+        items.append(f'<li><a href="#{sid.group(1)}">{re.sub(r"<[^>]+>", "", head.group(1))}</a>')
+        if sid.group(1) == "tires":
             sub = "".join(
                 f'<li><a href="#tire-{k}">{html.escape(t)}</a></li>'
                 for k, t in enumerate(c.colours)

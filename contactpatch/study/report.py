@@ -8,10 +8,10 @@ figures (Dressel 2013, sections 4.1.1, 6.2).
 2. :func:`report_config` -> the configuration block (package, version, counts);
 3. :func:`write_tables` -> ``tables/*.csv`` and ``report.json``, every table in full
    precision (through :func:`tiremesh.io.write_table`);
-4. in worker processes, while the rest goes on: :func:`render_cases` (1200 px
-   renders of representative cases: low and high load on the plate, cambered on
-   the drum) and the validation section, when :mod:`contactpatch.study.validate`
-   provides ``report_section``;
+4. in worker processes, while the rest goes on: the 1200 px renders of
+   :func:`representative_cases` (low and high load on the plate, cambered on the
+   drum; :func:`tiremesh.render.render_many`) and the validation section, when
+   :mod:`contactpatch.study.validate` provides ``report_section``;
 5. :func:`draw_figures` -> :class:`ReportFigures`: every figure drawn once and
    saved once, as SVG (written to ``figures/`` and inlined in the page);
 6. :func:`collect_sheets`: each scan's QA overlay and what was set aside on it;
@@ -37,7 +37,7 @@ from dataclasses import dataclass, fields
 from pathlib import Path
 
 import tiremesh as tm
-from tiremesh.io import cell_number_or_nan, write_table, write_text_atomic
+from tiremesh.io import cell_number_or_nan, table_columns, write_table, write_text_atomic
 
 from . import figures as F
 from .compare import DEFAULT_DIAMETER_MM, PAIRED_COLUMNS, case_of, pair_prints
@@ -337,7 +337,8 @@ def write_tables(out_dir, tables: ReportTables, config: dict) -> list[Path]:
     out = Path(out_dir)
     written = []
     for name, rows in tables.as_dict().items():
-        cols = [*PAIRED_COLUMNS, "model_outline_wkt"] if name == "paired" else None
+        # the paired table in full: its leading columns first, then every other one
+        cols = table_columns(rows, first=PAIRED_COLUMNS) if name == "paired" else None
         written.append(write_table(rows, out / "tables" / f"{name}.csv", columns=cols))
     doc = json.dumps({"config": config, **tables.as_dict()}, indent=1, default=str)
     written.append(write_text_atomic(out / "report.json", doc))
@@ -470,8 +471,54 @@ def _same_scale(cases: list[ModelCase]) -> list[ModelCase]:
     ]
 
 
+def render_items(cases: list[ModelCase], fig_dir) -> list[dict]:
+    """The items of :func:`tiremesh.render.render_many` for the cases (bottom views at
+    one scale).
+
+    Parameters
+    ----------
+    cases : list of ModelCase
+    fig_dir : str or PathLike
+
+    Returns
+    -------
+    list of dict
+        ``case``, ``path`` (``fig_dir/STEM.png``), ``view``, ``zoom``.
+    """
+    return [
+        {"case": c.case, "path": Path(fig_dir) / f"{c.stem}.png", "view": c.view, "zoom": c.zoom}
+        for c in _same_scale(cases)
+    ]
+
+
+def render_caption(c: ModelCase, cases: list[ModelCase]) -> str:
+    """What a render shows: label, tire, pressure, load, camber, surface, view.
+
+    Parameters
+    ----------
+    c : ModelCase
+    cases : list of ModelCase
+        All the report's cases (to say when bottom views share one scale).
+
+    Returns
+    -------
+    str
+    """
+    from tiremesh.render import surface_label
+
+    d = c.case.describe()
+    caption = (
+        f"{c.label}: {d['tire']}, {d['pressure_bar']:g} bar, {d['load_N']:g} N, "
+        f"camber {d['camber_deg']:g} deg, {surface_label(c.case.surface)}; "
+        f"{c.view} view" + (f" ({c.note})" if c.note else "")
+    )
+    if c.view == "bottom" and sum(x.view == "bottom" for x in cases) > 1:
+        caption += "; the bottom views share one scale"
+    return caption
+
+
 def render_cases(cases: list[ModelCase], fig_dir, size=RENDER_SIZE) -> list[Render]:
-    """Render each case (with its title block) to ``fig_dir/STEM.png``.
+    """Render each case (with its title block) to ``fig_dir/STEM.png``, here.
 
     Parameters
     ----------
@@ -483,42 +530,13 @@ def render_cases(cases: list[ModelCase], fig_dir, size=RENDER_SIZE) -> list[Rend
     -------
     list of Render
     """
-    from tiremesh.mesh import build_mesh
-    from tiremesh.render import render, view_camera
+    from tiremesh.render import render_many
 
-    out = []
-    for c in cases:
-        mesh = build_mesh(tm.solve(c.case), n_around=360)
-        path = Path(fig_dir) / f"{c.stem}.png"
-        cam = view_camera(c.view, mesh)
-        render(mesh, path, view=c.view, size=size, camera=(cam.azimuth, cam.elevation, c.zoom))
-        d = c.case.describe()
-        caption = (
-            f"{c.label}: {d['tire']}, {d['pressure_bar']:g} bar, {d['load_N']:g} N, "
-            f"camber {d['camber_deg']:g} deg, {d['surface'].replace(':', ' ')} mm; "
-            f"{c.view} view" + (f" ({c.note})" if c.note else "")
-        )
-        if c.zoom != 1.0:
-            caption += "; the bottom views share one scale"
-        out.append(Render(path, path.read_bytes(), caption, tuple(size)))
-    return out
-
-
-def render_representative(rows: list[dict], fig_dir, size=RENDER_SIZE) -> list[Render]:
-    """:func:`render_cases` of :func:`representative_cases`, the bottom views at one
-    scale (what the report's worker runs).
-
-    Parameters
-    ----------
-    rows : list of dict
-    fig_dir : str or PathLike
-    size : (int, int) [px]
-
-    Returns
-    -------
-    list of Render
-    """
-    return render_cases(_same_scale(representative_cases(rows)), fig_dir, size)
+    paths = render_many(render_items(cases, fig_dir), size=size)
+    return [
+        Render(p, p.read_bytes(), render_caption(c, cases), tuple(size))
+        for p, c in zip(paths, cases, strict=True)
+    ]
 
 
 def viewer_cases(cases: list[ModelCase]) -> list[dict]:
@@ -650,7 +668,7 @@ def collect_sheets(paired: list[dict], scan_dirs=(), *, tick=None) -> list[Sheet
     """
     by_file = sheets_of(paired)
     found = locate_scans(paired, scan_dirs)
-    side = 1000 if len(by_file) <= SCAN_LIMIT else 560
+    side = 800 if len(by_file) <= SCAN_LIMIT else 480
     out = []
     for f, rows in by_file.items():
         qa = None
@@ -665,8 +683,18 @@ def collect_sheets(paired: list[dict], scan_dirs=(), *, tick=None) -> list[Sheet
     return out
 
 
-def _outline_scale(paired: list[dict]) -> tuple[float, float]:
-    """Height and width [mm] of the outline drawings: the longest and widest patch."""
+def outline_scale(paired: list[dict]) -> tuple[float, float]:
+    """Height and width [mm] of the print outline drawings, one scale for all: the
+    longest and the widest patch (print or model) with a margin.
+
+    Parameters
+    ----------
+    paired : list of dict
+
+    Returns
+    -------
+    (float, float) [mm]
+    """
     ok = [r for r in paired if r.get("status", "ok") == "ok"]
     longest = max([_f(r.get(k)) for r in ok for k in ("length_mm", "model_length_mm")] + [20.0])
     widest = max([_f(r.get(k)) for r in ok for k in ("width_mm", "model_width_mm")] + [10.0])
@@ -754,25 +782,29 @@ def build_report(
     Notes
     -----
     The renders and the validation run in worker processes
-    (:class:`contactpatch.study.worker.Job`) while this one writes the tables, draws
-    the figures and the scans and meshes the 3D view.
+    (:class:`contactpatch.study.worker.Job`) while this one pairs, writes the tables,
+    draws the figures and the scans and meshes the 3D view.
     """
     from .worker import Job
 
     out = Path(out_dir)
     fig_dir = out / "figures"
     fig_dir.mkdir(parents=True, exist_ok=True)
-    jobs = {"renders": Job(render_representative, rows, fig_dir)} if renders else {}
+    from tiremesh.render import render_many
+
+    cases = representative_cases(rows)
+    jobs = {}
+    if renders and cases:
+        jobs["renders"] = Job(render_many, render_items(cases, fig_dir), size=RENDER_SIZE)
     if validation:
         jobs["validation"] = Job(validation_fragments, out)
     try:
         tables = compute_tables(rows)
         ok = [r for r in tables.paired if r.get("model_status") == "ok"]
         colours = tire_colours(r.get("tire", "") for r in ok)
-        cases = representative_cases(rows)
         n_files = len({r.get("file") for r in tables.paired})
         with _progress(n_files + len(colours) + 7, progress) as bar:
-            content = _assemble(rows, tables, colours, out, cases, jobs, bar, source, scan_dirs)
+            content = _assemble(rows, tables, colours, out, cases, jobs, bar, (source, scan_dirs))
     finally:
         for job in jobs.values():
             job.cancel()  # only if still running: after an error in this process
@@ -788,8 +820,9 @@ def _wait(jobs: dict, name: str, bar, default=None):
     return value
 
 
-def _assemble(rows, tables, colours, out, cases, jobs, bar, source, scan_dirs) -> ReportContent:
+def _assemble(rows, tables, colours, out, cases, jobs, bar, where) -> ReportContent:
     """Every part of the report, the workers' results last."""
+    source, scan_dirs = where
     config = report_config(rows, tables, source=source)
     write_tables(out, tables, config)
     bar.set_postfix_str("figures")
@@ -800,7 +833,15 @@ def _assemble(rows, tables, colours, out, cases, jobs, bar, source, scan_dirs) -
     bar.set_postfix_str("3D view")
     viewer = viewer_cases(cases)
     bar.update(1)
-    rendered = _wait(jobs, "renders", bar, [])
+    paths = _wait(jobs, "renders", bar)
+    rendered = (
+        [
+            Render(p, p.read_bytes(), render_caption(c, cases), RENDER_SIZE)
+            for p, c in zip(paths, cases, strict=True)
+        ]
+        if paths is not None
+        else []
+    )
     frags = _wait(jobs, "validation", bar)
     n_ok = sum(1 for r in tables.paired if r.get("status", "ok") == "ok")
     return ReportContent(
@@ -815,7 +856,7 @@ def _assemble(rows, tables, colours, out, cases, jobs, bar, source, scan_dirs) -
         validation=frags,
         facts=key_facts(tables, colours),
         expand_prints=n_ok <= EXPAND_LIMIT,
-        outline_scale=_outline_scale(tables.paired),
+        outline_scale=outline_scale(tables.paired),
     )
 
 
@@ -833,7 +874,10 @@ __all__ = [
     "compute_tables",
     "draw_figures",
     "key_facts",
+    "outline_scale",
+    "render_caption",
     "render_cases",
+    "render_items",
     "report_config",
     "representative_cases",
     "validation_fragments",

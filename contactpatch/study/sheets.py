@@ -111,6 +111,42 @@ def locate_scans(rows: list[dict], dirs=(), *, depth: int = 3) -> dict[str, Path
     return found
 
 
+def _grey_image(path, rows: list[dict], max_side: int):
+    """The scan in grey (uint8), the factor from its full-size pixels to these, and
+    its full height [px].
+
+    A JPEG or PNG is decoded at a reduced size when the overlay is that much smaller
+    (OpenCV's DCT scaling, as :func:`inkprint.read_scan` decodes it otherwise);
+    other files (PDF, TIFF, ...) through :func:`inkprint.read_scan`.
+    """
+    import cv2
+    from PIL import Image
+
+    from inkprint.read import read_scan
+
+    p = Path(path)
+    page = int(_f(rows[0].get("page", 0)) or 0) if rows else 0
+    if page == 0 and p.suffix.lower() in (".jpg", ".jpeg", ".png"):
+        with Image.open(p) as im:
+            w, h = im.size
+        k = next((k for k in (8, 4, 2) if max(w, h) >= k * max_side), 1)
+        flags = {
+            1: cv2.IMREAD_GRAYSCALE,
+            2: cv2.IMREAD_REDUCED_GRAYSCALE_2,
+            4: cv2.IMREAD_REDUCED_GRAYSCALE_4,
+            8: cv2.IMREAD_REDUCED_GRAYSCALE_8,
+        }
+        a = cv2.imdecode(np.fromfile(p, np.uint8), flags[k])
+        if a is not None and a.dtype == np.uint8 and a.shape == (-(-h // k), -(-w // k)):
+            return a, 1.0 / k, h
+    mmpp = next(
+        (_f(r.get("mm_per_px")) for r in rows if math.isfinite(_f(r.get("mm_per_px")))), math.nan
+    )
+    scale = {"mm_per_px": mmpp} if math.isfinite(mmpp) else {"allow_pixels": True}
+    scan = read_scan(p, page=page, **scale)
+    return (np.clip(scan.grey, 0, 1) * 255).astype(np.uint8), 1.0, scan.grey.shape[0]
+
+
 def qa_overlay(scan_path, rows: list[dict], *, max_side: int = 1000) -> bytes:
     """A sheet with each print's measured hull (green) and number, as JPEG bytes.
 
@@ -121,7 +157,7 @@ def qa_overlay(scan_path, rows: list[dict], *, max_side: int = 1000) -> bytes:
     rows : list of dict
         The sheet's rows (``hull_wkt`` [mm], ``print``, ``mm_per_px``, ``page``).
     max_side : int [px]
-        Long side of the image.
+        Long side of the image (at most).
 
     Returns
     -------
@@ -132,21 +168,18 @@ def qa_overlay(scan_path, rows: list[dict], *, max_side: int = 1000) -> bytes:
     import shapely
 
     from inkprint.coords import mm_to_px
-    from inkprint.read import read_scan
 
     ok = [r for r in rows if r.get("status", "ok") == "ok" and r.get("hull_wkt")]
-    mmpp = _f(ok[0].get("mm_per_px")) if ok else math.nan
-    page = int(_f(rows[0].get("page", 0)) or 0) if rows else 0
-    scale = {"mm_per_px": mmpp} if math.isfinite(mmpp) else {"allow_pixels": True}
-    scan = read_scan(scan_path, page=page, **scale)
-    grey = (np.clip(scan.grey, 0, 1) * 255).astype(np.uint8)
-    f = min(1.0, max_side / max(grey.shape))
-    small = cv2.resize(grey, None, fx=f, fy=f, interpolation=cv2.INTER_AREA) if f < 1 else grey
+    grey, f0, n_rows = _grey_image(scan_path, ok or rows, max_side)
+    f1 = min(1.0, max_side / max(grey.shape))
+    small = cv2.resize(grey, None, fx=f1, fy=f1, interpolation=cv2.INTER_AREA) if f1 < 1 else grey
+    f = f0 * f1
     rgb = cv2.cvtColor(small, cv2.COLOR_GRAY2RGB)
     thick = max(1, round(max(small.shape) / 500))
     for r in ok:
         ring = np.asarray(shapely.from_wkt(r["hull_wkt"]).exterior.coords)
-        rr, cc = mm_to_px(ring[:, 0], ring[:, 1], n_rows=grey.shape[0], mm_per_px=scan.mm_per_px)
+        mmpp = _f(r.get("mm_per_px"))
+        rr, cc = mm_to_px(ring[:, 0], ring[:, 1], n_rows=n_rows, mm_per_px=mmpp)
         pts = (np.column_stack([cc, rr]) * f).round().astype(np.int32)
         cv2.polylines(rgb, [pts], True, (0, 150, 0), thick, cv2.LINE_AA)
         x, y = int(pts[:, 0].min()), max(int(pts[:, 1].min()) - 4 * thick, 12 * thick)
@@ -200,7 +233,8 @@ def outline_svg(row: dict, span: float, colour: str, *, width: float | None = No
 
     if not row.get("hull_wkt"):
         return ""
-    hull = shapely.from_wkt(row["hull_wkt"]).simplify(0.05)
+    # simplified by 0.1 mm: a sixth of a pixel at the drawings' scale
+    hull = shapely.from_wkt(row["hull_wkt"]).simplify(0.1)
     parts = [
         f'<polygon points="{_points(_centred(hull, _f(row.get("angle_deg", 0.0))))}" '
         f'fill="{colour}" fill-opacity="0.4" stroke="none"/>'
@@ -213,7 +247,7 @@ def outline_svg(row: dict, span: float, colour: str, *, width: float | None = No
             'vector-effect="non-scaling-stroke"/>'
         )
     if row.get("model_outline_wkt"):
-        model = shapely.from_wkt(row["model_outline_wkt"]).simplify(0.05)
+        model = shapely.from_wkt(row["model_outline_wkt"]).simplify(0.1)
         parts.append(
             f'<polygon points="{_points(_centred(model, 0.0))}" fill="none" '
             'stroke="#222" stroke-width="1.3" stroke-dasharray="4 2" '

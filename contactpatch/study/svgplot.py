@@ -182,12 +182,14 @@ class Panel:
         return good and (not self.xlog or x > 0) and (not self.ylog or y > 0)
 
     def scatter(self, xs, ys, *, colour: str, marker: str = "o", filled=True, size=4.5, alpha=1.0):
-        """Markers at the points (non-finite points are left out)."""
-        for x, y in zip(xs, ys, strict=True):
-            if self._ok(x, y):
-                self.items.append(
-                    marker_svg(self.sx(x), self.sy(y), marker, colour, filled, size, alpha)
-                )
+        """Markers at the points (non-finite points are left out), in one group."""
+        shapes = [
+            _shape(self.sx(x), self.sy(y), marker, size)
+            for x, y in zip(xs, ys, strict=True)
+            if self._ok(x, y)
+        ]
+        if shapes:
+            self.items.append(f"<g {_style(colour, filled, alpha)}>{''.join(shapes)}</g>")
 
     def line(self, xs, ys, *, colour: str, dashed: bool = False, width: float = 1.6):
         """A polyline through the points (broken at non-finite ones)."""
@@ -257,22 +259,29 @@ def marker_svg(x, y, marker: str, *, colour: str, filled: bool, size: float, alp
     -------
     str
     """
-    fill = colour if filled else "#fff"
-    style = f'fill="{fill}" stroke="{colour}" stroke-width="1.4"'
+    shape = _shape(x, y, marker, size)
+    return shape.replace("/>", f" {_style(colour, filled, alpha)}/>")
+
+
+def _style(colour: str, filled: bool, alpha: float) -> str:
+    style = f'fill="{colour if filled else "#fff"}" stroke="{colour}" stroke-width="1.4"'
     if alpha < 1:
         style += f' fill-opacity="{alpha:.2f}" stroke-opacity="{alpha:.2f}"'
-    r = size
+    return style
+
+
+def _shape(x: float, y: float, marker: str, r: float) -> str:
+    """A marker's geometry without its style (an element ending in '/>')."""
     if marker == "s":
         r *= 0.88
-        return f'<rect x="{_num(x - r)}" y="{_num(y - r)}" width="{_num(2 * r)}" height="{_num(2 * r)}" {style}/>'
+        return f'<rect x="{_num(x - r)}" y="{_num(y - r)}" width="{_num(2 * r)}" height="{_num(2 * r)}"/>'
     if marker in ("D", "^"):
         if marker == "D":
             pts = [(x, y - 1.25 * r), (x + r, y), (x, y + 1.25 * r), (x - r, y)]
         else:
             pts = [(x, y - 1.2 * r), (x + 1.1 * r, y + 0.8 * r), (x - 1.1 * r, y + 0.8 * r)]
-        p = " ".join(f"{_num(a)},{_num(b)}" for a, b in pts)
-        return f'<polygon points="{p}" {style}/>'
-    return f'<circle cx="{_num(x)}" cy="{_num(y)}" r="{_num(r)}" {style}/>'
+        return '<polygon points="' + " ".join(f"{_num(a)},{_num(b)}" for a, b in pts) + '"/>'
+    return f'<circle cx="{_num(x)}" cy="{_num(y)}" r="{_num(r)}"/>'
 
 
 @dataclass(frozen=True)

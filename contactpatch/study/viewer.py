@@ -68,7 +68,8 @@ def viewer_case(patch, label: str) -> dict:
     Returns
     -------
     dict
-        ``label``, ``positions`` (float32 x 3), ``indices`` (uint32 x 3),
+        ``label``, ``positions`` (float32 x 3), ``indices`` (uint16 x 3, or uint32
+        when ``index_bits`` is 32),
         ``values`` (radial deformation [mm], float32), ``outline`` and ``grid``
         (float32 x 3 line points), ``lo``/``hi`` (colour range [mm]) and their
         texts, ``focus`` (point the camera turns about [mm]) and ``span`` [mm].
@@ -83,10 +84,12 @@ def viewer_case(patch, label: str) -> dict:
     outline = np.column_stack([x, xy[:, 1], patch.surface.height(x) - 0.2])
     r0 = patch.tire.tire_radius
     lo_text, hi_text = _range_text(lo, hi)
+    small = len(m.mesh.vertices) < 65536
     return {
         "label": label,
         "positions": _b64(m.mesh.vertices, "<f4"),
-        "indices": _b64(m.mesh.faces, "<u4"),
+        "indices": _b64(m.mesh.faces, "<u2" if small else "<u4"),
+        "index_bits": 16 if small else 32,
         "values": _b64(values, "<f4"),
         "outline": _b64(outline, "<f4"),
         "grid": _b64(_grid_segments(patch), "<f4"),

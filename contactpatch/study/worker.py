@@ -1,9 +1,13 @@
 """Run one function of the report in a separate Python process.
 
 The report renders and validates while it draws its figures. A fresh interpreter
-(``python -m contactpatch.study.worker IN OUT``) does that work: unlike a forked or
+does that work, started with a few lines of code (:data:`RUNNER`) that put this
+``contactpatch``'s folder first on the path, unpickle the function's module, name
+and arguments, call it and pickle back its value or exception. Unlike a forked or
 forkserver child it never re-imports the caller's ``__main__`` (scripts need no
-``if __name__ == "__main__"`` guard) and shares no threads or OpenGL state with it.
+``if __name__ == "__main__"`` guard), shares no threads or OpenGL state with the
+caller, and imports only what the function needs (a :mod:`tiremesh` function does
+not import :mod:`contactpatch`).
 
 :class:`Job` starts it; :meth:`Job.result` waits and returns the function's value,
 or raises its exception (with the worker's traceback).
@@ -11,14 +15,33 @@ or raises its exception (with the worker's traceback).
 
 from __future__ import annotations
 
-import importlib
-import os
 import pickle
 import subprocess
 import sys
 import tempfile
-import traceback
 from pathlib import Path
+
+#: the worker's program: ``python -c RUNNER ROOT IN.pkl OUT.pkl``
+RUNNER = """
+import importlib, pickle, sys, traceback
+root, inp, out = sys.argv[1:4]
+sys.path.insert(0, root)
+with open(inp, "rb") as fh:
+    module, name, args, kwargs = pickle.load(fh)
+try:
+    func = importlib.import_module(module)
+    for part in name.split("."):
+        func = getattr(func, part)
+    result = (True, func(*args, **kwargs), "")
+except Exception as exc:
+    result = (False, exc, traceback.format_exc())
+try:
+    data = pickle.dumps(result)
+except Exception as exc:
+    data = pickle.dumps((False, RuntimeError(repr(exc)), traceback.format_exc()))
+with open(out, "wb") as fh:
+    fh.write(data)
+"""
 
 
 class WorkerError(RuntimeError):
@@ -26,30 +49,28 @@ class WorkerError(RuntimeError):
 
 
 class Job:
-    """``func(*args)`` running in a new Python process.
+    """``func(*args, **kwargs)`` running in a new Python process.
 
     Parameters
     ----------
     func : callable
         A module-level function (found again by module and name).
-    *args
+    *args, **kwargs
         Picklable arguments.
     """
 
-    def __init__(self, func, *args) -> None:
+    def __init__(self, func, *args, **kwargs) -> None:
         self._dir = tempfile.TemporaryDirectory(prefix="report-job-")
         d = Path(self._dir.name)
         self._out = d / "out.pkl"
-        (d / "in.pkl").write_bytes(pickle.dumps((func.__module__, func.__qualname__, args)))
+        job = (func.__module__, func.__qualname__, args, kwargs)
+        (d / "in.pkl").write_bytes(pickle.dumps(job))
         root = str(Path(__file__).resolve().parents[2])  # the folder holding contactpatch
-        env = dict(os.environ)
-        env["PYTHONPATH"] = os.pathsep.join(p for p in (root, env.get("PYTHONPATH")) if p)
         self._proc = subprocess.Popen(
-            [sys.executable, "-m", "contactpatch.study.worker", str(d / "in.pkl"), str(self._out)],
+            [sys.executable, "-c", RUNNER, root, str(d / "in.pkl"), str(self._out)],
             stdin=subprocess.DEVNULL,
             stdout=subprocess.DEVNULL,
             stderr=subprocess.PIPE,
-            env=env,
         )
 
     def result(self):
@@ -86,34 +107,4 @@ class Job:
         self._dir.cleanup()
 
 
-def main(argv=None) -> int:
-    """Worker entry point: ``IN.pkl OUT.pkl``.
-
-    Parameters
-    ----------
-    argv : list of str, optional
-
-    Returns
-    -------
-    int
-        Exit status (0 also when the function raised: the exception is in OUT).
-    """
-    inp, out = argv if argv is not None else sys.argv[1:]
-    module, name, args = pickle.loads(Path(inp).read_bytes())
-    try:
-        func = importlib.import_module(module)
-        for part in name.split("."):
-            func = getattr(func, part)
-        result = (True, func(*args), "")
-    except Exception as exc:  # sent back to the caller, which raises it
-        result = (False, exc, traceback.format_exc())
-    try:
-        data = pickle.dumps(result)
-    except Exception as exc:  # an unpicklable value or exception
-        data = pickle.dumps((False, WorkerError(repr(exc)), traceback.format_exc()))
-    Path(out).write_bytes(data)
-    return 0
-
-
-if __name__ == "__main__":
-    sys.exit(main())
+__all__ = ["RUNNER", "Job", "WorkerError"]

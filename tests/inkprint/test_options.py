@@ -107,7 +107,9 @@ def test_options_change_single_calls(sheet_factory):
     assert sum(p.n_edge_spots for p in base.prints) > 0
     assert sum(p.n_edge_spots for p in kept.prints) == 0
     b = ip.binarize(scan.grey, mm_per_px=scan.mm_per_px)
-    assert len(ip.group_blobs(b.mask, mm_per_px=scan.mm_per_px)) > 2
+    assert len(ip.group_blobs(b.mask, mm_per_px=scan.mm_per_px)) == 2  # the label, ruler: marks
+    kinds = {m.kind for m in ip.sort_ink(b.mask, mm_per_px=scan.mm_per_px).marks}
+    assert {"line", "text"} <= kinds
     joined = AnalysisOptions(group_distance_mm=300.0)
     assert len(ip.group_blobs(b.mask, mm_per_px=scan.mm_per_px, options=joined)) == 1
     with pytest.raises(ip.AllInk):
@@ -194,19 +196,21 @@ def test_cli_threshold_options(scans, tmp_path, capsys):
     from inkprint.cli import main
 
     scan = str(scans / "s0.png")
-    assert main(["analyze", scan, "--no-band", "--min-patch-area", "1e9"]) == 2
-    assert "too little ink" in capsys.readouterr().out
-    assert main(["analyze", scan, "--no-band", "--min-patch-width", "50"]) == 2
-    assert "mm wide" in capsys.readouterr().out
-    # 150 mm joins both prints and the ruler into one group: not a print
-    assert main(["analyze", scan, "--no-band", "--group-distance", "150"]) == 2
-    assert "writing or marks" in capsys.readouterr().out
+    # a file that fails: exit 1, the reason on stderr
+    assert main(["analyze", scan, "--no-band", "--min-patch-area", "1e9"]) == 1
+    assert "too little ink" in capsys.readouterr().err
+    assert main(["analyze", scan, "--no-band", "--min-patch-width", "50"]) == 1
+    assert "mm wide" in capsys.readouterr().err
+    # a grouping distance of 150 mm (the override) joins both prints into one
+    assert main(["analyze", scan, "--no-band", "--csv", "--group-mm", "150"]) == 0
+    assert len(list(csv.DictReader(capsys.readouterr().out.splitlines()))) == 1
     assert main(["analyze", scan, "--no-band", "--csv", "--group-distance", "2.5"]) == 0
     assert len(list(csv.DictReader(capsys.readouterr().out.splitlines()))) == 2
     assert main(["analyze", scan, "--group-distance", "-1"]) == 2
     assert "group_distance_mm" in capsys.readouterr().err
     out = tmp_path / "b.csv"
     args = ["batch", str(scans), "-o", str(out), "--workers", "2", "--quiet", "--no-band"]
-    assert main([*args, "--min-patch-area", "1e9"]) == 0
+    assert main([*args, "--min-patch-area", "1e9"]) == 1  # every file failed
+    assert "3 error row(s)" in capsys.readouterr().err
     with open(out, newline="") as fh:
         assert no_print_rows(list(csv.DictReader(fh)))

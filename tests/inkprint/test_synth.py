@@ -47,8 +47,15 @@ def test_rendered_print_has_its_true_area_place_orientation_and_extent(tread):
     p = PrintSpec(length, width, (80.0, 120.0), angle=30.0, tread=tread, unevenness=0.0)
     if tread == "car":
         p = PrintSpec(
-            length, width, (80.0, 120.0), angle=30.0, tread=tread, unevenness=0.0, block=20.0,
-            gap=8.0, exponent=4.0,
+            length,
+            width,
+            (80.0, 120.0),
+            angle=30.0,
+            tread=tread,
+            unevenness=0.0,
+            block=20.0,
+            gap=8.0,
+            exponent=4.0,
         )
     img, (truth,) = render_sheet(clean_sheet(p))
     cov, x, y = coverage(img, p.ink)

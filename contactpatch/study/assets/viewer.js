@@ -2,7 +2,7 @@
    no network. Reads the meshes from <script type="application/json" id="viewer-data">:
    {cases: [{label, positions, indices, values, outline, grid, lo, hi, focus, span}]}
    where positions/values/outline/grid are base64 little-endian Float32 arrays and
-   indices base64 Uint32. Drag to turn, wheel or pinch to zoom, buttons to switch. */
+   indices base64 Uint16 (Uint32 when index_bits is 32). Drag to turn, wheel or pinch to zoom, buttons to switch. */
 (function () {
   "use strict";
   var root = document.getElementById("tire3d");
@@ -89,20 +89,25 @@
     return { p: buffer(flat), n: buffer(new Float32Array(flat.length)), c: buffer(cols), count: flat.length / 3 };
   }
   function prepare(cs) {
-    var p = b64(cs.positions, Float32Array), idx = b64(cs.indices, Uint32Array);
+    var wide = cs.index_bits === 32;
+    var p = b64(cs.positions, Float32Array), idx = b64(cs.indices, wide ? Uint32Array : Uint16Array);
     var v = b64(cs.values, Float32Array), cols = new Float32Array(p.length);
     for (var i = 0; i < v.length; i++) {
       var rgb = colour((v[i] - cs.lo) / (cs.hi - cs.lo || 1));
       cols[3 * i] = rgb[0]; cols[3 * i + 1] = rgb[1]; cols[3 * i + 2] = rgb[2];
     }
-    var elems = uintOK ? idx : new Uint16Array(idx);
+    if (wide && !uintOK) return null;  /* a mesh too big for this WebGL */
     return { p: buffer(p), n: buffer(normals(p, idx)), c: buffer(cols),
-      i: buffer(elems, gl.ELEMENT_ARRAY_BUFFER), count: idx.length,
-      type: uintOK ? gl.UNSIGNED_INT : gl.UNSIGNED_SHORT,
+      i: buffer(idx, gl.ELEMENT_ARRAY_BUFFER), count: idx.length,
+      type: wide ? gl.UNSIGNED_INT : gl.UNSIGNED_SHORT,
       outline: lines(b64(cs.outline, Float32Array), [0.85, 0.1, 0.1]),
       grid: lines(b64(cs.grid, Float32Array), [0.55, 0.55, 0.55]), cs: cs };
   }
-  var meshes = data.cases.map(prepare);
+  var meshes = data.cases.map(prepare).filter(Boolean);
+  if (!meshes.length) {
+    note.textContent = "This browser's WebGL cannot draw meshes this large.";
+    return;
+  }
   var view = { az: -0.7, el: -0.35, dist: 1, k: 0 };
 
   function mat(cs) {

@@ -59,9 +59,8 @@ def test_cli_compare_and_report(print_table, tmp_path):
 
 
 def test_main_conventions_version_exit_codes_and_errors(tmp_path, capsys):
-    from contactpatch.study.cli import main
-
     import contactpatch
+    from contactpatch.study.cli import main
 
     assert main(["--version"]) == 0
     assert contactpatch.__version__ in capsys.readouterr().out
