@@ -159,3 +159,25 @@ def test_cli_relations_writes_tables_and_figures(tmp_path):
     names = {p.name for p in tmp_path.iterdir()}
     assert {"relations.json", "relations_errors.csv", "relations.md"} <= names
     assert any(n.endswith(".png") for n in names)
+
+
+def test_docs_worked_example_full_model_column_is_the_model():
+    """The worked example's "full model" column (docs/relations.md, Kojak 35-622 at
+    5 bar and 400 N) is what the model gives today, to the printed digits: a change of
+    the model's defaults (e.g. the lateral-force convention) must update the docs."""
+    text = DOCS.read_text(encoding="utf-8").split("Worked example")[1]
+    rows = dict(re.findall(r"^\| ([^|]+?) \| [^|]+ \| [^|]+ \| ([\d.]+) \|$", text, re.M))
+    case = tm.LoadCase(tm.get_tire("kojak"), pressure=0.5, load=400.0)
+    upright = tm.solve(case)
+    cambered = tm.solve(case.replace(camber=math.radians(20)))
+    model = {
+        "sinkage, upright": upright.sinkage,
+        "length, upright [mm]": upright.length,
+        "width, upright [mm]": upright.width,
+        "area [mm^2]": upright.area,
+        "camber thrust at 20 degrees [N]": cambered.lateral_force,
+    }
+    for name, value in model.items():
+        printed = rows[name]
+        digits = len(printed.split(".")[1]) if "." in printed else 0
+        assert abs(float(printed) - value) <= 0.51 * 10.0**-digits, (name, printed, value)
