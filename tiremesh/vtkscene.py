@@ -256,6 +256,16 @@ def lines(polylines):
     return pd
 
 
+def _plane_x0():
+    """The plane ``x = 0`` (normal +x) as a VTK implicit function."""
+    from vtkmodules.vtkCommonDataModel import vtkPlane
+
+    plane = vtkPlane()
+    plane.SetOrigin(0.0, 0.0, 0.0)
+    plane.SetNormal(1.0, 0.0, 0.0)
+    return plane
+
+
 def clip_x(pd, *, keep_negative: bool = True):
     """The part of a surface at ``x <= 0`` (or ``x >= 0``), data interpolated.
 
@@ -268,12 +278,9 @@ def clip_x(pd, *, keep_negative: bool = True):
     -------
     vtkPolyData
     """
-    from vtkmodules.vtkCommonDataModel import vtkPlane
     from vtkmodules.vtkFiltersCore import vtkClipPolyData
 
-    plane = vtkPlane()
-    plane.SetOrigin(0.0, 0.0, 0.0)
-    plane.SetNormal(1.0, 0.0, 0.0)
+    plane = _plane_x0()
     clip = vtkClipPolyData()
     clip.SetInputData(pd)
     clip.SetClipFunction(plane)
@@ -293,12 +300,9 @@ def slice_x(pd):
     -------
     vtkPolyData
     """
-    from vtkmodules.vtkCommonDataModel import vtkPlane
     from vtkmodules.vtkFiltersCore import vtkCutter
 
-    plane = vtkPlane()
-    plane.SetOrigin(0.0, 0.0, 0.0)
-    plane.SetNormal(1.0, 0.0, 0.0)
+    plane = _plane_x0()
     cut = vtkCutter()
     cut.SetInputData(pd)
     cut.SetCutFunction(plane)
