@@ -180,14 +180,14 @@ def variants(runner: ModelRunner, points: list[Point], fit: RelaxationFit) -> li
         ),
         ("no deflection beyond the patch", "i = 0", 0, lambda c, t: 0.0, "the plain patch"),
         (
-            "taut string, T by Eq. 5-32",
+            "taut string, T = tiremesh.beam.tension_area (equation 5-32)",
             "EI = 0, T = p pi r^2",
             0,
             lambda c, t: rel(c, BeamRelaxation(0.0)),
             "",
         ),
         (
-            "taut string, T by Eq. 5-33",
+            "taut string, T = tiremesh.beam.tension_hoop (equation 5-33)",
             "EI = 0, T = p (R + 2 r)",
             0,
             lambda c, t: rel(c, BeamRelaxation(0.0, tension="hoop")),

@@ -69,7 +69,7 @@ def free_section_stiffness(tire: tm.TireGeometry, pressure: float) -> float:
     h = 1e-4 * tire.tire_radius
     s = tm.solve_sections(tire.tire_radius, tire.rim_width, 0.0, np.array([h, -h]))
     d = s.radius1 - s.radius2
-    return float(pressure * (d[0] - d[1]) / (2.0 * h))  # Eq. 5-25
+    return float(pressure * (d[0] - d[1]) / (2.0 * h))  # d/dh of the lateral force, equation 5-25
 
 
 def tension(tire: tm.TireGeometry, pressure: float, kind: str = "area") -> float:
@@ -89,7 +89,10 @@ def tension(tire: tm.TireGeometry, pressure: float, kind: str = "area") -> float
         return float(tension_area(pressure, tire.tire_radius))
     if kind == "hoop":
         return float(tension_hoop(pressure, tire.wheel_radius, tire.tire_radius))
-    raise ValueError(f"tension kind {kind!r}: use 'area' (Eq. 5-32) or 'hoop' (Eq. 5-33)")
+    raise ValueError(
+        f"tension kind {kind!r}: use 'area' (tiremesh.beam.tension_area) "
+        "or 'hoop' (tiremesh.beam.tension_hoop)"
+    )
 
 
 def decay_length(k, T, EI):
@@ -178,7 +181,7 @@ class BeamRelaxation:
 
     def parts(self, tire: tm.TireGeometry, pressure: float) -> tuple[float, float, float]:
         """``(k, T, EI)`` for the tire at ``pressure`` [N/mm^2, N, N mm^2]."""
-        EI = self.modulus * float(bending_inertia(tire.tire_radius, self.thickness))  # Eq. 5-31
+        EI = self.modulus * float(bending_inertia(tire.tire_radius, self.thickness))
         return free_section_stiffness(tire, pressure), tension(tire, pressure, self.tension), EI
 
     def length(self, tire: tm.TireGeometry, pressure: float) -> float:
