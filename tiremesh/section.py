@@ -249,11 +249,31 @@ class SectionSolution:
         return self.radius2 * self.angle2
 
     def lateral_force_density(self, pressure) -> np.ndarray:
-        """``dS/dy = p (r1 - r2)`` [N/mm], equation 5-25 (positive toward side 2)."""
+        """``dS/dy = p (r1 - r2)``, equation 5-25.
+
+        Parameters
+        ----------
+        pressure : (...) float [N/mm^2]
+
+        Returns
+        -------
+        (...) float [N/mm]
+            Lateral force per unit length of the section's track, positive toward side 2.
+        """
         return np.asarray(pressure) * (self.radius1 - self.radius2)
 
     def vertical_force_density(self, pressure) -> np.ndarray:
-        """``dN/dy = p (e2 - e1)`` [N/mm], equation 5-26 (zero where edges cross)."""
+        """``dN/dy = p (e2 - e1)``, equation 5-26.
+
+        Parameters
+        ----------
+        pressure : (...) float [N/mm^2]
+
+        Returns
+        -------
+        (...) float [N/mm]
+            Vertical force per unit length; zero where the edges cross.
+        """
         return np.asarray(pressure) * np.maximum(self.width, 0.0)
 
 

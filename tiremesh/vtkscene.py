@@ -423,7 +423,21 @@ class Window:
         self.win.SetMultiSamples(0)
 
     def renderer(self, viewport=(0.0, 0.0, 1.0, 1.0), *, layer: int = 0, lights: bool = False):
-        """Add a renderer over ``viewport`` (normalized x0, y0, x1, y1)."""
+        """Add a renderer over ``viewport``.
+
+        Parameters
+        ----------
+        viewport : tuple of 4 float, optional
+            Normalized ``(x0, y0, x1, y1)`` of the window.
+        layer : int, optional
+            0 for the scene, 1 for an overlay drawn over it.
+        lights : bool, optional
+            Use a light kit instead of VTK's automatic headlight.
+
+        Returns
+        -------
+        vtkRenderer
+        """
         from vtkmodules.vtkRenderingCore import vtkLightKit, vtkRenderer
 
         ren = vtkRenderer()
@@ -460,7 +474,15 @@ class Window:
 
     def save_vector(self, path: str, title: str) -> None:
         """Write PDF, SVG or EPS (from the suffix) through GL2PS: text and lines as
-        vectors, shaded surfaces as an embedded raster."""
+        vectors, shaded surfaces as an embedded raster.
+
+        Parameters
+        ----------
+        path : str
+            Output file; its suffix picks the format (other than pdf/svg: EPS).
+        title : str
+            Document title written into the file.
+        """
         import importlib
 
         from vtkmodules.vtkIOExportGL2PS import vtkGL2PSExporter
