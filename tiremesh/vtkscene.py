@@ -272,40 +272,43 @@ def clip_x(pd, *, keep_negative: bool = True):
     Parameters
     ----------
     pd : vtkPolyData
+        A surface in the ground frame [mm].
     keep_negative : bool
+        Keep the rear half (``x <= 0``); False keeps the front half.
 
     Returns
     -------
     vtkPolyData
+        The kept half, cut cells split at ``x = 0``.
     """
     from vtkmodules.vtkFiltersCore import vtkClipPolyData
 
-    plane = _plane_x0()
     clip = vtkClipPolyData()
     clip.SetInputData(pd)
-    clip.SetClipFunction(plane)
+    clip.SetClipFunction(_plane_x0())
     clip.SetInsideOut(keep_negative)
     clip.Update()
     return clip.GetOutput()
 
 
 def slice_x(pd):
-    """The section of a surface by the plane ``x = 0`` (line cells).
+    """The section of a surface by the plane ``x = 0``.
 
     Parameters
     ----------
     pd : vtkPolyData
+        A surface in the ground frame [mm].
 
     Returns
     -------
     vtkPolyData
+        Line cells where the surface crosses ``x = 0``.
     """
     from vtkmodules.vtkFiltersCore import vtkCutter
 
-    plane = _plane_x0()
     cut = vtkCutter()
     cut.SetInputData(pd)
-    cut.SetCutFunction(plane)
+    cut.SetCutFunction(_plane_x0())
     cut.Update()
     return cut.GetOutput()
 
