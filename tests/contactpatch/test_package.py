@@ -107,9 +107,7 @@ METHOD_DOCS_PENDING = (
     "tiremesh.solver.arrays",
     "contactpatch.study.svgplot",
     "contactpatch.study.validate",
-    "contactpatch.study.validate_fit",
     "contactpatch.study.validate_model",
-    "contactpatch.study.validate_relax",
 )
 
 
