@@ -107,7 +107,6 @@ METHOD_DOCS_PENDING = (
     "tiremesh.solver.arrays",
     "contactpatch.study.svgplot",
     "contactpatch.study.validate",
-    "contactpatch.study.validate_model",
 )
 
 
