@@ -27,13 +27,12 @@ import dataclasses
 import hashlib
 import json
 import os
-import threading
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
 
 from tiremesh.io import cell_number, table_columns, write_table
-from tiremesh.parallel import parallel_map
+from tiremesh.parallel import parallel_map, watch_parent
 from tiremesh.units import MPA_PER_BAR
 
 from .errors import InkPrintError, InvalidInput, OutputLocked
@@ -327,32 +326,6 @@ def _analyze_job(job: Job, data: bytes, digest: str, key: str, options: Options)
     return rows
 
 
-_WATCHING = threading.Event()
-
-
-def _watch(parent: int, interval: float = 0.5) -> None:
-    """In a worker process: exit as soon as the batch process ``parent`` is gone
-    (a killed batch leaves no worker blocked on its queue)."""
-    if parent == os.getpid() or _WATCHING.is_set():
-        return
-    _WATCHING.set()
-    ppid = os.getppid()
-
-    def loop() -> None:
-        while True:
-            time.sleep(interval)
-            try:
-                os.kill(parent, 0)
-            except ProcessLookupError:
-                os._exit(3)
-            except PermissionError:
-                pass
-            if os.getppid() != ppid:  # our parent (the pool's server) is gone too
-                os._exit(3)
-
-    threading.Thread(target=loop, name="inkprint-parent-watch", daemon=True).start()
-
-
 def process_file(
     job: Job, *, options: Options | AnalysisOptions | None = None, watch: int | None = None
 ) -> list[dict]:
@@ -376,7 +349,7 @@ def process_file(
     from .read import read_file_bytes
 
     if watch is not None:
-        _watch(watch)
+        watch_parent(watch, exit_code=3)  # a killed batch leaves no worker blocked
     opts = _batch_options(options)
     if job.error:
         return [_error_row(job, job.error)]

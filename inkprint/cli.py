@@ -202,27 +202,6 @@ def quantity(text: str, *, kind: str, flag: str) -> float:
     return value
 
 
-SUMMARY = [
-    "file",
-    "page",
-    "print",
-    "status",
-    "flags",
-    "length_mm",
-    "width_mm",
-    "hull_area_mm2",
-    "area_mm2",
-    "net_to_gross",
-    "ellipse_length_mm",
-    "ellipse_width_mm",
-    "angle_deg",
-    "axis_source",
-    "n_edge_spots",
-    "load_per_hull_area_pct",
-    "error",
-]
-
-
 def _line(r: dict, unit: str) -> str:
     page = f" p{r['page']}" if str(r.get("page", "0")) not in ("0", "") else ""
     line = (

@@ -22,7 +22,6 @@ Run: python scripts/bench_report.py [--base 622b585] [--runs 3] [--no-scale]
 from __future__ import annotations
 
 import argparse
-import math
 import os
 import shutil
 import statistics
@@ -286,51 +285,9 @@ def report_alone(old: Path, tmp: Path, runs: int, env: dict) -> None:
 
 def synthetic(n: int, seed: int = 0) -> list[dict]:
     """``n`` print rows like a batch's on 4 tires (hull: an ellipse), no scans."""
-    import numpy as np
+    from contactpatch.study.samples import synthetic_print_rows
 
-    rng = np.random.default_rng(seed)
-    tires = [
-        (6, "Maxxis Radial Prototype 22-622"),
-        (8, "Schwalbe Big Apple 55-622"),
-        (10, "Schwalbe Marathon Plus 37-622"),
-        (5, "Continental Grand Prix 23-622"),
-    ]
-    rows = []
-    for i in range(n):
-        tid, name = tires[i % 4]
-        p, load = float(rng.choice([4.0, 5.5, 6.9])), float(rng.choice([304.0, 400.0, 500.0]))
-        L = 80 * (load / 400) ** 0.5 * (5 / p) ** 0.5 * rng.normal(1, 0.03)
-        W = 11 * (load / 400) ** 0.5 * rng.normal(1, 0.03)
-        ring = ", ".join(
-            f"{L / 2 * math.cos(a):.3f} {W / 2 * math.sin(a):.3f}"
-            for a in np.linspace(0, 2 * math.pi, 49)
-        )
-        area = math.pi * L * W / 4
-        rows.append(
-            {
-                "file": f"sheet{i // 2:04d}.png",
-                "print": i % 2,
-                "status": "ok",
-                "tire": name,
-                "tire_id": tid,
-                "pressure_bar": p,
-                "load_N": load,
-                "surface": "drum" if i % 2 == 0 else "plate",
-                "length_mm": L,
-                "width_mm": W,
-                "hull_area_mm2": 1.02 * area,
-                "ellipse_length_mm": L,
-                "ellipse_width_mm": W,
-                "ellipse_area_mm2": area,
-                "net_to_gross": 0.8,
-                "angle_deg": 0.0,
-                "mm_per_px": 0.17,
-                "load_per_hull_area_N_mm2": load / (1.02 * area),
-                "load_per_hull_area_pct": 100.0 * load / (1.02 * area) / (0.1 * p),
-                "hull_wkt": f"POLYGON (({ring}))",
-            }
-        )
-    return rows
+    return synthetic_print_rows(n, seed=seed)
 
 
 def scale(tmp: Path) -> None:

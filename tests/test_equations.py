@@ -186,8 +186,20 @@ def test_index_cites_existing_tests(n):
 
 def test_no_equation_ranges():
     bad = []
-    for path in (*sources(), MODEL_MD):
+    for path in (*sources(), MODEL_MD, ROOT / "docs" / "architecture.md"):
         for i, line in enumerate(text(path).splitlines(), 1):
             if any(p.search(line) for p in RANGE_PATTERNS):
                 bad.append((path, i, line))
     assert not bad, "equation ranges (list each equation instead):\n" + where(bad)
+
+
+def test_no_equation_tags_outside_tiremesh():
+    # contactpatch and inkprint refer to tiremesh's functions ("equation 5-N" at most),
+    # so that grep "Eq. 5-N" over the packages lands on the implementing line alone
+    bad = []
+    for pkg in ("contactpatch", "inkprint"):
+        for path in sorted((ROOT / pkg).rglob("*.py")):
+            for i, line in enumerate(path.read_text(encoding="utf-8").splitlines(), 1):
+                if re.search(r"Eq\.\s*5-\d+", line):
+                    bad.append((path, i, line))
+    assert not bad, "tags outside tiremesh:\n" + where(bad)

@@ -188,7 +188,23 @@ class TireGeometry:
     def from_size(
         cls, size: float, rim_width: float, *, bead_seat_diameter: float = 622.0, name: str = ""
     ) -> TireGeometry:
-        """Tire from its nominal size, taken as the carcass diameter (Table 5-1)."""
+        """Tire from its nominal size, taken as the carcass diameter (Table 5-1).
+
+        Parameters
+        ----------
+        size : float [mm]
+            Nominal (ETRTO) width, read as the carcass diameter ``2 r0``.
+        rim_width : float [mm]
+            Inner rim width ``w`` (bead to bead).
+        bead_seat_diameter : float [mm], optional
+            Rim bead-seat diameter (622 for 700C / 29er).
+        name : str, optional
+            Label for tables.
+
+        Returns
+        -------
+        TireGeometry
+        """
         size = float(v.positive("size", size, unit="mm"))
         return cls(0.5 * size, rim_width, bead_seat_diameter, name)
 
@@ -205,6 +221,21 @@ class TireGeometry:
 
         The rim angle solves equation 5-6; the radius is then ``r0 = w / (2 sin(theta0 /
         2))``, equation 5-5 (Dressel 2013, section 5.1).
+
+        Parameters
+        ----------
+        arc_length : float [mm]
+            Measured carcass arc length from bead to bead ``s0``.
+        rim_width : float [mm]
+            Inner rim width ``w``; ``w < s0``.
+        bead_seat_diameter : float [mm], optional
+            Rim bead-seat diameter.
+        name : str, optional
+            Label for tables.
+
+        Returns
+        -------
+        TireGeometry
         """
         theta0 = float(rim_angle_from_arc_length(rim_width, arc_length))
         r0 = float(rim_width) / (2.0 * math.sin(0.5 * theta0))  # Eq. 5-5

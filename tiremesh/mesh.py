@@ -82,13 +82,29 @@ class TireMesh:
         return len(self.mesh.faces)
 
     def surface_gap(self, points=None) -> np.ndarray:
-        """Height of points (default: the vertices) above the support surface [mm]
-        (``surface.gap``)."""
+        """Height of points above the support surface (``surface.gap``).
+
+        Parameters
+        ----------
+        points : (n, 3) float [mm], optional
+            Ground-frame points; default: the mesh vertices.
+
+        Returns
+        -------
+        (n,) float [mm]
+            Positive above the surface, negative below.
+        """
         pts = self.mesh.vertices if points is None else np.asarray(points, float)
         return self.patch.surface.gap(pts)
 
     def section_arc_lengths(self) -> np.ndarray:
-        """Bead-to-bead polyline length of every section along the mesh [mm]."""
+        """Bead-to-bead polyline length of every section along the mesh.
+
+        Returns
+        -------
+        (n_sections,) float [mm]
+            Close to the carcass arc length ``s0`` (the carcass does not stretch).
+        """
         return _ring_lengths(self)
 
 
@@ -345,7 +361,13 @@ class SectionRings:
     free: RingBlock
 
     def blocks(self) -> tuple[RingBlock, RingBlock, RingBlock, RingBlock]:
-        """``(rear, contact, front, free)``, the order of the mesh vertices."""
+        """The four blocks in the order of the mesh vertices.
+
+        Returns
+        -------
+        tuple of RingBlock
+            ``(rear, contact, front, free)``.
+        """
         return self.rear, self.contact, self.front, self.free
 
 

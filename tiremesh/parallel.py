@@ -197,26 +197,53 @@ def _client(address: str, timeout: float):
         raise SchedulerError(address, str(exc) or type(exc).__name__) from exc
 
 
-def _watch_parent(pid: int) -> None:
-    """Worker initializer: exit this worker when process ``pid`` (the pool's owner) is
-    gone, or when this worker is re-parented (its forkserver died with the owner)."""
+_WATCHING: set[int] = set()  # parent pids this process already watches
+
+
+def watch_parent(pid: int, *, interval: float = _PARENT_POLL, exit_code: int = 1) -> bool:
+    """In a worker process: exit as soon as process ``pid`` (the pool's owner) is gone,
+    or as soon as this worker is re-parented (its forkserver died with the owner).
+
+    A daemon thread polls every ``interval`` seconds and ends the process with
+    ``os._exit(exit_code)``, so no worker is left blocked on a dead parent's queue.
+    Calling it again for the same ``pid``, or with this process's own pid (the
+    in-process path), does nothing.
+
+    Parameters
+    ----------
+    pid : int
+        Process id of the process that started the worker.
+    interval : float, optional
+        Seconds between checks [s].
+    exit_code : int, optional
+        Exit status of the worker when the parent is gone.
+
+    Returns
+    -------
+    bool
+        True if a watcher thread was started, False if none was needed.
+    """
     import threading
 
+    if pid == os.getpid() or pid in _WATCHING:
+        return False
+    _WATCHING.add(pid)
     ppid = os.getppid()
 
     def watch() -> None:
         while True:
-            time.sleep(_PARENT_POLL)
+            time.sleep(interval)
             try:
                 os.kill(pid, 0)
             except ProcessLookupError:
-                os._exit(1)
+                os._exit(exit_code)
             except PermissionError:
                 pass
             if os.getppid() != ppid:
-                os._exit(1)
+                os._exit(exit_code)
 
-    threading.Thread(target=watch, name="tiremesh-parent-watch", daemon=True).start()
+    threading.Thread(target=watch, name=f"parent-watch-{pid}", daemon=True).start()
+    return True
 
 
 def _check_workers(workers) -> int:
@@ -253,7 +280,7 @@ def _pool_map(func, items: Sequence, n: int, kwargs: dict):
 
     ctx = mp.get_context("spawn" if os.name == "nt" else "forkserver")
     pending = dict(enumerate(items))
-    pool_kw = dict(mp_context=ctx, initializer=_watch_parent, initargs=(os.getpid(),))
+    pool_kw = dict(mp_context=ctx, initializer=watch_parent, initargs=(os.getpid(),))
     try:
         with ProcessPoolExecutor(max_workers=min(n, len(items)), **pool_kw) as pool:
             futures = {pool.submit(func, it, **kwargs): i for i, it in pending.items()}
@@ -341,4 +368,5 @@ __all__ = [
     "check_scheduler",
     "connect_scheduler",
     "parallel_map",
+    "watch_parent",
 ]

@@ -87,7 +87,17 @@ class ViewCamera:
     scale: float
 
     def position(self, distance: float):
-        """``[position, focal point, view up]``, ``distance`` mm from the focal point."""
+        """Camera placement ``distance`` from the focal point.
+
+        Parameters
+        ----------
+        distance : float [mm]
+
+        Returns
+        -------
+        list
+            ``[position, focal point, view up]``, each an (x, y, z) tuple [mm, mm, -].
+        """
         az, el = math.radians(self.azimuth), math.radians(self.elevation)
         d = np.array([math.cos(el) * math.cos(az), math.cos(el) * math.sin(az), math.sin(el)])
         up = (0.0, 0.0, 1.0)

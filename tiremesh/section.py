@@ -55,6 +55,7 @@ from . import validate as v
 from ._roots import newton_bracketed
 from ._tol import tol
 from .errors import InvalidParameter
+from .geometry import arc_length, rim_angle
 
 TWO_PI = 2.0 * np.pi
 
@@ -248,11 +249,31 @@ class SectionSolution:
         return self.radius2 * self.angle2
 
     def lateral_force_density(self, pressure) -> np.ndarray:
-        """``dS/dy = p (r1 - r2)`` [N/mm], equation 5-25 (positive toward side 2)."""
+        """``dS/dy = p (r1 - r2)``, equation 5-25.
+
+        Parameters
+        ----------
+        pressure : (...) float [N/mm^2]
+
+        Returns
+        -------
+        (...) float [N/mm]
+            Lateral force per unit length of the section's track, positive toward side 2.
+        """
         return np.asarray(pressure) * (self.radius1 - self.radius2)
 
     def vertical_force_density(self, pressure) -> np.ndarray:
-        """``dN/dy = p (e2 - e1)`` [N/mm], equation 5-26 (zero where edges cross)."""
+        """``dN/dy = p (e2 - e1)``, equation 5-26.
+
+        Parameters
+        ----------
+        pressure : (...) float [N/mm^2]
+
+        Returns
+        -------
+        (...) float [N/mm]
+            Vertical force per unit length; zero where the edges cross.
+        """
         return np.asarray(pressure) * np.maximum(self.width, 0.0)
 
 
@@ -268,8 +289,8 @@ def section_arrays(r0, w, dv, dh, *, camber, delta, broadcast=False):
     Returns
     -------
     sol, bad_h, bad_c : SectionSolution, (...) bool; flags: bead at/below ground, c <= 0"""
-    theta0 = 2.0 * np.arcsin(0.5 * w / r0)  # equation 5-2, inlined
-    half_s0 = r0 * (np.pi - 0.5 * theta0)  # s0 / 2, equation 5-4
+    theta0 = rim_angle(w, r0)
+    half_s0 = 0.5 * arc_length(r0, theta0)
     xb1, zb1, xb2, zb2 = bead_positions(r0, w, camber)
     zg = -r0 + dv
     h1, h2 = zb1 - zg, zb2 - zg

@@ -48,31 +48,118 @@ class Surface(Protocol):
         """Command-line form that :func:`parse_surface` reads back (``drum:2500``)."""
 
     def describe(self) -> str:
-        """Human-readable label for tables and titles."""
+        """Human-readable label for tables and titles.
+
+        Returns
+        -------
+        str
+            E.g. ``"drum 2500 mm"``.
+        """
 
     def drop(self, phi, wheel_radius) -> tuple[np.ndarray, np.ndarray]:
         """Drop of the surface below the contact plane under the section at ``phi``
-        [rad], and its derivative [mm, mm/rad] (lowers the vertical deflection)."""
+        (lowers the section's vertical deflection, equation 5-18).
+
+        Parameters
+        ----------
+        phi : (...) float [rad]
+            Section angle from bottom dead centre.
+        wheel_radius : (...) float [mm]
+            Axle height ``R`` of the unloaded wheel.
+
+        Returns
+        -------
+        drop : (...) float [mm]
+        ddrop_dphi : (...) float [mm/rad]
+        """
 
     def shift(self, phi, wheel_radius, camber) -> tuple[np.ndarray, np.ndarray]:
-        """Sideways shift of the track under the section at ``phi`` [rad], and its
-        derivative [mm, mm/rad] (adds to the horizontal deflection)."""
+        """Sideways shift of the track under the section at ``phi`` (adds to the
+        section's horizontal deflection).
+
+        Parameters
+        ----------
+        phi : (...) float [rad]
+            Section angle from bottom dead centre.
+        wheel_radius : (...) float [mm]
+            Axle height ``R`` of the unloaded wheel.
+        camber : (...) float [rad]
+            Camber angle (its sign picks the side the track curves toward).
+
+        Returns
+        -------
+        shift : (...) float [mm]
+        dshift_dphi : (...) float [mm/rad]
+        """
 
     def height(self, x) -> np.ndarray:
-        """Height ``z`` [mm] of the surface at ground position ``x`` [mm]."""
+        """Height of the surface at ground position ``x``.
+
+        Parameters
+        ----------
+        x : (...) float [mm]
+            Ground coordinate along the rolling direction.
+
+        Returns
+        -------
+        z : (...) float [mm]
+            0 on flat ground, negative where the surface falls away.
+        """
 
     def gap(self, points) -> np.ndarray:
-        """Distance [mm] of ``points`` (n, 3) above the surface (negative: below)."""
+        """Distance of ``points`` above the surface.
+
+        Parameters
+        ----------
+        points : (n, 3) float [mm]
+            Points in the ground frame.
+
+        Returns
+        -------
+        gap : (n,) float [mm]
+            Positive above the surface, negative below.
+        """
 
     def unroll(self, x) -> np.ndarray:
-        """Arc length along the surface [mm] of the surface point above ground ``x``
-        (what paper wrapped on the surface records)."""
+        """Arc length along the surface of the surface point above ground ``x``
+        (what paper wrapped on the surface records).
+
+        Parameters
+        ----------
+        x : (...) float [mm]
+            Ground coordinate along the rolling direction.
+
+        Returns
+        -------
+        s : (...) float [mm]
+        """
 
     def roll(self, s) -> np.ndarray:
-        """Inverse of :meth:`unroll`: ground ``x`` [mm] of arc length ``s`` [mm]."""
+        """Inverse of :meth:`unroll`: ground ``x`` of arc length ``s``.
+
+        Parameters
+        ----------
+        s : (...) float [mm]
+            Arc length along the surface.
+
+        Returns
+        -------
+        x : (...) float [mm]
+        """
 
     def stretch(self, x) -> np.ndarray:
-        """``d unroll / dx`` [-]: surface length per unit of ground ``x``."""
+        """``d unroll / dx``: surface length per unit of ground ``x``.
+
+        Parameters
+        ----------
+        x : (...) float [mm]
+            Ground coordinate along the rolling direction.
+
+        Returns
+        -------
+        (...) float [-]
+            1 on flat ground, >= 1 on a drum.
+        """
 
 
 def curvature_drop(phi, wheel_radius, curvature):
@@ -118,8 +205,11 @@ def curvature_drop(phi, wheel_radius, curvature):
     return num / den, (dnum * den - num * dden) / (den * den)  # Eq. 5-19, Eq. 5-22
 
 
-class SurfaceBase:
+class SurfaceBase(Surface):
     """Flat ground; subclass and override what a new surface changes.
+
+    The methods are those of :class:`Surface` (documented there; the overrides
+    inherit the docstrings).
 
     A subclass whose methods are plain numpy expressions of its fields can also
     stand for many cases at once (:meth:`stack`), so that cases on, say, drums of
@@ -128,6 +218,9 @@ class SurfaceBase:
 
     kind: ClassVar[str] = "flat"
     stack_fields: ClassVar[tuple[str, ...]] = ()
+
+    def __init__(self) -> None:  # a plain class (Protocol would give it *args, **kwargs)
+        pass
 
     @classmethod
     def stack(cls, surfaces) -> SurfaceBase | None:
@@ -158,6 +251,25 @@ class SurfaceBase:
     @property
     def spec(self) -> str:
         return self.kind
+
+    @classmethod
+    def from_spec(cls, args: list[str]) -> SurfaceBase:
+        """The surface of a command-line form's arguments (see :func:`register_surface`).
+
+        Parameters
+        ----------
+        args : list of str
+            The ``:``-separated words after the keyword (``["2500"]`` of
+            ``drum:2500``); this default takes none.
+
+        Returns
+        -------
+        SurfaceBase
+            An instance of ``cls``.
+        """
+        if args:
+            raise ValueError(f"{cls.kind} takes no arguments")
+        return cls()
 
     def describe(self) -> str:
         return self.kind
@@ -218,12 +330,6 @@ class Flat(SurfaceBase):
     """Flat ground (UWM flat track, a plate)."""
 
     kind: ClassVar[str] = "flat"
-
-    @classmethod
-    def from_spec(cls, args: list[str]) -> Flat:
-        if args:
-            raise ValueError("flat takes no arguments")
-        return cls()
 
 
 @register_surface("drum")
@@ -339,7 +445,17 @@ class Disk(SurfaceBase):
         return cls(float(args[0]), *args[1:])
 
     def center_side(self, camber):
-        """+1 where the track centre is on ``+y``, -1 where on ``-y`` (per camber)."""
+        """Side of the track's centre of curvature, per camber.
+
+        Parameters
+        ----------
+        camber : (...) float [rad]
+
+        Returns
+        -------
+        (...) float
+            +1 where the centre is on ``+y``, -1 where on ``-y``.
+        """
         lean = np.where(np.asarray(camber, float) >= 0, 1.0, -1.0)
         return np.where(np.asarray(self.curving) == "toward", lean, -lean)
 

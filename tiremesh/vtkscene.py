@@ -256,52 +256,59 @@ def lines(polylines):
     return pd
 
 
+def _plane_x0():
+    """The plane ``x = 0`` (normal +x) as a VTK implicit function."""
+    from vtkmodules.vtkCommonDataModel import vtkPlane
+
+    plane = vtkPlane()
+    plane.SetOrigin(0.0, 0.0, 0.0)
+    plane.SetNormal(1.0, 0.0, 0.0)
+    return plane
+
+
 def clip_x(pd, *, keep_negative: bool = True):
     """The part of a surface at ``x <= 0`` (or ``x >= 0``), data interpolated.
 
     Parameters
     ----------
     pd : vtkPolyData
+        A surface in the ground frame [mm].
     keep_negative : bool
+        Keep the rear half (``x <= 0``); False keeps the front half.
 
     Returns
     -------
     vtkPolyData
+        The kept half, cut cells split at ``x = 0``.
     """
-    from vtkmodules.vtkCommonDataModel import vtkPlane
     from vtkmodules.vtkFiltersCore import vtkClipPolyData
 
-    plane = vtkPlane()
-    plane.SetOrigin(0.0, 0.0, 0.0)
-    plane.SetNormal(1.0, 0.0, 0.0)
     clip = vtkClipPolyData()
     clip.SetInputData(pd)
-    clip.SetClipFunction(plane)
+    clip.SetClipFunction(_plane_x0())
     clip.SetInsideOut(keep_negative)
     clip.Update()
     return clip.GetOutput()
 
 
 def slice_x(pd):
-    """The section of a surface by the plane ``x = 0`` (line cells).
+    """The section of a surface by the plane ``x = 0``.
 
     Parameters
     ----------
     pd : vtkPolyData
+        A surface in the ground frame [mm].
 
     Returns
     -------
     vtkPolyData
+        Line cells where the surface crosses ``x = 0``.
     """
-    from vtkmodules.vtkCommonDataModel import vtkPlane
     from vtkmodules.vtkFiltersCore import vtkCutter
 
-    plane = vtkPlane()
-    plane.SetOrigin(0.0, 0.0, 0.0)
-    plane.SetNormal(1.0, 0.0, 0.0)
     cut = vtkCutter()
     cut.SetInputData(pd)
-    cut.SetCutFunction(plane)
+    cut.SetCutFunction(_plane_x0())
     cut.Update()
     return cut.GetOutput()
 
@@ -419,7 +426,21 @@ class Window:
         self.win.SetMultiSamples(0)
 
     def renderer(self, viewport=(0.0, 0.0, 1.0, 1.0), *, layer: int = 0, lights: bool = False):
-        """Add a renderer over ``viewport`` (normalized x0, y0, x1, y1)."""
+        """Add a renderer over ``viewport``.
+
+        Parameters
+        ----------
+        viewport : tuple of 4 float, optional
+            Normalized ``(x0, y0, x1, y1)`` of the window.
+        layer : int, optional
+            0 for the scene, 1 for an overlay drawn over it.
+        lights : bool, optional
+            Use a light kit instead of VTK's automatic headlight.
+
+        Returns
+        -------
+        vtkRenderer
+        """
         from vtkmodules.vtkRenderingCore import vtkLightKit, vtkRenderer
 
         ren = vtkRenderer()
@@ -456,7 +477,15 @@ class Window:
 
     def save_vector(self, path: str, title: str) -> None:
         """Write PDF, SVG or EPS (from the suffix) through GL2PS: text and lines as
-        vectors, shaded surfaces as an embedded raster."""
+        vectors, shaded surfaces as an embedded raster.
+
+        Parameters
+        ----------
+        path : str
+            Output file; its suffix picks the format (other than pdf/svg: EPS).
+        title : str
+            Document title written into the file.
+        """
         import importlib
 
         from vtkmodules.vtkIOExportGL2PS import vtkGL2PSExporter

@@ -39,6 +39,39 @@ QUANTITIES = {
 }
 
 
+def log_design(x_pressure, x_load, y) -> tuple[np.ndarray, list[str], np.ndarray]:
+    """Design of the log-log regression ``log y = a + b log p + c log F``.
+
+    Points with a value <= 0 or not finite in any of the three are left out; a
+    variable whose logs span less than :data:`LOG_SPAN_ATOL` gets no column.
+
+    Parameters
+    ----------
+    x_pressure : (n,) float [bar]
+    x_load : (n,) float [N]
+    y : (n,) float
+
+    Returns
+    -------
+    A : (m, k) float
+        Design matrix: a column of ones, then ``log p`` and/or ``log F``
+        (``k`` = 1 to 3, ``m`` <= n points kept).
+    names : list of str
+        Exponent name of each column after the first (``"b"``, ``"c"``).
+    log_y : (m,) float
+        ``log y`` of the points kept.
+    """
+    p, f, yy = (np.asarray(a, float) for a in (x_pressure, x_load, y))
+    ok = (p > 0) & (f > 0) & (yy > 0) & np.isfinite(p) & np.isfinite(f) & np.isfinite(yy)
+    p, f, yy = np.log(p[ok]), np.log(f[ok]), np.log(yy[ok])
+    cols, names = [np.ones_like(yy)], []
+    for arr, name in ((p, "b"), (f, "c")):
+        if arr.size and np.ptp(arr) > LOG_SPAN_ATOL:
+            cols.append(arr)
+            names.append(name)
+    return np.column_stack(cols), names, yy
+
+
 def power_law_fit(x_pressure, x_load, y) -> dict:
     """Exponents of ``y ~ p^b F^c`` by least squares in logs.
 
@@ -59,18 +92,10 @@ def power_law_fit(x_pressure, x_load, y) -> dict:
         determination in logs), ``n`` (points used); NaN where a variable does not
         vary or there are too few points.
     """
-    p, f, yy = (np.asarray(a, float) for a in (x_pressure, x_load, y))
-    ok = (p > 0) & (f > 0) & (yy > 0) & np.isfinite(p) & np.isfinite(f) & np.isfinite(yy)
-    p, f, yy = np.log(p[ok]), np.log(f[ok]), np.log(yy[ok])
-    cols, names = [np.ones_like(yy)], []
-    for arr, name in ((p, "b"), (f, "c")):
-        if arr.size and np.ptp(arr) > LOG_SPAN_ATOL:
-            cols.append(arr)
-            names.append(name)
+    A, names, yy = log_design(x_pressure, x_load, y)
     out = {"b": math.nan, "c": math.nan, "r2": math.nan, "n": int(yy.size)}
-    if yy.size < len(cols) + (1 if len(cols) > 2 else 0) or len(cols) == 1:
+    if yy.size < A.shape[1] + (1 if A.shape[1] > 2 else 0) or A.shape[1] == 1:
         return out
-    A = np.column_stack(cols)
     coef, *_ = np.linalg.lstsq(A, yy, rcond=None)
     for name, value in zip(names, coef[1:], strict=True):
         out[name] = float(value)

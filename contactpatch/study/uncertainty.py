@@ -18,7 +18,7 @@ import numpy as np
 
 from tiremesh.io import cell_number_or_nan as _f
 
-from .trends import LOG_SPAN_ATOL, QUANTITIES, trend_table
+from .trends import QUANTITIES, log_design, trend_table
 
 
 def fit_with_errors(x_pressure, x_load, y) -> dict:
@@ -39,20 +39,12 @@ def fit_with_errors(x_pressure, x_load, y) -> dict:
         95 % intervals), ``n`` (points), ``dof`` (n minus fitted parameters); NaN
         where a variable does not vary, there are too few points, or ``dof`` is 0.
     """
-    p, f, yy = (np.asarray(a, float) for a in (x_pressure, x_load, y))
-    ok = (p > 0) & (f > 0) & (yy > 0) & np.isfinite(p) & np.isfinite(f) & np.isfinite(yy)
-    p, f, yy = np.log(p[ok]), np.log(f[ok]), np.log(yy[ok])
-    cols, names = [np.ones_like(yy)], []
-    for arr, name in ((p, "b"), (f, "c")):
-        if arr.size and np.ptp(arr) > LOG_SPAN_ATOL:
-            cols.append(arr)
-            names.append(name)
+    A, names, yy = log_design(x_pressure, x_load, y)
     nan = math.nan
     out = {"b": nan, "c": nan, "b_se": nan, "c_se": nan, "b_ci95": nan, "c_ci95": nan}
     out.update(n=int(yy.size), dof=0)
-    if len(cols) == 1 or yy.size < len(cols):
+    if A.shape[1] == 1 or yy.size < A.shape[1]:
         return out
-    A = np.column_stack(cols)
     coef, _, rank, _ = np.linalg.lstsq(A, yy, rcond=None)
     dof = int(yy.size - rank)
     out["dof"] = dof

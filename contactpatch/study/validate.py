@@ -13,7 +13,7 @@ Modules
 -------
 ``validate_data``     the measurements (verbatim CSV) and their reader
 ``validate_points``   rows -> points with a status (compared, duplicate, summary...)
-``validate_relax``    decay length from the taut beam (equations 5-28 to 5-33)
+``validate_relax``    decay length from the taut beam (equations 5-28, 5-29, 5-30, 5-31, 5-32, 5-33)
 ``validate_model``    the model's counterpart of each quantity
 ``validate_fit``      the fitted modulus, leave-one-tire-out, the decay-length variants
 ``validate_stats``    ratio statistics and trend signs

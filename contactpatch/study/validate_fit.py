@@ -68,12 +68,30 @@ class RelaxationFit:
 
     def modulus_for(self, tire_id: int) -> float:
         """E for a tire: fitted without it if it is in the fit, else fitted to all;
-        0 (the taut string) where no other tire was there to fit E to."""
+        0 (the taut string) where no other tire was there to fit E to.
+
+        Parameters
+        ----------
+        tire_id : int
+
+        Returns
+        -------
+        float [N/mm^2]
+        """
         e = self.loto_modulus.get(tire_id, self.modulus)
         return 0.0 if math.isnan(e) else e
 
     def relaxation_for(self, tire_id: int) -> BeamRelaxation:
-        """The beam for a tire (:meth:`modulus_for`)."""
+        """The beam for a tire (:meth:`modulus_for`).
+
+        Parameters
+        ----------
+        tire_id : int
+
+        Returns
+        -------
+        BeamRelaxation
+        """
         return BeamRelaxation(self.modulus_for(tire_id))
 
 
@@ -180,14 +198,14 @@ def variants(runner: ModelRunner, points: list[Point], fit: RelaxationFit) -> li
         ),
         ("no deflection beyond the patch", "i = 0", 0, lambda c, t: 0.0, "the plain patch"),
         (
-            "taut string, T by Eq. 5-32",
+            "taut string, T = tiremesh.beam.tension_area (equation 5-32)",
             "EI = 0, T = p pi r^2",
             0,
             lambda c, t: rel(c, BeamRelaxation(0.0)),
             "",
         ),
         (
-            "taut string, T by Eq. 5-33",
+            "taut string, T = tiremesh.beam.tension_hoop (equation 5-33)",
             "EI = 0, T = p (R + 2 r)",
             0,
             lambda c, t: rel(c, BeamRelaxation(0.0, tension="hoop")),

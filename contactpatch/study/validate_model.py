@@ -81,7 +81,17 @@ class ModelRunner:
         self._cache: dict = {}
 
     def tire(self, cond: Condition) -> tm.TireGeometry:
-        """The tire from the row's arc length and rim width (Table 3-2, Table 5-2)."""
+        """The tire from the row's arc length and rim width (Table 3-2, Table 5-2).
+
+        Parameters
+        ----------
+        cond : Condition
+            One measured condition (tire, pressure, load, surface).
+
+        Returns
+        -------
+        TireGeometry
+        """
         key = ("tire", cond.arc_length, cond.rim_width, cond.tire)
         if key not in self._cache:
             self._cache[key] = tm.TireGeometry.from_arc_length(
@@ -90,12 +100,38 @@ class ModelRunner:
         return self._cache[key]
 
     def rate(self, cond: Condition, relax: BeamRelaxation | None = None) -> float:
-        """Relaxation rate [1/mm] of the condition's tire at its pressure."""
+        """Relaxation rate of the condition's tire at its pressure.
+
+        Parameters
+        ----------
+        cond : Condition
+            One measured condition (tire, pressure, load, surface).
+        relax : BeamRelaxation, optional
+            Decay-length model; default: the runner's for this tire.
+
+        Returns
+        -------
+        float [1/mm]
+        """
         relax = relax or self.relaxation(cond.tire_id)
         return relax.rate(self.tire(cond), cond.pressure_bar * MPA_PER_BAR)
 
     def case(self, cond: Condition, kind: str = "", rate: float = 0.0) -> tm.LoadCase:
-        """The load case of ``cond`` (``kind`` in :data:`KINDS` or '' for the patch)."""
+        """The load case of ``cond``.
+
+        Parameters
+        ----------
+        cond : Condition
+            One measured condition (tire, pressure, load, surface).
+        kind : str, optional
+            A key of :data:`KINDS` (the displacement applied), or '' for the patch.
+        rate : float [1/mm], optional
+            Relaxation rate.
+
+        Returns
+        -------
+        tiremesh.LoadCase
+        """
         return tm.LoadCase.from_units(
             self.tire(cond),
             pressure_bar=cond.pressure_bar,
@@ -110,7 +146,21 @@ class ModelRunner:
 
         The first solve of a condition and kind searches the deflection that carries
         the load; solves at other rates reuse that deflection (the patch does not
-        depend on the rate, and the load search is most of the cost)."""
+        depend on the rate, and the load search is most of the cost).
+
+        Parameters
+        ----------
+        cond : Condition
+            One measured condition (tire, pressure, load, surface).
+        kind : str
+            A key of :data:`KINDS`.
+        rate : float [1/mm], optional
+            Relaxation rate; default :meth:`rate`.
+
+        Returns
+        -------
+        tiremesh.LateralResult
+        """
         rate = self.rate(cond) if rate is None else float(rate)
         key = ("lateral", cond, kind, rate)
         if key not in self._cache:
@@ -124,14 +174,35 @@ class ModelRunner:
         return self._cache[key]
 
     def patch(self, cond: Condition):
-        """The patch without lateral displacement (:func:`tiremesh.solve`)."""
+        """The patch without lateral displacement (:func:`tiremesh.solve`).
+
+        Parameters
+        ----------
+        cond : Condition
+            One measured condition (tire, pressure, load, surface).
+
+        Returns
+        -------
+        tiremesh.ContactPatch
+        """
         key = ("patch", cond)
         if key not in self._cache:
             self._cache[key] = tm.solve(self.case(cond))
         return self._cache[key]
 
     def ellipse(self, cond: Condition):
-        """Figure 5-15's ellipse of the patch (:func:`contactpatch.appendix_ellipse`)."""
+        """Figure 5-15's ellipse of the patch (:func:`contactpatch.appendix_ellipse`).
+
+        Parameters
+        ----------
+        cond : Condition
+            One measured condition (tire, pressure, load, surface).
+
+        Returns
+        -------
+        EllipseFit
+            Raises :class:`ContactPatchError` when the fit fails.
+        """
         key = ("ellipse", cond)
         if key not in self._cache:
             e = appendix_ellipse(self.patch(cond))
@@ -141,8 +212,22 @@ class ModelRunner:
         return self._cache[key]
 
     def value(self, quantity: str, cond: Condition, rate: float | None = None) -> float:
-        """The model's value of ``quantity`` at ``cond`` (unit of
-        :data:`.validate_points.QUANTITIES`)."""
+        """The model's value of ``quantity`` at ``cond``.
+
+        Parameters
+        ----------
+        quantity : str
+            A key of :data:`EVALUATORS`.
+        cond : Condition
+            One measured condition.
+        rate : float [1/mm], optional
+            Relaxation rate; default :meth:`rate`.
+
+        Returns
+        -------
+        float
+            In the unit of :data:`.validate_points.QUANTITIES`.
+        """
         return EVALUATORS[quantity](self, cond, rate)
 
 

@@ -69,7 +69,7 @@ def free_section_stiffness(tire: tm.TireGeometry, pressure: float) -> float:
     h = 1e-4 * tire.tire_radius
     s = tm.solve_sections(tire.tire_radius, tire.rim_width, 0.0, np.array([h, -h]))
     d = s.radius1 - s.radius2
-    return float(pressure * (d[0] - d[1]) / (2.0 * h))  # Eq. 5-25
+    return float(pressure * (d[0] - d[1]) / (2.0 * h))  # d/dh of the lateral force, equation 5-25
 
 
 def tension(tire: tm.TireGeometry, pressure: float, kind: str = "area") -> float:
@@ -89,7 +89,10 @@ def tension(tire: tm.TireGeometry, pressure: float, kind: str = "area") -> float
         return float(tension_area(pressure, tire.tire_radius))
     if kind == "hoop":
         return float(tension_hoop(pressure, tire.wheel_radius, tire.tire_radius))
-    raise ValueError(f"tension kind {kind!r}: use 'area' (Eq. 5-32) or 'hoop' (Eq. 5-33)")
+    raise ValueError(
+        f"tension kind {kind!r}: use 'area' (tiremesh.beam.tension_area) "
+        "or 'hoop' (tiremesh.beam.tension_hoop)"
+    )
 
 
 def decay_length(k, T, EI):
@@ -177,25 +180,62 @@ class BeamRelaxation:
     tension: str = "area"
 
     def parts(self, tire: tm.TireGeometry, pressure: float) -> tuple[float, float, float]:
-        """``(k, T, EI)`` for the tire at ``pressure`` [N/mm^2, N, N mm^2]."""
-        EI = self.modulus * float(bending_inertia(tire.tire_radius, self.thickness))  # Eq. 5-31
+        """Foundation stiffness, tension and bending stiffness of the beam.
+
+        Parameters
+        ----------
+        tire : TireGeometry
+        pressure : float [N/mm^2]
+
+        Returns
+        -------
+        k, T, EI : float [N/mm^2, N, N mm^2]
+        """
+        EI = self.modulus * float(bending_inertia(tire.tire_radius, self.thickness))
         return free_section_stiffness(tire, pressure), tension(tire, pressure, self.tension), EI
 
     def length(self, tire: tm.TireGeometry, pressure: float) -> float:
-        """Decay length [mm] (:func:`decay_length`)."""
+        """Decay length of the deflection beyond the patch (:func:`decay_length`).
+
+        Parameters
+        ----------
+        tire : TireGeometry
+        pressure : float [N/mm^2]
+
+        Returns
+        -------
+        float [mm]
+        """
         return float(decay_length(*self.parts(tire, pressure)))
 
     def rate(self, tire: tm.TireGeometry, pressure: float) -> float:
-        """Relaxation rate per mm for :class:`tiremesh.Relaxation` (all four sides)."""
+        """Relaxation rate for :class:`tiremesh.Relaxation` (all four sides).
+
+        Parameters
+        ----------
+        tire : TireGeometry
+        pressure : float [N/mm^2]
+
+        Returns
+        -------
+        float [1/mm]
+        """
         return rate_of(self.length(tire, pressure))
 
     def describe(self) -> str:
-        """One line for tables."""
+        """One line for tables.
+
+        Returns
+        -------
+        str
+            String or beam, E and t, and the tension's equation.
+        """
         eq = "5-32" if self.tension == "area" else "5-33"
         if self.modulus == 0:
-            return f"taut string (EI = 0), T by Eq. {eq}"
+            return f"taut string (EI = 0), T by equation {eq}"
         return (
-            f"taut beam, E = {self.modulus:.4g} N/mm^2, t = {self.thickness:g} mm, T by Eq. {eq}"
+            f"taut beam, E = {self.modulus:.4g} N/mm^2, t = {self.thickness:g} mm, "
+            f"T by equation {eq}"
         )
 
 
@@ -223,12 +263,34 @@ class FitCase:
     measured: float
 
     def model(self, modulus) -> np.ndarray:
-        """Model value(s) at casing modulus/moduli ``modulus`` (interpolated)."""
+        """Model value(s) at casing modulus/moduli ``modulus`` (interpolated).
+
+        Parameters
+        ----------
+        modulus : (...) float [N/mm^2]
+            Casing Young's modulus.
+
+        Returns
+        -------
+        (...) float
+            The model quantity, in the unit of ``measured``.
+        """
         ell = decay_length(self.k, self.T, np.asarray(modulus, float) * self.I)
         return self.at_length(ell)
 
     def at_length(self, ell) -> np.ndarray:
-        """Model value(s) at decay length(s) ``ell`` [mm] (interpolated in log-log)."""
+        """Model value(s) at decay length(s) ``ell`` (interpolated in log-log, clipped
+        to the tabulated lengths).
+
+        Parameters
+        ----------
+        ell : (...) float [mm]
+
+        Returns
+        -------
+        (...) float
+            The model quantity, in the unit of ``measured``.
+        """
         x = np.log(np.clip(np.asarray(ell, float), self.lengths[0], self.lengths[-1]))
         return np.exp(np.interp(x, np.log(self.lengths), np.log(self.values)))
 

@@ -13,25 +13,15 @@ from numpy.testing import assert_allclose
 
 import contactpatch as cp
 import tiremesh as tm
+from tests.tiremesh.mesh_cases import CASES, T37, solve_case
 from tiremesh.export import patch_polydata
 from tiremesh.mesh import build_mesh, support_mesh
 from tiremesh.surface import curvature_drop
 
-T37 = tm.TireGeometry.from_size(37, 18.7)
-CASES = {
-    "flat": dict(),
-    "flat-camber30": dict(camber=math.radians(30)),
-    "drum": dict(surface=tm.Drum(2500)),
-    "drum-camber30": dict(surface=tm.Drum(2500), camber=math.radians(30)),
-    "disk-toward-camber30": dict(surface=tm.Disk(3000, "toward"), camber=math.radians(30)),
-    "disk-away": dict(surface=tm.Disk(3000, "away")),
-    "lateral-slip": dict(lateral=0.5, slip=math.radians(1)),
-}
-
 
 @pytest.fixture(scope="module", params=list(CASES))
 def case(request):
-    patch = tm.solve(T37, load=400.0, pressure=0.4, **CASES[request.param])
+    patch = solve_case(request.param)
     return request.param, patch, build_mesh(patch)
 
 

@@ -98,6 +98,54 @@ def test_public_docstrings_numpy_style(name, obj):
     assert "Returns\n-------" in doc, f"{name}: no Returns section"
 
 
+# Modules whose public methods still lack Parameters/Returns (issue 9, item 7): being
+# edited in parallel (tiremesh.case, the solver's arrays/api) or not yet done (the
+# study's plotting and validation helpers). Remove a module here once it is complete.
+METHOD_DOCS_PENDING = (
+    "tiremesh.case",
+    "tiremesh.solver.api",
+    "tiremesh.solver.arrays",
+    "contactpatch.study.svgplot",
+    "contactpatch.study.validate",
+)
+
+
+def _public_methods():
+    """(name, bound attribute) of every public method of every public class of
+    tiremesh and contactpatch (docstrings inherited from a base class count)."""
+    import tiremesh
+
+    names = sorted(
+        m.name
+        for pkg in (tiremesh, cp)
+        for m in pkgutil.walk_packages(pkg.__path__, prefix=pkg.__name__ + ".")
+        if not m.name.endswith("__main__") and m.name not in METHOD_DOCS_PENDING
+    )
+    for modname in names:
+        mod = importlib.import_module(modname)
+        for cname, cls in vars(mod).items():
+            if cname.startswith("_") or not inspect.isclass(cls) or cls.__module__ != modname:
+                continue
+            if issubclass(cls, Exception):
+                continue
+            for name, raw in vars(cls).items():
+                if name.startswith("_"):
+                    continue
+                if inspect.isfunction(raw) or isinstance(raw, staticmethod | classmethod):
+                    yield f"{modname}.{cname}.{name}", getattr(cls, name)
+
+
+@pytest.mark.parametrize(("name", "meth"), list(_public_methods()), ids=lambda x: str(x))
+def test_public_method_docstrings_numpy_style(name, meth):
+    doc = inspect.getdoc(meth) or ""
+    assert doc, f"{name}: no docstring"
+    sig = inspect.signature(meth)
+    params = [p for p in sig.parameters if p not in ("self", "cls")]
+    assert not params or "Parameters\n----------" in doc, f"{name}: no Parameters section"
+    if sig.return_annotation not in (None, "None"):
+        assert "Returns\n-------" in doc or "Yields\n------" in doc, f"{name}: no Returns"
+
+
 def test_no_long_functions():
     for path in PACKAGE.rglob("*.py"):
         for node in ast.walk(ast.parse(path.read_text())):

@@ -1,10 +1,10 @@
 """Independent scalar reference for Rotta's cross section (section 5.1).
 
-Written straight from Eq. 5-7 to 5-12 and the dissertation's camber-delta
-iteration, one ``scipy.optimize.brentq`` per section and side, in the patch-edge
-variable ``e`` (as the appendix's ``fzero``), with the swept angle taken from the
-bead's position relative to the bulge centre (atan2, valid on every branch). It
-shares no code with :mod:`tiremesh.section`.
+Written straight from equations 5-7, 5-8, 5-9, 5-10, 5-11 and 5-12 and the
+dissertation's camber-delta iteration, one ``scipy.optimize.brentq`` per section and
+side, in the patch-edge variable ``e`` (as the appendix's ``fzero``), with the swept
+angle taken from the bead's position relative to the bulge centre (atan2, valid on
+every branch). It shares no code with :mod:`tiremesh.section`.
 """
 
 from __future__ import annotations

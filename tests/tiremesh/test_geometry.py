@@ -1,4 +1,4 @@
-"""Tire geometry: Eq. 5-1 to 5-6, Tables 5-1, 5-2 and 3-2."""
+"""Tire geometry: equations 5-1, 5-2, 5-3, 5-4, 5-5, 5-6; Tables 5-1, 5-2 and 3-2."""
 
 import math
 

@@ -17,7 +17,13 @@ from pathlib import Path
 import pytest
 
 import tiremesh as tm
-from tiremesh.parallel import SchedulerError, check_scheduler, connect_scheduler, parallel_map
+from tiremesh.parallel import (
+    SchedulerError,
+    check_scheduler,
+    connect_scheduler,
+    parallel_map,
+    watch_parent,
+)
 
 ROOT = Path(__file__).resolve().parents[2]
 
@@ -215,3 +221,11 @@ def test_parallel_map_workers_die_with_their_parent(tmp_path):
         for p in pids:  # our own workers, should the test fail
             if _state(p) not in ("", "Z"):
                 os.kill(p, signal.SIGKILL)
+
+
+def test_watch_parent_needs_no_watcher_for_itself_or_twice():
+    # in-process path: the "parent" is this process; no thread, no exit
+    assert watch_parent(os.getpid()) is False
+    parent = os.getppid()  # the pytest runner's parent: alive for the whole run
+    watch_parent(parent, interval=60.0)
+    assert watch_parent(parent) is False  # at most one watcher per parent

@@ -203,7 +203,7 @@ def test_cambered_patch_is_nearly_flat():
     )
     assert 0 < p.flatness < 0.2
     assert tm.solve_patch(T37, 5.0, pressure=4 * BAR).flatness < 1e-9
-    # on a drum the patch follows the drum surface (Eq. 5-18 to 5-21) to ~0.1 mm
+    # on a drum the patch follows the drum surface (equations 5-18, 5-19, 5-20, 5-21) to ~0.1 mm
     assert tm.solve_patch(T37, 5.0, pressure=4 * BAR, surface=tm.Drum(2500)).flatness < 0.1
 
 

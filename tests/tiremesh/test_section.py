@@ -1,4 +1,5 @@
-"""Rotta cross section: section 5.1, Tables 5-3 and 5-4, Eq. 5-7 to 5-14."""
+"""Rotta cross section: section 5.1, Tables 5-3 and 5-4, equations 5-7, 5-8, 5-9,
+5-10, 5-11, 5-12, 5-13 and 5-14."""
 
 import math
 

@@ -15,6 +15,7 @@ import numpy as np
 
 from .._tol import tol
 from ..case import CaseTable, LoadCase
+from ..geometry import arc_length, rim_angle
 from ..section import bead_positions
 from ..surface import Surface
 
@@ -80,7 +81,7 @@ class CaseArrays:
         cg, sg = np.cos(self.gamma), np.sin(self.gamma)
         xb1, zb1, xb2, zb2 = bead_positions(self.r0, self.w, self.gamma)
         limit = (np.minimum(zb1, zb2) + self.r0) / cg
-        half_s0 = self.r0 * (np.pi - np.arcsin(0.5 * self.w / self.r0))
+        half_s0 = 0.5 * arc_length(self.r0, rim_angle(self.w, self.r0))
         delta = self.r0 * self.gamma
         c1_room = half_s0 + delta + xb1 - self.lateral  # c1 > 0 -> dv tan g < c1_room
         c2_room = half_s0 - delta - xb2 + self.lateral  # c2 > 0 -> dv tan g > -c2_room

@@ -108,13 +108,24 @@ class ContactPatch:
         return self.sections.vertical_force_density(self.pressure)
 
     def arrays(self) -> CaseArrays:
-        """This case as (1, 1) solver arrays (slip anchor included in ``lateral``)."""
+        """This case as (1, 1) solver arrays (slip anchor included in ``lateral``).
+
+        Returns
+        -------
+        CaseArrays
+            One case, one surface; ``lateral`` [mm] includes ``slip_offset``.
+        """
         cs = single_case_arrays(self.case)
         return cs.with_lateral(cs.lateral + self.slip_offset)
 
     def sections_at(self, phi) -> tuple[SectionSolution, np.ndarray]:
         """Rotta sections of this load case at any angles ``phi`` (n,) [rad], inside or
         beyond the patch (beyond it the edges cross: negative width).
+
+        Parameters
+        ----------
+        phi : (n,) float [rad]
+            Section angles from bottom dead centre (a scalar is one section).
 
         Returns
         -------
@@ -128,8 +139,21 @@ class ContactPatch:
         return _row(sol, 0, phi.shape), d.x[0]
 
     def to_ground(self, xs, zs, phi):
-        """Section-frame points -> ground frame ``(x, y, z)`` [mm] (z = 0 on the surface
-        under the central section), see :func:`section_to_ground`."""
+        """Section-frame points -> ground frame (z = 0 on the surface under the central
+        section), see :func:`section_to_ground`.
+
+        Parameters
+        ----------
+        xs, zs : (...) float [mm]
+            Points in the section frame of :mod:`tiremesh.section`.
+        phi : (...) float [rad]
+            Section angle of each point.
+
+        Returns
+        -------
+        x, y, z : (...) float [mm]
+            Forward, lateral (toward side 2), up.
+        """
         return section_to_ground(
             xs,
             zs,
@@ -190,7 +214,16 @@ class ContactPatch:
         return _pandas().DataFrame(self.section_table())
 
     def summary(self) -> dict[str, float | str]:
-        """Scalar results with unit-carrying names (for tables, JSON, CSV)."""
+        """Scalar results with unit-carrying names (for tables, JSON, CSV).
+
+        Returns
+        -------
+        dict
+            The tire (:meth:`TireGeometry.describe`), surface, pressure_bar,
+            camber_deg, slip_deg, lateral_mm, deflection_mm, sinkage_pct, length_mm,
+            width_mm, area_mm2, vertical_force_N, lateral_force_N,
+            net_force_orientation_deg, disk_offset_mm, flatness_mm.
+        """
         return {
             **self.tire.describe(),
             "surface": self.surface.describe(),

@@ -17,6 +17,7 @@ from PIL import Image
 from contactpatch import build_report, pair_prints
 from contactpatch.study import figures as F
 from contactpatch.study import report as R
+from contactpatch.study.samples import synthetic_print_rows
 from contactpatch.study.sheets import locate_scans, outline_svg, qa_overlay, set_aside, sheets_of
 from contactpatch.study.style import tire_colours
 from contactpatch.study.svgplot import linear_ticks, log_ticks, nice_limits, tick_label
@@ -186,53 +187,8 @@ def test_worker_returns_values_and_raises_errors():
 # --- many prints ---------------------------------------------------------------------
 
 
-def synthetic_paired(n: int, seed: int = 0) -> list[dict]:
-    """``n`` print rows like a batch's, on 4 tires (hull: an ellipse, no scans)."""
-    rng = np.random.default_rng(seed)
-    tires = [
-        (6, "Maxxis Radial Prototype 22-622"),
-        (8, "Schwalbe Big Apple 55-622"),
-        (10, "Schwalbe Marathon Plus 37-622"),
-        (5, "Continental Grand Prix 23-622"),
-    ]
-    rows = []
-    for i in range(n):
-        tid, name = tires[i % 4]
-        p, load = rng.choice([4.0, 5.5, 6.9]), rng.choice([304.0, 400.0, 500.0])
-        L, W = 80 * (load / 400) ** 0.5 * (5 / p) ** 0.5, 11 * (load / 400) ** 0.5
-        L, W = L * rng.normal(1, 0.03), W * rng.normal(1, 0.03)
-        t = np.linspace(0, 2 * np.pi, 49)
-        ring = ", ".join(f"{L / 2 * math.cos(a):.3f} {W / 2 * math.sin(a):.3f}" for a in t)
-        area = math.pi * L * W / 4
-        rows.append(
-            {
-                "file": f"sheet{i // 2:04d}.png",
-                "print": i % 2,
-                "status": "ok",
-                "tire": name,
-                "tire_id": tid,
-                "pressure_bar": p,
-                "load_N": load,
-                "surface": "drum" if i % 2 == 0 else "plate",
-                "length_mm": L,
-                "width_mm": W,
-                "hull_area_mm2": 1.02 * area,
-                "ellipse_length_mm": L,
-                "ellipse_width_mm": W,
-                "ellipse_area_mm2": area,
-                "net_to_gross": 0.8,
-                "angle_deg": 0.0,
-                "mm_per_px": 0.17,
-                "load_per_hull_area_N_mm2": load / (1.02 * area),
-                "load_per_hull_area_pct": 100.0,
-                "hull_wkt": f"POLYGON (({ring}))",
-            }
-        )
-    return rows
-
-
 def test_a_report_of_200_prints_aggregates_and_folds(tmp_path):
-    rows = synthetic_paired(200)
+    rows = synthetic_print_rows(200)
     index = build_report(rows, tmp_path, renders=False, validation=False)
     text = index.read_text()
     assert text.count("<tr>") >= 200 and 'data-filter="paired-table"' in text
