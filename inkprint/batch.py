@@ -33,7 +33,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from tiremesh.io import cell_number, table_columns, write_table
-from tiremesh.parallel import parallel_map
+from tiremesh.parallel import DEFAULT_SCHEDULER_TIMEOUT, check_scheduler, parallel_map
 from tiremesh.units import MPA_PER_BAR
 
 from .errors import InkPrintError, InvalidInput, OutputLocked
@@ -587,7 +587,15 @@ def _progress(total: int, enabled: bool):
 
 
 def _analyze_jobs(
-    plan: ResumePlan, out, *, options: Options, workers, scheduler, progress, checkpoint_seconds
+    plan: ResumePlan,
+    out,
+    *,
+    options: Options,
+    workers,
+    scheduler,
+    scheduler_timeout,
+    progress,
+    checkpoint_seconds,
 ) -> list[dict]:
     """The plan's rows plus those of its jobs, checkpointing ``out`` as they come."""
     rows = list(plan.rows)
@@ -598,7 +606,12 @@ def _analyze_jobs(
         kwargs["watch"] = os.getpid()  # local workers exit when this process dies
     try:
         for _, new in parallel_map(
-            process_file, plan.todo, workers=workers, scheduler=scheduler, kwargs=kwargs
+            process_file,
+            plan.todo,
+            workers=workers,
+            scheduler=scheduler,
+            scheduler_timeout=scheduler_timeout,
+            kwargs=kwargs,
         ):
             rows.extend(new)
             bar.update(1)
@@ -618,6 +631,7 @@ def run_batch(
     options: Options | AnalysisOptions | None = None,
     workers: int | None = None,
     scheduler: str | None = None,
+    scheduler_timeout: float = DEFAULT_SCHEDULER_TIMEOUT,
     resume: bool = True,
     retry_errors: bool = False,
     progress: bool = True,
@@ -640,6 +654,9 @@ def run_batch(
         Local worker processes (default: all cores; 1 = in this process).
     scheduler : str, optional
         Address of a dask.distributed scheduler; the work is sent there.
+    scheduler_timeout : float [s]
+        How long to wait for the scheduler to accept and answer; it is checked
+        before any work (:func:`tiremesh.parallel.check_scheduler`).
     resume : bool
         Keep the rows of ``out`` whose run key still holds (see the module's notes).
     retry_errors : bool
@@ -663,11 +680,16 @@ def run_batch(
         Bad options, ``out`` not a .csv, no such source or manifest.
     OSError
         An output cannot be written (the message names the path).
+    tiremesh.parallel.SchedulerError
+        The scheduler cannot be reached within ``scheduler_timeout`` or is not a Dask
+        scheduler (the message names the address).
     """
     opts = _batch_options(options)
     out = _check_out(out)
     if workers is not None and workers < 1:
         raise InvalidInput("workers", workers, ">= 1")
+    if isinstance(scheduler, str) and scheduler.strip():
+        check_scheduler(scheduler, timeout=scheduler_timeout)  # before any work
     jobs = collect_jobs(src, manifest, allow_outside=allow_outside)
     with _Lock(out):
         plan = plan_resume(jobs, out, options=opts, resume=resume, retry_errors=retry_errors)
@@ -679,6 +701,7 @@ def run_batch(
             options=opts,
             workers=workers,
             scheduler=scheduler,
+            scheduler_timeout=scheduler_timeout,
             progress=progress,
             checkpoint_seconds=checkpoint_seconds,
         )

@@ -1,0 +1,81 @@
+"""Issue 12, the gaps closed last: ``--scheduler-timeout`` and top-level ``-q`` / ``-v``
+on ``inkprint``, batch tables in the format of their extension, the shortest name of
+a file reached through symlinks."""
+
+import socket
+
+import pytest
+
+from inkprint.cli import main
+from tests.inkprint.test_safety import small_sheet
+
+
+def closed_loopback_port() -> int:
+    """A 127.0.0.1 port nothing listens on (bound, then closed)."""
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        return s.getsockname()[1]
+
+
+@pytest.fixture
+def one_scan(tmp_path):
+    d = tmp_path / "scans"
+    d.mkdir()
+    small_sheet(d / "a.png")
+    return d
+
+
+def test_batch_scheduler_timeout_refused_loopback_exit_2(one_scan, tmp_path, capsys):
+    address = f"tcp://127.0.0.1:{closed_loopback_port()}"
+    out = tmp_path / "r.csv"
+    args = ["batch", str(one_scan), "-o", str(out), "--scheduler", address]
+    code = main([*args, "--scheduler-timeout", "3", "--no-band"])
+    err = capsys.readouterr().err
+    assert code == 2
+    assert address in err and "refused" in err
+    assert "Traceback" not in err
+    assert not out.exists()  # refused before any work
+
+
+def test_batch_scheduler_timeout_reaches_the_scheduler_check(one_scan, tmp_path, monkeypatch):
+    import inkprint.batch as batch
+
+    seen = {}
+
+    def fake_check(address, *, timeout):
+        seen["address"], seen["timeout"] = address, timeout
+        raise batch.InvalidInput("scheduler", address, "stop here")
+
+    monkeypatch.setattr(batch, "check_scheduler", fake_check)
+    args = ["batch", str(one_scan), "-o", str(tmp_path / "r.csv"), "--no-band"]
+    assert main([*args, "--scheduler", "tcp://127.0.0.1:1", "--scheduler-timeout", "2.5"]) == 2
+    assert seen == {"address": "tcp://127.0.0.1:1", "timeout": 2.5}
+
+
+@pytest.mark.parametrize("value", ["0", "-1", "inf", "soon"])
+def test_batch_scheduler_timeout_bad_value_usage_error(one_scan, tmp_path, value, capsys):
+    with pytest.raises(SystemExit) as e:
+        main(["batch", str(one_scan), "-o", str(tmp_path / "r.csv"), "--scheduler-timeout", value])
+    assert e.value.code == 2
+    err = capsys.readouterr().err
+    assert "--scheduler-timeout" in err and "seconds > 0" in err
+
+
+def test_main_quiet_and_verbose_at_top_level(one_scan, tmp_path, capsys):
+    out = tmp_path / "r.csv"
+    assert main(["-q", "batch", str(one_scan), "-o", str(out), "--workers", "1", "--no-band"]) == 0
+    captured = capsys.readouterr()
+    assert captured.out == "" and captured.err == ""
+    out2 = tmp_path / "r2.csv"
+    assert main(["batch", str(one_scan), "-o", str(out2), "--workers", "1", "--no-band"]) == 0
+    assert "wrote" in capsys.readouterr().out  # without -q the summary is printed
+    scan = str(one_scan / "a.png")
+    assert main(["-v", "analyze", scan, "--no-band"]) == 0
+    assert "a.png" in capsys.readouterr().out
+    assert main(["-q", "synth", "-o", str(tmp_path / "syn"), "--mixed", "2"]) == 0
+    assert capsys.readouterr().out == ""
+
+
+def test_main_quiet_and_verbose_together_refused(one_scan, capsys):
+    assert main(["-q", "analyze", str(one_scan / "a.png"), "-v"]) == 2
+    assert "-q and -v" in capsys.readouterr().err
