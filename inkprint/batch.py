@@ -15,8 +15,11 @@
 * One batch at a time per output: an exclusive lock (``<out>.lock``, released when
   the process ends, even killed); a second batch on it refuses with
   :class:`inkprint.OutputLocked`.
-* Outputs (CSV, and the same rows as JSON) are written atomically and checkpointed
-  while the batch runs; the CSV is spreadsheet-safe (:mod:`inkprint.csvsafe`).
+* Outputs are written atomically and checkpointed while the batch runs, in the
+  format of the output's suffix: ``.csv`` (spreadsheet-safe, :mod:`inkprint.csvsafe`,
+  with the same rows as a ``.json`` twin), ``.json`` or ``.parquet`` (typed columns,
+  pyarrow); an unknown suffix is refused before any work. Resume reads the output
+  back in its own format, so every format resumes.
 * What is read: see :mod:`inkprint.jobs` (regular files only, links resolved once,
   manifest paths confined to the manifest's folder).
 """
@@ -25,6 +28,7 @@ from __future__ import annotations
 
 import dataclasses
 import hashlib
+import importlib.util
 import json
 import os
 import threading
@@ -32,7 +36,14 @@ import time
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from tiremesh.io import cell_number, table_columns, write_table
+from tiremesh.io import (
+    TABLE_FORMATS,
+    MissingDependency,
+    cell_number,
+    read_table,
+    table_columns,
+    write_table,
+)
 from tiremesh.parallel import DEFAULT_SCHEDULER_TIMEOUT, check_scheduler, parallel_map
 from tiremesh.units import MPA_PER_BAR
 
@@ -40,6 +51,8 @@ from .errors import InkPrintError, InvalidInput, OutputLocked
 from .jobs import SCAN_SUFFIXES, Job, collect_jobs, read_manifest
 from .options import AnalysisOptions
 
+OUTPUT_FORMATS = TABLE_FORMATS
+"""Suffixes of a batch table: .csv (with a .json twin), .json, .parquet."""
 FIRST = ["file", "page", "print", "status", "flags", "error", "sha256"]
 #: bump when the rows' meaning changes: older rows are then redone on resume
 ROW_SCHEMA = 2
@@ -400,31 +413,40 @@ def _sort_key(r):
 
 
 def _check_out(out) -> Path:
+    """``out`` as a Path, its format known and writable (pyarrow for Parquet)."""
     out = Path(out)
-    if out.suffix.lower() != ".csv":
-        raise InvalidInput("out", str(out), "a .csv path (a .json twin is written beside it)")
+    suffix = out.suffix.lower()
+    if suffix not in OUTPUT_FORMATS:
+        raise InvalidInput(
+            "out", str(out), "a .csv (with a .json twin), .json or .parquet path (pyarrow)"
+        )
+    if suffix == ".parquet" and importlib.util.find_spec("pyarrow") is None:
+        raise MissingDependency("pyarrow", f"writing {out} (Parquet)", "parquet")
     return out
 
 
 def write_outputs(rows: list[dict], out) -> list[Path]:
-    """Write the rows to ``out`` (spreadsheet-safe CSV) and its .json twin, atomically.
+    """Write the rows to ``out`` in the format of its suffix, atomically.
 
     Parameters
     ----------
     rows : list of dict
     out : str or PathLike
-        A .csv path.
+        ``.csv`` (spreadsheet-safe, :mod:`inkprint.csvsafe`; a ``.json`` twin is
+        written beside it), ``.json`` or ``.parquet`` (typed columns, needs pyarrow).
 
     Returns
     -------
     list of Path
-        The CSV and the JSON.
+        The table first (then the CSV's JSON twin).
     """
     from .csvsafe import write_csv
 
     out = _check_out(out)
     rows = sorted(rows, key=_sort_key)
     cols = table_columns(rows, first=FIRST)
+    if out.suffix.lower() != ".csv":
+        return [write_table(rows, out, columns=cols)]
     return [
         write_csv(rows, out, columns=cols, lineterminator="\n"),
         write_table(rows, out.with_suffix(".json"), columns=cols),
@@ -457,7 +479,8 @@ def _previous(out, resume: bool, retry_errors: bool) -> list[dict]:
 
     if not (resume and Path(out).is_file()):
         return []
-    kept = read_csv(out)
+    # resume reads the output back in its own format (CSV cells unescaped)
+    kept = read_csv(out) if Path(out).suffix.lower() == ".csv" else read_table(out)
     return [r for r in kept if r.get("status") != "error"] if retry_errors else kept
 
 
@@ -645,7 +668,9 @@ def run_batch(
     src : str or PathLike, optional
         Folder, glob pattern or scan file.
     out : str or PathLike
-        Path of the CSV (a .json twin is written beside it).
+        The table, its format by suffix: ``.csv`` (a ``.json`` twin is written
+        beside it), ``.json`` or ``.parquet`` (needs pyarrow). Resume reads it back
+        in the same format.
     manifest : str or PathLike, optional
         Manifest CSV (see :mod:`inkprint.jobs`).
     options : Options or AnalysisOptions, optional
@@ -677,7 +702,10 @@ def run_batch(
     OutputLocked
         Another batch is writing ``out``.
     InvalidInput
-        Bad options, ``out`` not a .csv, no such source or manifest.
+        Bad options, ``out`` not a .csv, .json or .parquet path, no such source or
+        manifest (all checked before any work).
+    tiremesh.io.MissingDependency
+        A ``.parquet`` output without pyarrow installed.
     OSError
         An output cannot be written (the message names the path).
     tiremesh.parallel.SchedulerError
@@ -718,6 +746,7 @@ def run_batch(
 
 __all__ = [
     "FIRST",
+    "OUTPUT_FORMATS",
     "SCAN_SUFFIXES",
     "BatchResult",
     "Job",

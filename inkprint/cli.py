@@ -460,7 +460,12 @@ def _batch_parser(sub, common) -> None:
         "src", nargs="?", help="folder, glob pattern or file (optional with --manifest)"
     )
     p.add_argument(
-        "-o", "--output", required=True, help="results.csv (a .json twin is written too)"
+        "-o",
+        "--output",
+        required=True,
+        help="the table, its format by extension: results.csv (a .json twin is written "
+        "too), results.json or results.parquet (needs pyarrow); other extensions are "
+        "refused before any work; a re-run resumes from it in the same format",
     )
     p.add_argument(
         "--manifest",

@@ -2,7 +2,9 @@
 on ``inkprint``, batch tables in the format of their extension, the shortest name of
 a file reached through symlinks."""
 
+import dataclasses
 import socket
+from pathlib import Path
 
 import pytest
 
@@ -79,3 +81,61 @@ def test_main_quiet_and_verbose_at_top_level(one_scan, tmp_path, capsys):
 def test_main_quiet_and_verbose_together_refused(one_scan, capsys):
     assert main(["-q", "analyze", str(one_scan / "a.png"), "-v"]) == 2
     assert "-q and -v" in capsys.readouterr().err
+
+
+# -- batch tables in the format of their extension ------------------------------------------
+
+
+@pytest.fixture
+def two_scans(tmp_path):
+    d = tmp_path / "two"
+    d.mkdir()
+    small_sheet(d / "a.png", seed=1, length=55.0)
+    small_sheet(d / "b.png", seed=2, length=60.0)
+    return d
+
+
+def test_run_batch_parquet_output_read_back_with_pyarrow_and_resumed(two_scans, tmp_path):
+    pq = pytest.importorskip("pyarrow.parquet")
+    from inkprint.batch import run_batch
+    from tests.inkprint.test_safety import FAST
+
+    out = tmp_path / "r.parquet"
+    first = run_batch(two_scans, out, options=FAST, workers=1, progress=False)
+    assert first.outputs == [out]
+    assert not out.with_suffix(".csv").exists() and not out.with_suffix(".json").exists()
+    table = pq.read_table(out)
+    assert table.num_rows == 2
+    names = [Path(f).name for f in table.column("file").to_pylist()]
+    assert sorted(names) == ["a.png", "b.png"]
+    assert str(table.schema.field("length_mm").type) == "double"  # typed, not text
+    lengths = dict(zip(names, table.column("length_mm").to_pylist(), strict=True))
+    assert lengths["b.png"] > lengths["a.png"]  # 60 mm vs 55 mm prints
+    again = run_batch(two_scans, out, options=FAST, workers=1, progress=False)
+    assert again.n_skipped == 2  # resumed from the Parquet table itself
+    assert pq.read_table(out).num_rows == 2  # no duplicate rows
+    other = dataclasses.replace(FAST, method="sauvola")
+    changed = run_batch(two_scans, out, options=other, workers=1, progress=False)
+    assert changed.n_skipped == 0  # other options: the work is redone, not kept stale
+    assert pq.read_table(out).num_rows == 2
+
+
+def test_cli_batch_json_output_resumes(two_scans, tmp_path, capsys):
+    import json
+
+    out = tmp_path / "r.json"
+    args = ["batch", str(two_scans), "-o", str(out), "--workers", "1", "--no-band"]
+    assert main(args) == 0
+    assert len(json.loads(out.read_text())) == 2
+    assert main(args) == 0
+    assert "(2 already done)" in capsys.readouterr().out
+    assert len(json.loads(out.read_text())) == 2
+
+
+@pytest.mark.parametrize("name", ["r.xlsx", "r.txt", "r"])
+def test_cli_batch_unknown_extension_refused_before_work(two_scans, tmp_path, name, capsys):
+    out = tmp_path / "o" / name
+    assert main(["batch", str(two_scans), "-o", str(out), "--workers", "1", "--no-band"]) == 2
+    err = capsys.readouterr().err
+    assert ".csv" in err and ".parquet" in err and name in err
+    assert not (tmp_path / "o").exists()  # nothing written, not even the lock
