@@ -139,3 +139,46 @@ def test_cli_batch_unknown_extension_refused_before_work(two_scans, tmp_path, na
     err = capsys.readouterr().err
     assert ".csv" in err and ".parquet" in err and name in err
     assert not (tmp_path / "o").exists()  # nothing written, not even the lock
+
+
+# -- the shortest name of a file reached through links -----------------------------------------
+
+
+def test_collect_jobs_symlink_dedup_keeps_shortest_name(tmp_path):
+    # issue 12: a recursive glob through `self -> .` showed ln/self/self/.../tire.png
+    from inkprint.jobs import collect_jobs
+
+    d = tmp_path / "ln"
+    d.mkdir()
+    small_sheet(d / "tire.png")  # 't' sorts after 's': the glob lists self/... first
+    (d / "self").symlink_to(d)
+    (d / "alias.png").symlink_to(d / "tire.png")  # same depth, a link's name
+    jobs = collect_jobs(str(d / "**" / "*.png"))
+    assert [Path(j.display) for j in jobs] == [d / "tire.png"]
+    assert jobs[0].path == str((d / "tire.png").resolve())
+
+
+def test_collect_jobs_broken_link_reported_under_shortest_name(tmp_path):
+    from inkprint.jobs import collect_jobs
+
+    d = tmp_path / "ln"
+    d.mkdir()
+    (d / "x_gone.png").symlink_to(d / "missing.png")
+    (d / "self").symlink_to(d)
+    jobs = collect_jobs(str(d / "**" / "*.png"))
+    assert [Path(j.display) for j in jobs] == [d / "x_gone.png"]
+    assert "dangling" in jobs[0].error
+
+
+def test_run_batch_symlink_rows_carry_the_shortest_name(tmp_path):
+    from inkprint.batch import run_batch
+    from tests.inkprint.test_safety import FAST
+
+    d = tmp_path / "ln"
+    d.mkdir()
+    small_sheet(d / "tire.png")
+    (d / "self").symlink_to(d)
+    res = run_batch(
+        str(d / "**" / "*.png"), tmp_path / "r.csv", options=FAST, workers=1, progress=False
+    )
+    assert [r["file"] for r in res.rows] == [str(d / "tire.png")]
