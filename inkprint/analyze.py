@@ -516,6 +516,7 @@ def measure_print(ctx: _Context, group: Group, *, index: int = 0, sensitivity: b
         bbox=(group.rows.start, group.cols.start, group.rows.stop, group.cols.stop),
         flags=flags,
         warnings=warnings,
+        unit=ctx.scan.unit,
     )
 
 

@@ -15,8 +15,11 @@
 * One batch at a time per output: an exclusive lock (``<out>.lock``, released when
   the process ends, even killed); a second batch on it refuses with
   :class:`inkprint.OutputLocked`.
-* Outputs (CSV, and the same rows as JSON) are written atomically and checkpointed
-  while the batch runs; the CSV is spreadsheet-safe (:mod:`inkprint.csvsafe`).
+* Outputs are written atomically and checkpointed while the batch runs, in the
+  format of the output's suffix: ``.csv`` (spreadsheet-safe, :mod:`inkprint.csvsafe`,
+  with the same rows as a ``.json`` twin), ``.json`` or ``.parquet`` (typed columns,
+  pyarrow); an unknown suffix is refused before any work. Resume reads the output
+  back in its own format, so every format resumes.
 * What is read: see :mod:`inkprint.jobs` (regular files only, links resolved once,
   manifest paths confined to the manifest's folder).
 """
@@ -25,20 +28,35 @@ from __future__ import annotations
 
 import dataclasses
 import hashlib
+import importlib.util
 import json
 import os
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from tiremesh.io import cell_number, table_columns, write_table
-from tiremesh.parallel import parallel_map, watch_parent
+from tiremesh.io import (
+    TABLE_FORMATS,
+    MissingDependency,
+    cell_number,
+    read_table,
+    table_columns,
+    write_table,
+)
+from tiremesh.parallel import (
+    DEFAULT_SCHEDULER_TIMEOUT,
+    check_scheduler,
+    parallel_map,
+    watch_parent,
+)
 from tiremesh.units import MPA_PER_BAR
 
 from .errors import InkPrintError, InvalidInput, OutputLocked
 from .jobs import SCAN_SUFFIXES, Job, collect_jobs, read_manifest
 from .options import AnalysisOptions
 
+OUTPUT_FORMATS = TABLE_FORMATS
+"""Suffixes of a batch table: .csv (with a .json twin), .json, .parquet."""
 FIRST = ["file", "page", "print", "status", "flags", "error", "sha256"]
 #: bump when the rows' meaning changes: older rows are then redone on resume
 ROW_SCHEMA = 2
@@ -373,31 +391,40 @@ def _sort_key(r):
 
 
 def _check_out(out) -> Path:
+    """``out`` as a Path, its format known and writable (pyarrow for Parquet)."""
     out = Path(out)
-    if out.suffix.lower() != ".csv":
-        raise InvalidInput("out", str(out), "a .csv path (a .json twin is written beside it)")
+    suffix = out.suffix.lower()
+    if suffix not in OUTPUT_FORMATS:
+        raise InvalidInput(
+            "out", str(out), "a .csv (with a .json twin), .json or .parquet path (pyarrow)"
+        )
+    if suffix == ".parquet" and importlib.util.find_spec("pyarrow") is None:
+        raise MissingDependency("pyarrow", f"writing {out} (Parquet)", "parquet")
     return out
 
 
 def write_outputs(rows: list[dict], out) -> list[Path]:
-    """Write the rows to ``out`` (spreadsheet-safe CSV) and its .json twin, atomically.
+    """Write the rows to ``out`` in the format of its suffix, atomically.
 
     Parameters
     ----------
     rows : list of dict
     out : str or PathLike
-        A .csv path.
+        ``.csv`` (spreadsheet-safe, :mod:`inkprint.csvsafe`; a ``.json`` twin is
+        written beside it), ``.json`` or ``.parquet`` (typed columns, needs pyarrow).
 
     Returns
     -------
     list of Path
-        The CSV and the JSON.
+        The table first (then the CSV's JSON twin).
     """
     from .csvsafe import write_csv
 
     out = _check_out(out)
     rows = sorted(rows, key=_sort_key)
     cols = table_columns(rows, first=FIRST)
+    if out.suffix.lower() != ".csv":
+        return [write_table(rows, out, columns=cols)]
     return [
         write_csv(rows, out, columns=cols, lineterminator="\n"),
         write_table(rows, out.with_suffix(".json"), columns=cols),
@@ -430,7 +457,8 @@ def _previous(out, resume: bool, retry_errors: bool) -> list[dict]:
 
     if not (resume and Path(out).is_file()):
         return []
-    kept = read_csv(out)
+    # resume reads the output back in its own format (CSV cells unescaped)
+    kept = read_csv(out) if Path(out).suffix.lower() == ".csv" else read_table(out)
     return [r for r in kept if r.get("status") != "error"] if retry_errors else kept
 
 
@@ -560,7 +588,15 @@ def _progress(total: int, enabled: bool):
 
 
 def _analyze_jobs(
-    plan: ResumePlan, out, *, options: Options, workers, scheduler, progress, checkpoint_seconds
+    plan: ResumePlan,
+    out,
+    *,
+    options: Options,
+    workers,
+    scheduler,
+    scheduler_timeout,
+    progress,
+    checkpoint_seconds,
 ) -> list[dict]:
     """The plan's rows plus those of its jobs, checkpointing ``out`` as they come."""
     rows = list(plan.rows)
@@ -571,7 +607,12 @@ def _analyze_jobs(
         kwargs["watch"] = os.getpid()  # local workers exit when this process dies
     try:
         for _, new in parallel_map(
-            process_file, plan.todo, workers=workers, scheduler=scheduler, kwargs=kwargs
+            process_file,
+            plan.todo,
+            workers=workers,
+            scheduler=scheduler,
+            scheduler_timeout=scheduler_timeout,
+            kwargs=kwargs,
         ):
             rows.extend(new)
             bar.update(1)
@@ -591,6 +632,7 @@ def run_batch(
     options: Options | AnalysisOptions | None = None,
     workers: int | None = None,
     scheduler: str | None = None,
+    scheduler_timeout: float = DEFAULT_SCHEDULER_TIMEOUT,
     resume: bool = True,
     retry_errors: bool = False,
     progress: bool = True,
@@ -604,7 +646,9 @@ def run_batch(
     src : str or PathLike, optional
         Folder, glob pattern or scan file.
     out : str or PathLike
-        Path of the CSV (a .json twin is written beside it).
+        The table, its format by suffix: ``.csv`` (a ``.json`` twin is written
+        beside it), ``.json`` or ``.parquet`` (needs pyarrow). Resume reads it back
+        in the same format.
     manifest : str or PathLike, optional
         Manifest CSV (see :mod:`inkprint.jobs`).
     options : Options or AnalysisOptions, optional
@@ -613,6 +657,9 @@ def run_batch(
         Local worker processes (default: all cores; 1 = in this process).
     scheduler : str, optional
         Address of a dask.distributed scheduler; the work is sent there.
+    scheduler_timeout : float [s]
+        How long to wait for the scheduler to accept and answer; it is checked
+        before any work (:func:`tiremesh.parallel.check_scheduler`).
     resume : bool
         Keep the rows of ``out`` whose run key still holds (see the module's notes).
     retry_errors : bool
@@ -633,14 +680,22 @@ def run_batch(
     OutputLocked
         Another batch is writing ``out``.
     InvalidInput
-        Bad options, ``out`` not a .csv, no such source or manifest.
+        Bad options, ``out`` not a .csv, .json or .parquet path, no such source or
+        manifest (all checked before any work).
+    tiremesh.io.MissingDependency
+        A ``.parquet`` output without pyarrow installed.
     OSError
         An output cannot be written (the message names the path).
+    tiremesh.parallel.SchedulerError
+        The scheduler cannot be reached within ``scheduler_timeout`` or is not a Dask
+        scheduler (the message names the address).
     """
     opts = _batch_options(options)
     out = _check_out(out)
     if workers is not None and workers < 1:
         raise InvalidInput("workers", workers, ">= 1")
+    if isinstance(scheduler, str) and scheduler.strip():
+        check_scheduler(scheduler, timeout=scheduler_timeout)  # before any work
     jobs = collect_jobs(src, manifest, allow_outside=allow_outside)
     with _Lock(out):
         plan = plan_resume(jobs, out, options=opts, resume=resume, retry_errors=retry_errors)
@@ -652,6 +707,7 @@ def run_batch(
             options=opts,
             workers=workers,
             scheduler=scheduler,
+            scheduler_timeout=scheduler_timeout,
             progress=progress,
             checkpoint_seconds=checkpoint_seconds,
         )
@@ -668,6 +724,7 @@ def run_batch(
 
 __all__ = [
     "FIRST",
+    "OUTPUT_FORMATS",
     "SCAN_SUFFIXES",
     "BatchResult",
     "Job",

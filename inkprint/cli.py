@@ -5,12 +5,13 @@ SRC -o results.csv`` runs a whole campaign; ``inkprint synth -o DIR`` writes the
 synthetic sample set (or, with ``--mixed N``, a set mixing every failure class).
 
 Conventions: ``--version``; ``-q`` (errors only) and ``-v`` (warnings and set-aside
-marks per sheet; tracebacks of unexpected errors); quantities carry their unit
+marks per sheet; tracebacks of unexpected errors), before or after the command
+(``inkprint -q batch ...`` = ``inkprint batch -q ...``); quantities carry their unit
 (``--pressure 4bar|60psi|400kPa|0.4MPa``, ``--load 400N|40kg``: a bare number is
 refused, it could mean anything); errors go to stderr, never as a traceback. Exit
 status: 0 all good, 1 some files or prints failed (the count on stderr), 2 the
 command could not run (bad arguments or options, an output that cannot be
-written, a locked output).
+written, a locked output, an unreachable scheduler), 3 an internal error (a bug).
 """
 
 from __future__ import annotations
@@ -20,6 +21,8 @@ import re
 import sys
 from collections.abc import Sequence
 from pathlib import Path
+
+from tiremesh.parallel import DEFAULT_SCHEDULER_TIMEOUT
 
 _NUMBER = re.compile(r"^\s*[-+]?(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?\s*$")
 PRESSURE_FORMS = "4bar, 60psi, 400kPa or 0.4MPa"
@@ -32,10 +35,28 @@ def _version() -> str:
     return f"inkprint {__version__}"
 
 
-def _common(p: argparse.ArgumentParser) -> None:
-    v = p.add_mutually_exclusive_group()
-    v.add_argument("-q", "--quiet", action="store_true", help="errors only (no progress bar)")
-    v.add_argument("-v", "--verbose", action="store_true", help="warnings and marks set aside")
+def _common() -> argparse.ArgumentParser:
+    """``-q`` / ``-v`` for the program and every command (before or after it)."""
+    p = argparse.ArgumentParser(add_help=False)
+    v = p.add_argument_group("messages").add_mutually_exclusive_group()
+    for flags, name, text in (
+        (("-q", "--quiet"), "quiet", "errors only (no progress bar)"),
+        (("-v", "--verbose"), "verbose", "warnings and marks set aside; tracebacks"),
+    ):
+        v.add_argument(
+            *flags, dest=name, action="store_true", default=argparse.SUPPRESS, help=text
+        )
+    return p
+
+
+def _positive_seconds(text: str) -> float:
+    try:
+        value = float(text)
+    except ValueError:
+        value = float("nan")
+    if not value > 0 or value == float("inf"):
+        raise argparse.ArgumentTypeError(f"{text!r}: a number of seconds > 0")
+    return value
 
 
 def _scale_options(p: argparse.ArgumentParser) -> None:
@@ -327,6 +348,14 @@ def _report(res, a) -> int:
     index = build_report(rows, a.report, renders=not a.no_renders, source=str(res.outputs[0]))
     if not a.quiet:
         print(f"wrote the report: {index}")
+    from contactpatch.study.cli import report_errors
+
+    n_err = report_errors(index)
+    if n_err:
+        print(
+            f"report: {n_err} of {len(rows)} print(s) not paired with the model", file=sys.stderr
+        )
+        return 1
     return 0
 
 
@@ -348,6 +377,7 @@ def _cmd_batch(a) -> int:
         options=_options(a),
         workers=a.workers,
         scheduler=a.scheduler,
+        scheduler_timeout=a.scheduler_timeout,
         resume=not a.no_resume,
         retry_errors=a.retry_errors,
         progress=not a.quiet,
@@ -387,8 +417,8 @@ def _cmd_synth(a) -> int:
     return 0
 
 
-def _analyze_parser(sub) -> None:
-    p = sub.add_parser("analyze", help="measure the prints on one or more scans")
+def _analyze_parser(sub, common) -> None:
+    p = sub.add_parser("analyze", parents=[common], help="measure the prints on one or more scans")
     p.add_argument("scans", nargs="+", help="PNG, JPEG, TIFF or PDF files")
     _scale_options(p)
     p.add_argument("--load", help=f"vertical load with its unit: {LOAD_FORMS}")
@@ -396,17 +426,25 @@ def _analyze_parser(sub) -> None:
     out = p.add_mutually_exclusive_group()
     out.add_argument("--csv", action="store_true", help="CSV on stdout (spreadsheet-safe)")
     out.add_argument("--json", action="store_true")
-    _common(p)
     p.set_defaults(func=_cmd_analyze)
 
 
-def _batch_parser(sub) -> None:
-    p = sub.add_parser("batch", help="analyse a folder, glob or manifest of scans into one table")
+def _batch_parser(sub, common) -> None:
+    p = sub.add_parser(
+        "batch",
+        parents=[common],
+        help="analyse a folder, glob or manifest of scans into one table",
+    )
     p.add_argument(
         "src", nargs="?", help="folder, glob pattern or file (optional with --manifest)"
     )
     p.add_argument(
-        "-o", "--output", required=True, help="results.csv (a .json twin is written too)"
+        "-o",
+        "--output",
+        required=True,
+        help="the table, its format by extension: results.csv (a .json twin is written "
+        "too), results.json or results.parquet (needs pyarrow); other extensions are "
+        "refused before any work; a re-run resumes from it in the same format",
     )
     p.add_argument(
         "--manifest",
@@ -418,6 +456,14 @@ def _batch_parser(sub) -> None:
     )
     p.add_argument("--workers", type=int, help="local worker processes (default: all cores)")
     p.add_argument("--scheduler", help="dask.distributed scheduler address, e.g. tcp://host:8786")
+    p.add_argument(
+        "--scheduler-timeout",
+        type=_positive_seconds,
+        default=DEFAULT_SCHEDULER_TIMEOUT,
+        metavar="SECONDS",
+        help="wait this long for the scheduler to accept and answer, checked before any "
+        f"work (default {DEFAULT_SCHEDULER_TIMEOUT:g})",
+    )
     p.add_argument("--no-resume", action="store_true", help="ignore rows already in the output")
     p.add_argument(
         "--retry-errors", action="store_true", help="analyse files that failed before again"
@@ -427,7 +473,6 @@ def _batch_parser(sub) -> None:
     )
     p.add_argument("--no-renders", action="store_true", help="report without the 3D renders")
     _scale_options(p)
-    _common(p)
     p.set_defaults(func=_cmd_batch)
 
 
@@ -438,21 +483,27 @@ def build_parser() -> argparse.ArgumentParser:
     -------
     argparse.ArgumentParser
     """
+    common = _common()
     parser = argparse.ArgumentParser(
-        prog="inkprint", description="Ink prints of tire contact patches (Dressel 2013, 4.1.1)."
+        prog="inkprint",
+        parents=[common],
+        description="Ink prints of tire contact patches (Dressel 2013, 4.1.1).",
+        epilog="exit status: 0 ok, 1 some files or prints failed (count on stderr), "
+        "2 usage, input or output error, 3 internal error",
     )
     parser.add_argument("--version", action="version", version=_version())
     sub = parser.add_subparsers(dest="command", required=True)
-    _analyze_parser(sub)
-    _batch_parser(sub)
-    p = sub.add_parser("synth", help="write synthetic scans with their manifest and truth")
+    _analyze_parser(sub, common)
+    _batch_parser(sub, common)
+    p = sub.add_parser(
+        "synth", parents=[common], help="write synthetic scans with their manifest and truth"
+    )
     p.add_argument("-o", "--output", required=True, help="folder")
     p.add_argument("--dpi", type=float, default=150.0, help="sample set resolution")
     p.add_argument(
         "--mixed", type=int, metavar="N", help="instead: N files mixing every failure class"
     )
     p.add_argument("--seed", type=int, default=0, help="seed of --mixed")
-    _common(p)
     p.set_defaults(func=_cmd_synth)
     return parser
 
@@ -477,15 +528,22 @@ def main(argv: Sequence[str] | None = None) -> int:
     Returns
     -------
     int
-        Exit status: 0 all good, 1 some files or prints failed, 2 the command could
-        not run (argparse's own usage errors exit 2 too).
+        Exit status: 0 all good, 1 some files or prints failed (the count on
+        stderr), 2 the command could not run (argparse's own usage errors exit 2
+        too, as ``SystemExit``), 3 an internal error.
     """
+    from tiremesh.errors import TireModelError
+
     from .errors import InkPrintError
 
     a = build_parser().parse_args(argv)
+    a.quiet = getattr(a, "quiet", False)  # -q / -v before or after the command
+    a.verbose = getattr(a, "verbose", False)
+    if a.quiet and a.verbose:
+        return _fail("-q and -v exclude each other")
     try:
         return a.func(a)
-    except (InkPrintError, ValueError) as exc:
+    except (InkPrintError, TireModelError, ValueError) as exc:
         return _fail(str(exc), a)
     except BrokenPipeError:
         sys.stderr.close()
@@ -497,7 +555,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     except KeyboardInterrupt:
         return _fail("interrupted", None, 130)
     except Exception as exc:  # never a traceback for the user; -v shows it
-        return _fail(f"unexpected {type(exc).__name__}: {exc} (run with -v for details)", a, 1)
+        return _fail(f"unexpected {type(exc).__name__}: {exc} (run with -v for details)", a, 3)
 
 
 if __name__ == "__main__":

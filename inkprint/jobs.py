@@ -236,9 +236,15 @@ def collect_jobs(src, manifest=None, *, allow_outside: bool = False) -> list[Job
 
 
 def _unique(jobs: list[Job]) -> list[Job]:
-    """One job per real file (the first name wins); one error job per broken link
-    (a loop or a dangling link reached through several folder links counts once)."""
-    seen, out = set(), []
+    """One job per real file, under its shortest name; one error job per broken link
+    (a loop or a dangling link reached through several folder links counts once).
+
+    A recursive glob through a ``self -> .`` link finds ``a.jpg``, ``self/a.jpg``,
+    ``self/self/a.jpg``...; the row carries the name with the fewest folders (then
+    the file's own name over a link's, then the shortest, then the first in order):
+    ``a.jpg``, whatever the order the names were found in.
+    """
+    best: dict[str, Job] = {}
     for j in jobs:
         if j.error:
             p = Path(j.display)
@@ -246,10 +252,15 @@ def _unique(jobs: list[Job]) -> list[Job]:
         else:
             key = j.path
         key = os.path.normcase(key)
-        if key not in seen:
-            seen.add(key)
-            out.append(j)
-    return out
+        if key not in best or _name_rank(j) < _name_rank(best[key]):
+            best[key] = j
+    return list(best.values())  # in the order each file was first found
+
+
+def _name_rank(j: Job) -> tuple:
+    """Sort key of a job's names: fewer folders, its own name, shorter, first."""
+    shown = Path(j.display)
+    return (len(shown.parts), shown.name != Path(j.path).name, len(j.display))
 
 
 __all__ = ["SCAN_SUFFIXES", "Job", "collect_jobs", "read_manifest", "resolve_once"]

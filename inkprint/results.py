@@ -54,6 +54,9 @@ class PrintResult:
         ``clipped``, ``axis_uncertain``, ... (see the module's notes).
     warnings : tuple of str
         What each flag means for this print, in words.
+    unit : str
+        Length unit of the metrics: 'mm', or 'px' when the sheet has no scale
+        (shown in the repr).
     """
 
     index: int
@@ -67,6 +70,7 @@ class PrintResult:
     bbox: tuple[int, int, int, int] = (0, 0, 0, 0)
     flags: tuple = ()
     warnings: tuple = ()
+    unit: str = "mm"
 
     @property
     def status(self) -> str:
@@ -74,22 +78,22 @@ class PrintResult:
         return "flagged" if any(f in UNMEASURABLE for f in self.flags) else "ok"
 
     def __repr__(self) -> str:
-        m = self.metrics
+        m, u = self.metrics, self.unit
         flags = f", flags={','.join(self.flags)}" if self.flags else ""
         return (
-            f"PrintResult(#{self.index}: length {m.length:.2f}, width {m.width:.2f}, "
-            f"hull area {m.hull_area:.1f}, net/gross {m.solidity:.2f}{flags})"
+            f"PrintResult(#{self.index}: length {m.length:.2f} {u}, width {m.width:.2f} {u}, "
+            f"hull area {m.hull_area:.1f} {u}2, net/gross {m.solidity:.2f}{flags})"
         )
 
     def _repr_html_(self) -> str:
-        m = self.metrics
+        m, u = self.metrics, self.unit
         cells = [
             ("print", f"#{self.index}"),
             ("status", self.status),
-            ("length", f"{m.length:.2f}"),
-            ("width", f"{m.width:.2f}"),
-            ("hull area", f"{m.hull_area:.1f}"),
-            ("net area", f"{m.area:.1f}"),
+            (f"length [{u}]", f"{m.length:.2f}"),
+            (f"width [{u}]", f"{m.width:.2f}"),
+            (f"hull area [{u}2]", f"{m.hull_area:.1f}"),
+            (f"net area [{u}2]", f"{m.area:.1f}"),
             ("net / gross", f"{m.solidity:.3f}"),
             ("edge spots", str(self.n_edge_spots)),
             ("flags", ", ".join(self.flags) or "-"),

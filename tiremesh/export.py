@@ -253,7 +253,8 @@ def _glb_scene(tire_mesh: TireMesh, surface: bool):
     attrs = {f"_{k.upper()}": np.asarray(v, np.float32) for k, v in mesh.vertex_attributes.items()}
     mesh.vertex_attributes.clear()
     mesh.vertex_attributes.update(attrs)
-    mesh.metadata.update({"name": "tire", "attribute_units": {k: "mm" for k in attrs}})
+    units = {f"_{k.upper()}": u for k, u in POINT_DATA_UNITS.items() if f"_{k.upper()}" in attrs}
+    mesh.metadata.update({"name": "tire", "attribute_units": units})
     scene = trimesh.Scene()
     scene.add_geometry(mesh, geom_name="tire", node_name="tire", transform=_GLB_Y_UP)
     if surface:
@@ -261,9 +262,7 @@ def _glb_scene(tire_mesh: TireMesh, surface: bool):
         ground.vertices = np.asarray(ground.vertices) * GLB_SCALE
         scene.add_geometry(ground, geom_name="surface", node_name="surface", transform=_GLB_Y_UP)
     meta["scale_from_model"] = GLB_SCALE
-    meta["attributes"] = {
-        f"_{k.upper()}": u for k, u in POINT_DATA_UNITS.items() if f"_{k.upper()}" in attrs
-    }
+    meta["attributes"] = dict(units)  # the mesh's extras and the scene's: one table
     meta["frame"] += "; positions in metres; the node matrix turns z-up into glTF's y-up"
     scene.metadata.update(meta)
     return scene

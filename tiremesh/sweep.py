@@ -185,7 +185,7 @@ def parse_grid(spec: str, *, max_cases: int = MAX_CASES) -> list[dict]:
             _check_size({k: n}, max_cases)  # before allocating the axis
             axes[k] = list(np.linspace(a, b, n))
         else:
-            axes[k] = [_auto(x) for x in val.split(",")]
+            axes[k] = [_auto(x, k) for x in val.split(",")]
     return grid(max_cases=max_cases, **axes)
 
 
@@ -207,16 +207,17 @@ def read_cases(path) -> list[dict]:
         A column that is not a case key.
     """
     with open(path, newline="", encoding="utf-8-sig") as fh:
-        cases = [{k: _auto(v) for k, v in r.items() if v != ""} for r in csv.DictReader(fh)]
+        cases = [{k: _auto(v, k) for k, v in r.items() if v != ""} for r in csv.DictReader(fh)]
     check_keys(cases)
     return cases
 
 
-def _auto(v):
+def _auto(v, key: str = ""):
     try:
-        return float(v)
+        x = float(v)
     except (TypeError, ValueError):
         return v
+    return int(x) if key == "tire" and x.is_integer() else x  # a catalogue id: 8, not 8.0
 
 
 def _is_number(text: str) -> bool:

@@ -4,8 +4,10 @@
 from __future__ import annotations
 
 import argparse
+import json
 import sys
 from collections.abc import Sequence
+from pathlib import Path
 
 from tiremesh.errors import TireModelError
 from tiremesh.io import check_output_path, check_table_path, read_table, table_columns, write_table
@@ -52,14 +54,41 @@ def report_command(a: argparse.Namespace) -> int:
     Returns
     -------
     int
-        Exit status 0.
+        Exit status 0, or 1 when some rows could not be compared with the model
+        (their count on stderr; they are listed in the report's errors table).
     """
     from .report import build_report
 
     check_output_path(f"{a.output}/index.html", option="--output")
-    index = build_report(read_table(a.prints), a.output, renders=not a.no_renders, source=a.prints)
+    rows = read_table(a.prints)
+    index = build_report(rows, a.output, renders=not a.no_renders, source=a.prints)
     _say(a, f"wrote {index}")
+    n_err = report_errors(index)
+    if n_err:
+        print(
+            f"{n_err} of {len(rows)} rows failed (no print or no model); see "
+            f"{Path(index).parent / 'tables' / 'errors.csv'}",
+            file=sys.stderr,
+        )
+        return EXIT_SOME_FAILED
     return EXIT_OK
+
+
+def report_errors(index) -> int:
+    """The number of error rows of a written report (its ``report.json``).
+
+    Parameters
+    ----------
+    index : str or PathLike
+        The report's ``index.html``.
+
+    Returns
+    -------
+    int
+        Rows whose print or model failed (the report's errors table).
+    """
+    doc = json.loads((Path(index).parent / "report.json").read_text(encoding="utf-8"))
+    return int(doc["config"]["errors"])
 
 
 def validate_command(a: argparse.Namespace) -> int:

@@ -132,6 +132,23 @@ def test_export_glb_in_metres_with_attributes_and_extras(tire_mesh, tmp_path):
     assert 0.5 < np.ptp(tire.vertices[:, 0]) < 1.0
 
 
+def test_export_glb_mesh_extras_attribute_units_per_attribute(tire_mesh, tmp_path):
+    # issue 12: the mesh-level extras said _CONTACT and _SECTION were in mm
+    from tiremesh.export import POINT_DATA_UNITS
+
+    (path,) = export_mesh(tire_mesh, tmp_path / "t.glb")
+    gltf = _glb_json(path)  # the raw JSON chunk, no glTF library
+    (tire,) = [m for m in gltf["meshes"] if m.get("name") == "tire"]
+    units = tire["extras"]["attribute_units"]
+    assert units["_CONTACT"] == POINT_DATA_UNITS["contact"] != "mm"
+    assert units["_SECTION"] == POINT_DATA_UNITS["section"] != "mm"
+    assert units["_RADIAL_DEFORMATION"] == units["_LATERAL_DISPLACEMENT"] == "mm"
+    # the same table as the scene's extras, and one entry per custom attribute
+    assert units == gltf["scenes"][0]["extras"]["attributes"]
+    custom = {k for k in tire["primitives"][0]["attributes"] if k.startswith("_")}
+    assert set(units) == custom
+
+
 def test_export_obj_keeps_colours_units_and_load_case(tire_mesh, tmp_path):
     import trimesh
 

@@ -76,3 +76,32 @@ def test_main_conventions_version_exit_codes_and_errors(tmp_path, capsys):
     captured = capsys.readouterr()
     assert "1 rows not paired" in captured.err and captured.out == ""
     assert (tmp_path / "p.csv").is_file()
+
+
+def test_report_command_rows_failed_exit_1_with_count(tmp_path, capsys):
+    # issue 12: a table without pressure / load columns gave 4 error rows and exit 0
+    from contactpatch.study.cli import main
+
+    prints = tmp_path / "nop.csv"
+    prints.write_text(
+        "file,print,status,tire,length_mm,width_mm,hull_area_mm2\n"
+        + "".join(f"{f}.png,0,ok,5,100,30,2000\n" for f in "abcd")
+    )
+    code = main(["report", str(prints), "-o", str(tmp_path / "rep"), "--no-renders"])
+    captured = capsys.readouterr()
+    assert code == 1
+    assert "4 of 4 rows failed" in captured.err
+    assert "errors.csv" in captured.err
+    assert (tmp_path / "rep" / "index.html").is_file()
+    # -q: nothing on stdout, the count still on stderr
+    code = main(["-q", "report", str(prints), "-o", str(tmp_path / "rep2"), "--no-renders"])
+    captured = capsys.readouterr()
+    assert code == 1 and captured.out == "" and "4 of 4 rows failed" in captured.err
+
+
+def test_main_usage_error_exit_2(capsys):
+    from contactpatch.study.cli import main
+
+    assert main(["report"]) == 2
+    assert main(["nosuchcommand"]) == 2
+    assert "usage" in capsys.readouterr().err
