@@ -309,7 +309,8 @@ def figure_html(fig: Figure) -> str:
     return (
         f'<figure id="fig-{fig.name}" class="chart"><div class="chartbox" tabindex="0">'
         f"{inline_svg(fig.svg, fig.caption)}</div>"
-        f"<figcaption>{html.escape(fig.caption)} <span class='files'>(vector file: "
+        f"<figcaption><span class='scrollhint'>Scroll sideways for the whole figure. </span>"
+        f"{html.escape(fig.caption)} <span class='files'>(vector file: "
         f"<code>figures/{fig.path.name}</code>)</span></figcaption></figure>"
     )
 

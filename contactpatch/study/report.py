@@ -629,7 +629,8 @@ def draw_figures(tables: ReportTables, fig_dir, colours: dict, *, tick=None) -> 
     load = one(
         lambda: F.load_per_area(paired, colours),
         "load_per_area",
-        "Load over print (hull) area vs inflation pressure, both in bar; the line is 1:1.",
+        "Load over print (hull) area vs inflation pressure, both in bar; the line is 1:1; "
+        "markers of different surfaces are drawn slightly apart in pressure.",
     )
     drum = one(
         lambda: F.drum_vs_plate(tables.drum_plate_summary, tables.drum_plate_model_summary),
@@ -642,8 +643,9 @@ def draw_figures(tables: ReportTables, fig_dir, colours: dict, *, tick=None) -> 
                 paired, tire, colours[tire], name=f"trends_tire{k}"
             ),
             f"trends_tire{k}",
-            f"{tire}: length, width and area vs pressure and load (log-log), prints solid, "
-            "model dashed.",
+            f"{tire}: length, width and area vs pressure and load (log-log), prints solid and "
+            "filled, model dashed and open; in both rows the shade is the level of the "
+            "variable not on the x axis, darkest = lowest.",
         )
         for k, tire in enumerate(colours)
     }

@@ -85,3 +85,37 @@ def test_build_report_shows_a_progress_bar(tmp_path, capsys):
     assert "report" in err and "100%" in err
     build_report(synthetic_paired(8), tmp_path, renders=False, validation=False, progress=False)
     assert "100%" not in capsys.readouterr().err
+
+
+# --- figures: ticks, legends, colours ------------------------------------------------
+
+
+def test_log_ticks_never_fewer_than_two():
+    from contactpatch.study.svgplot import log_ticks
+
+    assert len(log_ticks(95.0, 105.0, [100.0])) >= 2  # one data value on a short axis
+    assert len(log_ticks(1.01, 1.03)) >= 2
+    ticks = log_ticks(3.9, 7.2, [4.0])
+    assert len(ticks) >= 2 and all(3.9 <= t <= 7.2 for t in ticks)
+
+
+def test_tire_colours_follow_the_name_not_the_order():
+    from contactpatch.study.style import PALETTE, tire_colour_slot, tire_colours
+
+    a = tire_colours(["Schwalbe Big Apple 55-622"])
+    b = tire_colours(["Aaa first", "Schwalbe Big Apple 55-622"][::-1])
+    assert a["Schwalbe Big Apple 55-622"] == PALETTE[tire_colour_slot("Schwalbe Big Apple 55-622")]
+    assert list(b) == ["Aaa first", "Schwalbe Big Apple 55-622"]  # sorted names
+    many = tire_colours(f"tire {k}" for k in range(7))
+    assert len(set(many.values())) == 7  # no two tires of a report share a colour
+
+
+def test_key_figure_legend_matches_what_is_drawn(tmp_path):
+    from contactpatch import pair_prints
+    from contactpatch.study import figures as F
+    from contactpatch.study.style import tire_colours
+
+    paired = pair_prints(synthetic_paired(8))
+    svg = F.area_vs_length_width(paired, tire_colours(r["tire"] for r in paired))
+    assert "prints: filled" in svg and "model: open" in svg
+    assert "solid" not in svg and "dashed" not in svg and "stroke-dasharray" not in svg
