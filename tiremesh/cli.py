@@ -471,7 +471,9 @@ def _render_options(a: argparse.Namespace, render) -> dict:
     if a.camera is not None:
         opts["camera"] = _parse_camera(a.camera)
     if a.background is not None:
-        opts["background"] = a.background
+        from .vtkscene import parse_colour
+
+        opts["background"] = parse_colour(a.background, name="--background")
     if a.no_title:
         opts["title"] = False
     params = inspect.signature(render).parameters

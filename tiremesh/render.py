@@ -195,11 +195,11 @@ def view_camera(view: str, tire_mesh: TireMesh) -> ViewCamera:
     side = -1.0 if p.camber >= 0 else 1.0  # look from the side the wheel leans away from
     span = max(p.length, 5 * r0)
     if view == "iso":
-        return ViewCamera((0.0, 0.0, 0.6 * r0), -40.0 * side, -22.0, 0.58 * span)
+        return ViewCamera((0.0, 0.0, 0.6 * r0), -40.0 * side, -22.0, 0.72 * span)
     if view == "side":
         return ViewCamera((0.0, 0.0, 1.6 * r0), 90.0 * side, 0.0, 0.5 * max(p.length, 6 * r0))
-    if view == "front":
-        return ViewCamera((0.0, 0.0, 1.05 * r0), 0.0, 0.0, 1.9 * r0)
+    if view == "front":  # a little from below, through the ground: the patch shows
+        return ViewCamera((0.0, 0.0, 0.9 * r0), 0.0, -14.0, 1.9 * r0)
     return ViewCamera((0.0, 0.0, 0.0), 0.0, -90.0, 0.55 * p.length + 1.6 * r0)
 
 
@@ -351,7 +351,8 @@ def _scene(tire_mesh: TireMesh, o: _Options, bg, title: bool, cmap, parts: dict)
             ren.AddActor(section)
         below = _from_below(o, tire_mesh)
         if parts["surface"]:
-            _add_surface(ren, tire_mesh, grid=below)
+            # seen edge-on (side, front) the surface is see-through: a drum would hide the patch
+            _add_surface(ren, tire_mesh, grid=below, see_through=o.view in ("side", "front"))
         _add_patch_outline(ren, tire_mesh, lifted=-0.2 if below else 0.2)
         if parts["rim"]:
             rim = _cut(_trimesh_vtk(rim_mesh(tire_mesh)), cut)
@@ -511,11 +512,16 @@ def _add_tire(ren, poly, scalars: str, cmap: str):
     return lut, ticks, decimals
 
 
-def _add_surface(ren, tire_mesh: TireMesh, *, grid: bool) -> None:
-    """A solid slab, or (seen from below) the surface as a grid with its outline."""
+def _add_surface(ren, tire_mesh: TireMesh, *, grid: bool, see_through: bool = False) -> None:
+    """A solid slab (translucent when ``see_through``), or (seen from below) the
+    surface as a grid with its outline."""
     if not grid:
-        slab = _trimesh_vtk(support_mesh(tire_mesh.patch, sink=0.3))
-        ren.AddActor(vs.actor(slab, colour=SURFACE_COLOR))
+        slab = vs.actor(
+            _trimesh_vtk(support_mesh(tire_mesh.patch, sink=0.3)), colour=SURFACE_COLOR
+        )
+        if see_through:
+            slab.GetProperty().SetOpacity(0.35)
+        ren.AddActor(slab)
         return
     a = vs.actor(vs.lines(ground_grid(tire_mesh)), colour=GRID_COLOR, line_width=1)
     a.GetProperty().SetOpacity(0.6)

@@ -104,7 +104,7 @@ def _hex_rgb(h: str) -> tuple[float, float, float]:
     return tuple(int(h[i : i + 2], 16) / 255.0 for i in (0, 2, 4))
 
 
-def parse_colour(colour) -> tuple[float, float, float]:
+def parse_colour(colour, *, name: str = "background") -> tuple[float, float, float]:
     """An RGB triple in [0, 1] from a name, a hex string or a tuple.
 
     Parameters
@@ -112,6 +112,8 @@ def parse_colour(colour) -> tuple[float, float, float]:
     colour : str or sequence of 3 numbers
         A VTK / CSS colour name ('white', 'black', 'lightgray'), '#rrggbb' or '#rgb',
         floats in [0, 1] or integers in [0, 255].
+    name : str
+        The parameter named in the error (the CLI passes ``--background``).
 
     Returns
     -------
@@ -142,7 +144,7 @@ def parse_colour(colour) -> tuple[float, float, float]:
             scale = 255.0 if any(x > 1 for x in vals) else 1.0
             return tuple(x / scale for x in vals)
     raise InvalidParameter(
-        "background", colour, "a colour name, '#rrggbb' or an RGB triple (0-1 or 0-255)"
+        name, colour, "a colour name, '#rrggbb' or an RGB triple (0-1 or 0-255)"
     )
 
 

@@ -56,13 +56,13 @@ def _finite(values) -> list[float]:
 
 def _legend_items(colours: dict, surfaces, *, kinds=True) -> list[LegendItem]:
     """One entry per tire (its colour), per surface (its marker), and prints
-    (filled, solid) / model (open, dashed)."""
+    (filled) / model (open)."""
     items = [LegendItem(t, c, "o") for t, c in colours.items()]
     items += [LegendItem(s, "#444", surface_marker(s), filled=False) for s in surfaces]
-    if kinds:
+    if kinds:  # as drawn: markers only, no lines
         items += [
-            LegendItem("prints: filled, solid", "#444", "o", line=True),
-            LegendItem("model: open, dashed", "#444", "o", filled=False, line=True, dashed=True),
+            LegendItem("prints: filled", "#444", "o"),
+            LegendItem("model: open", "#444", "o", filled=False),
         ]
     return items
 
@@ -197,9 +197,12 @@ def load_per_area(paired, colours: dict) -> str:
     plot = Plot(W, top + ph + 50)
     p = plot.panel(70, top, ph * 1.25, ph, xlim=lim, ylim=lim)
     p.segment(lim[0], lim[0], lim[1], lim[1], colour="#222", width=1.2)
+    surfaces = _surfaces(rows)
     for (tire, surface), rs in _groups(rows, ("tire", "surface")).items():
+        # surfaces side by side at one pressure, not on top of each other
+        dx = _surface_offset(surface, surfaces) * (lim[1] - lim[0])
         p.scatter(
-            [_f(r.get("pressure_bar")) for r in rs],
+            [_f(r.get("pressure_bar")) + dx for r in rs],
             [_f(r.get("load_per_hull_area_N_mm2")) / MPA_PER_BAR for r in rs],
             colour=colours.get(tire, "#888"),
             marker=surface_marker(surface),
@@ -219,6 +222,15 @@ def load_per_area(paired, colours: dict) -> str:
     for k, it in enumerate(items):
         plot.legend([it], x0, top + 4 + 20 * k, width=min(leg_w, W - x0))
     return plot.svg("load_per_area", "Load over print area vs inflation pressure")
+
+
+def _surface_offset(surface: str, surfaces: list[str]) -> float:
+    """Horizontal offset of a surface's markers, as a fraction of the axis span
+    (plate left, drum right; 0 with one surface)."""
+    if len(surfaces) < 2:
+        return 0.0
+    k = surfaces.index(surface)
+    return 0.012 * (2 * k / (len(surfaces) - 1) - 1)
 
 
 def _shade(colour: str, level: int, n: int) -> str:
@@ -290,12 +302,18 @@ def tire_trends(paired, tire: str, colour: str, *, name: str = "trends") -> str:
             few = len(set(xs)) <= 6
             plot.axes(p, xlabel=xlabel, ylabel=ylabel, xticks=sorted(set(xs)) if few else None)
         x_leg = 70 + 2 * dx + pw + 20
-        plot.text(x_leg, y0 + 10, "prints: solid", size=11)
-        plot.text(x_leg, y0 + 25, "model: dashed", size=11)
+        kinds = [
+            LegendItem("prints", "#444", "o", line=True),
+            LegendItem("model", "#444", "o", filled=False, line=True, dashed=True),
+        ]
+        for k, it in enumerate(kinds):
+            plot.legend([it], x_leg, y0 + 20 * k, width=W - x_leg)
+        what = "load" if unit == "N" else "pressure"
+        plot.text(x_leg, y0 + 56, f"shade: {what} [{unit}]", size=11)
         for k, (s, v) in enumerate(groups):
             c = _shade(colour, levels.index(_f(v)), len(levels))
             item = LegendItem(f"{s}, {_f(v):g} {unit}", c, surface_marker(s), line=True)
-            plot.legend([item], x_leg, y0 + 33 + 20 * k, width=W - x_leg)
+            plot.legend([item], x_leg, y0 + 62 + 20 * k, width=W - x_leg)
     return plot.svg(name, f"{tire}: trends")
 
 

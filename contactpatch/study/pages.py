@@ -309,7 +309,8 @@ def figure_html(fig: Figure) -> str:
     return (
         f'<figure id="fig-{fig.name}" class="chart"><div class="chartbox" tabindex="0">'
         f"{inline_svg(fig.svg, fig.caption)}</div>"
-        f"<figcaption>{html.escape(fig.caption)} <span class='files'>(vector file: "
+        f"<figcaption><span class='scrollhint'>Scroll sideways for the whole figure. </span>"
+        f"{html.escape(fig.caption)} <span class='files'>(vector file: "
         f"<code>figures/{fig.path.name}</code>)</span></figcaption></figure>"
     )
 
@@ -613,6 +614,24 @@ def html_page(content: ReportContent) -> str:
 # --- Markdown ------------------------------------------------------------------------
 
 
+def md_text(text) -> str:
+    """Text made safe for a Markdown cell or line: HTML special characters escaped
+    (a manifest cell such as ``<script>`` shows as text, never as markup), ``|``
+    escaped and line breaks folded into spaces.
+
+    Parameters
+    ----------
+    text : object
+        Shown through ``str``.
+
+    Returns
+    -------
+    str
+    """
+    t = html.escape(str(text), quote=False)
+    return " ".join(t.replace("|", "\\|").splitlines())
+
+
 def table_md(rows, columns) -> str:
     """A Markdown table, cells formatted as in the HTML page.
 
@@ -626,9 +645,7 @@ def table_md(rows, columns) -> str:
     str
     """
 
-    def esc(t: str) -> str:
-        return t.replace("|", "\\|")
-
+    esc = md_text
     lines = ["| " + " | ".join(esc(c.header) for c in columns) + " |"]
     lines.append("|" + "".join("---:|" if _th_class(c) else "---|" for c in columns))
     lines += ["| " + " | ".join(esc(cell_text(r, c.key)) for c in columns) + " |" for r in rows]
@@ -648,10 +665,10 @@ def markdown_page(content: ReportContent) -> str:
     """
     t = content.tables
     out = [f"# {TITLE}", "", "## Configuration", ""]
-    out += [f"- {k}: {v}" for k, v in content.config.items()]
+    out += [f"- {md_text(k)}: {md_text(v)}" for k, v in content.config.items()]
     out += ["", f"![Area vs length and width](figures/{content.figures.key.path.name})", ""]
     out += ["## Trends", ""]
-    out += [f"- {describe_agreement(a)}" for a in t.agreement]
+    out += [f"- {md_text(describe_agreement(a))}" for a in t.agreement]
     out += ["", "Exponents ± one standard error.", "", table_md(t.trends, TREND_VIEW), ""]
     out += ["## Drum vs plate", "", table_md(t.drum_plate_rows, DRUM_VIEW), ""]
     out += ["## Rim width sensitivity (model)", "", table_md(t.rim_sensitivity, RIM_VIEW), ""]
@@ -678,6 +695,7 @@ __all__ = [
     "html_page",
     "inline_svg",
     "markdown_page",
+    "md_text",
     "print_id",
     "table_html",
     "table_md",

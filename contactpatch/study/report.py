@@ -32,7 +32,9 @@ import json
 import math
 import os
 import platform
+import shutil
 import sys
+import tempfile
 from dataclasses import dataclass, fields
 from pathlib import Path
 
@@ -576,8 +578,6 @@ def validation_fragments(out_dir):
         from .validate import report_section
     except ImportError:
         return None
-    import shutil
-
     cache = Path(os.environ.get("ROTTA_CACHE_DIR", Path.home() / ".cache" / "rotta-tire"))
     frags = report_section(cache / "validation", link_base="validation/")
     shutil.copytree(cache / "validation", Path(out_dir) / "validation", dirs_exist_ok=True)
@@ -629,7 +629,8 @@ def draw_figures(tables: ReportTables, fig_dir, colours: dict, *, tick=None) -> 
     load = one(
         lambda: F.load_per_area(paired, colours),
         "load_per_area",
-        "Load over print (hull) area vs inflation pressure, both in bar; the line is 1:1.",
+        "Load over print (hull) area vs inflation pressure, both in bar; the line is 1:1; "
+        "markers of different surfaces are drawn slightly apart in pressure.",
     )
     drum = one(
         lambda: F.drum_vs_plate(tables.drum_plate_summary, tables.drum_plate_model_summary),
@@ -642,8 +643,9 @@ def draw_figures(tables: ReportTables, fig_dir, colours: dict, *, tick=None) -> 
                 paired, tire, colours[tire], name=f"trends_tire{k}"
             ),
             f"trends_tire{k}",
-            f"{tire}: length, width and area vs pressure and load (log-log), prints solid, "
-            "model dashed.",
+            f"{tire}: length, width and area vs pressure and load (log-log), prints solid and "
+            "filled, model dashed and open; in both rows the shade is the level of the "
+            "variable not on the x axis, darkest = lowest.",
         )
         for k, tire in enumerate(colours)
     }
@@ -784,19 +786,61 @@ def build_report(
     The renders and the validation run in worker processes
     (:class:`contactpatch.study.worker.Job`) while this one pairs, writes the tables,
     draws the figures and the scans and meshes the 3D view.
-    """
-    from .worker import Job
 
+    The report is built whole in a hidden folder beside ``out_dir``
+    (``.NAME.*.part``) and then moved in, one rename per entry, ``index.html``
+    last: a step that fails leaves the previous report in ``out_dir`` untouched
+    (and its partial files are removed). Other files in ``out_dir`` are kept.
+    """
     out = Path(out_dir)
-    fig_dir = out / "figures"
-    fig_dir.mkdir(parents=True, exist_ok=True)
+    out.parent.mkdir(parents=True, exist_ok=True)
+    # built whole in a folder beside the target, then moved into place: a failing
+    # step leaves the previous report as it was (see _install)
+    part = Path(tempfile.mkdtemp(prefix=f".{out.name}.", suffix=".part", dir=out.parent))
+    try:
+        steps = {"renders": renders, "validation": validation}
+        _build_into(rows, part, progress=progress, steps=steps, where=(source, scan_dirs))
+        _install(part, out)
+    finally:
+        shutil.rmtree(part, ignore_errors=True)
+    return out / "index.html"
+
+
+#: what a report writes into its folder; ``index.html`` is moved in last
+REPORT_ENTRIES = ("tables", "figures", "validation", "report.json", "report.md", "index.html")
+
+
+def _install(part: Path, out: Path) -> None:
+    """Move the finished report from ``part`` into ``out``, entry by entry (each move
+    one rename on the same file system), ``index.html`` last; other files in ``out``
+    are left alone, a previous report's folders are replaced whole."""
+    out.mkdir(parents=True, exist_ok=True)
+    old = Path(tempfile.mkdtemp(prefix=f".{out.name}.", suffix=".old", dir=out.parent))
+    try:
+        for name in REPORT_ENTRIES:
+            src, dst = part / name, out / name
+            if not src.exists():
+                continue
+            if dst.is_dir() and not dst.is_symlink():
+                dst.rename(old / name)
+            os.replace(src, dst)
+    finally:
+        shutil.rmtree(old, ignore_errors=True)
+
+
+def _build_into(rows, out: Path, *, progress, steps, where) -> None:
+    """Every file of the report, written into ``out`` (a fresh folder)."""
     from tiremesh.render import render_many
 
+    from .worker import Job
+
+    fig_dir = out / "figures"
+    fig_dir.mkdir(parents=True, exist_ok=True)
     cases = representative_cases(rows)
     jobs = {}
-    if renders and cases:
+    if steps["renders"] and cases:
         jobs["renders"] = Job(render_many, render_items(cases, fig_dir), size=RENDER_SIZE)
-    if validation:
+    if steps["validation"]:
         jobs["validation"] = Job(validation_fragments, out)
     try:
         tables = compute_tables(rows)
@@ -804,13 +848,12 @@ def build_report(
         colours = tire_colours(r.get("tire", "") for r in ok)
         n_files = len({r.get("file") for r in tables.paired})
         with _progress(n_files + len(colours) + 7, progress) as bar:
-            content = _assemble(rows, tables, colours, out, cases, jobs, bar, (source, scan_dirs))
+            content = _assemble(rows, tables, colours, out, cases, jobs, bar, where)
     finally:
         for job in jobs.values():
             job.cancel()  # only if still running: after an error in this process
-    index = write_text_atomic(out / "index.html", html_page(content))
     write_text_atomic(out / "report.md", markdown_page(content))
-    return index
+    write_text_atomic(out / "index.html", html_page(content))
 
 
 def _wait(jobs: dict, name: str, bar, default=None):

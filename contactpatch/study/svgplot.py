@@ -114,8 +114,8 @@ def nice_limits(lo: float, hi: float, *, zero: bool = False, pad: float = 0.06):
 
 
 def log_ticks(lo: float, hi: float, values=()) -> list[float]:
-    """Ticks of a log axis: the data's own values when there are at most 6,
-    else round 1-2-5 numbers inside ``[lo, hi]``.
+    """Ticks of a log axis: the data's own values when there are 2 to 6, else
+    round 1-2-5 numbers inside ``[lo, hi]``; never fewer than two.
 
     Parameters
     ----------
@@ -128,14 +128,16 @@ def log_ticks(lo: float, hi: float, values=()) -> list[float]:
     -------
     list of float
     """
-    v = sorted({round(x, 9) for x in values if math.isfinite(x) and x > 0})
-    if 0 < len(v) <= 6:
+    v = sorted({round(x, 9) for x in values if math.isfinite(x) and x > 0 and lo <= x <= hi})
+    if 2 <= len(v) <= 6:
         return v
     out = []
     for e in range(math.floor(math.log10(lo)), math.ceil(math.log10(hi)) + 1):
         out += [k * 10.0**e for k in (1, 2, 5) if lo <= k * 10.0**e <= hi]
     if len(out) < 3:
-        return linear_ticks(lo, hi, 4)
+        out = [t for t in linear_ticks(lo, hi, 4) if lo <= t <= hi]
+    if len(out) < 2:  # a very short axis: its two ends, rounded inward
+        out = sorted({float(f"{lo * 1.02:.3g}"), float(f"{hi / 1.02:.3g}"), *v})
     return out
 
 

@@ -8,9 +8,11 @@ Build and save them inside :func:`figure_style`.
 from __future__ import annotations
 
 import math
+import textwrap
 
 import numpy as np
 
+from .style import tire_colours
 from .validate_points import QUANTITIES
 
 #: panels of :func:`measured_vs_model`: title -> quantities drawn in it
@@ -41,7 +43,7 @@ MARKERS = "osD^v<>ph*XP"
 STYLE = {
     "svg.hashsalt": "contactpatch-validate",
     "figure.dpi": 100,
-    "font.size": 8,
+    "font.size": 10,
     "text.parse_math": False,
     "text.usetex": False,
 }
@@ -102,7 +104,7 @@ def _panel(ax, rows, quantities, colors):
     ax.plot(t, 2 * t, "k:", lw=0.6, label="x2, /2")
     ax.plot(t, t / 2, "k:", lw=0.6)
     ax.set(xscale="log", yscale="log", xlim=(lo, hi), ylim=(lo, hi))
-    _log_ticks(ax)
+    _log_ticks(ax, subs=(1.0, 2.0, 5.0) if hi / lo < 300 else (1.0,))
     ax.set_xlabel("measured")
     ax.set_ylabel("model")
 
@@ -135,21 +137,22 @@ def measured_vs_model(rows: list[dict], stats: list[dict]):
     """
     plt = _plt()
     tires = sorted({r["tire_id"] for r in rows if isinstance(r.get("tire_id"), int)})
-    cmap = plt.get_cmap("tab20")
-    colors = {t: cmap(i % 20) for i, t in enumerate(tires)}
+    names = {r["tire_id"]: str(r.get("tire", "")) for r in rows if r.get("tire_id") in tires}
+    by_name = tire_colours(names.values())  # the report's colour of each tire
+    colors = {t: by_name[names[t]] for t in tires}
     by_q = {s["quantity"]: s for s in stats}
-    fig, axes = plt.subplots(2, 4, figsize=(15, 7.6))
+    fig, axes = plt.subplots(2, 4, figsize=(13, 8.4))
     for ax, (title, qs) in zip(axes.ravel(), PANELS.items(), strict=True):
         _panel(ax, rows, qs, colors)
         n = sum(by_q.get(q, {}).get("n", 0) for q in qs)
         med = [by_q[q]["median_ratio"] for q in qs if q in by_q]
         sub = f"n = {n}" + (f", median ratio {med[0]:.3g}" if len(med) == 1 else "")
-        ax.set_title(f"{title}\n{sub}", fontsize=8)
+        ax.set_title(textwrap.fill(title, 34) + f"\n{sub}", fontsize=9.5)
         if len(qs) > 1:
             for j, q in enumerate(qs):
-                ax.plot([], [], MARKERS[j], color="0.5", label=QUANTITIES[q][0])
-            ax.legend(fontsize=6, loc="upper left")
-    names = {r["tire_id"]: r["tire"] for r in rows if r.get("tire_id") in colors}
+                label = QUANTITIES[q][0].split(" (")[0]
+                ax.plot([], [], MARKERS[j], color="0.5", label=textwrap.fill(label, 22))
+            ax.legend(fontsize=8, loc="upper left", framealpha=0.85)
     handles = [
         plt.Line2D([], [], marker="o", ls="", color=colors[t], mec="k", mew=0.4) for t in tires
     ]
@@ -157,14 +160,14 @@ def measured_vs_model(rows: list[dict], stats: list[dict]):
         handles,
         [f"{t}: {names.get(t, '')}" for t in tires],
         loc="lower center",
-        ncol=5,
-        fontsize=7,
+        ncol=4,
+        fontsize=9,
         frameon=False,
     )
     fig.suptitle(
         "Rotta model vs the measurements preserved in Dressel (2013); open: load ambiguous"
     )
-    fig.subplots_adjust(left=0.05, right=0.99, top=0.9, bottom=0.15, wspace=0.3, hspace=0.42)
+    fig.subplots_adjust(left=0.06, right=0.99, top=0.88, bottom=0.2, wspace=0.38, hspace=0.6)
     return fig
 
 
@@ -184,7 +187,7 @@ def relaxation_figure(curve: dict, variants: list[dict]):
     matplotlib.figure.Figure
     """
     plt = _plt()
-    fig, (a, b) = plt.subplots(1, 2, figsize=(12, 4.2))
+    fig, (a, b) = plt.subplots(1, 2, figsize=(12, 4.6))
     e = np.asarray(curve["modulus"], float)
     rms = np.asarray(curve["rms_log_error"], float)
     pos = e > 0
@@ -200,7 +203,7 @@ def relaxation_figure(curve: dict, variants: list[dict]):
         xlabel="casing modulus E [N/mm^2] (t fixed)",
         ylabel="RMS log error, static lateral stiffness",
     )
-    a.legend(fontsize=7)
+    a.legend(fontsize=9)
     a.set_title("Taut beam of 5.9: the one fitted parameter")
     names = [v["variant"] for v in variants]
     y = np.arange(len(names))
@@ -209,11 +212,11 @@ def relaxation_figure(curve: dict, variants: list[dict]):
         [v["rms_log_error"] for v in variants],
         color=["C3" if v["fitted_parameters"] else "0.6" for v in variants],
     )
-    b.set_yticks(y, names, fontsize=7)
+    b.set_yticks(y, names, fontsize=9)
     b.invert_yaxis()
-    b.set_xlabel("RMS log error of the static lateral stiffness (red: 1 fitted parameter)")
+    b.set_xlabel("RMS log error of the static lateral stiffness\n(red: 1 fitted parameter)")
     b.set_title("How the decay length beyond the patch is set")
-    fig.subplots_adjust(left=0.06, right=0.99, top=0.92, bottom=0.13, wspace=0.55)
+    fig.subplots_adjust(left=0.07, right=0.98, top=0.92, bottom=0.17, wspace=0.85)
     return fig
 
 

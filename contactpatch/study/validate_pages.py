@@ -14,6 +14,9 @@ import html
 import math
 from collections import Counter
 
+from . import numbers as N
+from .pages import md_text
+
 TITLE = "Validation against the measurements of Dressel (2013)"
 STAT_COLUMNS = [
     ("label", "quantity"),
@@ -42,7 +45,7 @@ LOTO_COLUMNS = [
     ("tire_id", "tire"),
     ("tire", "name"),
     ("n", "n"),
-    ("modulus_without_tire", "E without it [N/mm^2]"),
+    ("modulus_without_tire", "casing modulus E without it [N/mm^2]"),
     ("ratios", "its model/meas."),
     ("rms_log_error", "RMS log error"),
 ]
@@ -89,10 +92,13 @@ SUMMARY_COLUMNS = [
     ("rule", "rule"),
     ("note", "note"),
 ]
-CSS = """section#validation table{border-collapse:collapse;font-size:12px;margin:0.8em 0}
-section#validation td,section#validation th{border:1px solid #ccc;padding:2px 6px;vertical-align:top}
-section#validation th{background:#eee}section#validation img{max-width:100%}
-section#validation figcaption{font-size:12px;color:#555}"""
+CSS = """section#validation table{border-collapse:collapse;font-size:13px;margin:0.8em 0}
+section#validation td,section#validation th{border:1px solid #ccc;padding:2px 6px;vertical-align:top;text-align:left}
+section#validation .num{text-align:right;font-variant-numeric:tabular-nums;white-space:nowrap}
+section#validation th{background:#eee}
+section#validation .vscroll,section#validation .figscroll{overflow-x:auto;max-width:100%}
+section#validation .figscroll img{max-width:none;width:min(100%,1100px);min-width:640px;height:auto}
+section#validation figcaption{font-size:13px;color:#555}"""
 #: why the model misses a quantity, with the dissertation's section
 WHY = {
     "cornering_stiffness": (
@@ -119,25 +125,89 @@ WHY = {
 }
 
 
-def fmt(v) -> str:
-    """Cell text: floats to 4 significant digits, NaN/None as empty.
+#: columns shown as ratios (3 decimals, as the report's ratios)
+RATIO_KEYS = {
+    "median_ratio",
+    "worst_ratio",
+    "min_ratio",
+    "max_ratio",
+    "ratio",
+    "rms_log_error",
+    "measured_exponent",
+    "model_exponent",
+}
+#: columns shown as counts / identifiers
+INT_KEYS = {"n", "n_tires", "n_not_positive", "n_pairs", "n_model_conditions", "row", "tire_id"}
+
+
+def fmt(v, key: str = "") -> str:
+    """Cell text, by quantity as in the report (:mod:`contactpatch.study.numbers`):
+    ratios and exponents to 3 decimals, pressures [bar] to 0.01, loads [N] to 1,
+    counts as integers, other numbers to 4 significant digits; anything that rounds
+    to zero as ``0``; NaN / None empty.
 
     Parameters
     ----------
     v : object
         A table cell (float, int, str, None...).
+    key : str
+        Its column (sets the precision; without one, 4 significant digits).
 
     Returns
     -------
     str
-        ``''`` for None and non-finite floats, ``f"{v:.4g}"`` for other floats,
-        ``str(v)`` otherwise.
     """
     if v is None or (isinstance(v, float) and not math.isfinite(v)):
         return ""
-    if isinstance(v, float):
-        return f"{v:.4g}"
-    return str(v)
+    if isinstance(v, bool) or not isinstance(v, int | float):
+        return str(v)
+    if key in INT_KEYS and float(v).is_integer():
+        return str(int(v))
+    if key in RATIO_KEYS:
+        return N.fixed(float(v), 3)
+    if key in ("pressure_bar", "load_N"):
+        return N.fmt(v, key)
+    if isinstance(v, int):
+        return str(v)
+    return N._significant(float(v), 4)
+
+
+def is_number(v) -> bool:
+    """Whether a cell is a number (right-aligned).
+
+    Parameters
+    ----------
+    v : object
+
+    Returns
+    -------
+    bool
+    """
+    return isinstance(v, int | float) and not isinstance(v, bool)
+
+
+def display_rows(rows: list[dict]) -> list[dict]:
+    """Rows as shown: pressures in bar (the report's one pressure unit; 1 bar =
+    0.1 N/mm^2) -- ``load / ink-print area`` in the statistics and points.
+
+    Parameters
+    ----------
+    rows : list of dict
+
+    Returns
+    -------
+    list of dict
+        Copies where changed; ratios are unit-free and stay.
+    """
+    out = []
+    for r in rows:
+        if r.get("unit") == "N/mm^2":
+            r = dict(r, unit="bar")
+            for k in ("measured", "model"):
+                if is_number(r.get(k)):
+                    r[k] = 10.0 * r[k]
+        out.append(r)
+    return out
 
 
 def _x(v) -> str:
@@ -300,22 +370,39 @@ def _summary_limits(data: dict) -> list[str]:
     return out
 
 
+def _numeric(rows: list[dict], key: str) -> bool:
+    """A column is numeric when every filled cell is a number."""
+    cells = [r.get(key) for r in rows if r.get(key) not in (None, "")]
+    return bool(cells) and all(is_number(c) for c in cells)
+
+
 def _md_table(rows: list[dict], columns) -> str:
-    head = "| " + " | ".join(h for _, h in columns) + " |"
-    sep = "|" + "---|" * len(columns)
-    body = [
-        "| " + " | ".join(fmt(r.get(k)).replace("|", "/") for k, _ in columns) + " |" for r in rows
-    ]
+    rows = display_rows(rows)
+    head = "| " + " | ".join(md_text(h) for _, h in columns) + " |"
+    sep = "|" + "".join("---:|" if _numeric(rows, k) else "---|" for k, _ in columns)
+    body = ["| " + " | ".join(md_text(fmt(r.get(k), k)) for k, _ in columns) + " |" for r in rows]
     return "\n".join([head, sep, *body])
 
 
 def _html_table(rows: list[dict], columns) -> str:
-    head = "".join(f"<th>{html.escape(h)}</th>" for _, h in columns)
+    rows = display_rows(rows)
+    num = {k for k, _ in columns if _numeric(rows, k)}
+    head = "".join(
+        f"<th{' class=num' if k in num else ''}>{html.escape(h)}</th>" for k, h in columns
+    )
     body = "".join(
-        "<tr>" + "".join(f"<td>{html.escape(fmt(r.get(k)))}</td>" for k, _ in columns) + "</tr>"
+        "<tr>"
+        + "".join(
+            f"<td{' class=num' if is_number(r.get(k)) else ''}>{html.escape(fmt(r.get(k), k))}</td>"
+            for k, _ in columns
+        )
+        + "</tr>"
         for r in rows
     )
-    return f"<table><thead><tr>{head}</tr></thead><tbody>{body}</tbody></table>"
+    return (
+        f"<div class='vscroll'><table><thead><tr>{head}</tr></thead>"
+        f"<tbody>{body}</tbody></table></div>"
+    )
 
 
 def headline(data: dict) -> str:
@@ -484,7 +571,8 @@ def summary_markdown(data: dict) -> str:
 def _img(name: str, png: bytes, caption: str) -> str:
     b64 = base64.b64encode(png).decode("ascii")
     return (
-        f'<figure><img alt="{html.escape(caption)}" src="data:image/png;base64,{b64}">'
+        f'<figure><div class="figscroll"><img alt="{html.escape(caption)}" '
+        f'src="data:image/png;base64,{b64}"></div>'
         f"<figcaption>{html.escape(caption)}</figcaption></figure>"
     )
 
@@ -549,9 +637,11 @@ def standalone_html(data: dict, figures: dict[str, bytes]) -> str:
 
 __all__ = [
     "TITLE",
+    "display_rows",
     "fmt",
     "headline",
     "html_fragment",
+    "is_number",
     "limits",
     "markdown_fragment",
     "standalone_html",

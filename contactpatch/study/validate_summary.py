@@ -68,10 +68,10 @@ def _spread(v) -> str:
     v = np.asarray(v, float)
     if v.size == 0:
         raise ValueError("no measured condition to summarise the model over")
-    return (
-        f"mean {v.mean():.3g}, sd {v.std(ddof=1) if v.size > 1 else 0:.2g}, "
-        f"min {v.min():.3g}, max {v.max():.3g} (n = {v.size})"
-    )
+    sd = v.std(ddof=1) if v.size > 1 else 0.0
+    # a spread below 1e-9 of the mean is rounding (area x pressure = load): shown as 0
+    sd = 0.0 if sd <= 1e-9 * max(abs(v.mean()), 1.0) else sd
+    return f"mean {v.mean():.3g}, sd {sd:.2g}, min {v.min():.3g}, max {v.max():.3g} (n = {v.size})"
 
 
 def _single(item, source, quantity, measured: float, model: float, note="", unit=""):

@@ -256,3 +256,21 @@ def test_cli_mesh_render_section(tmp_path):
     assert Image.open(tmp_path / "v.png").size == (200, 150)
     _cli("section", *common, "-o", str(tmp_path / "s.png"))
     assert Image.open(tmp_path / "s.png").size[0] > 100
+
+
+def test_cli_render_background_error_names_the_flag(tmp_path):
+    args = ["render", "--tire", "8", "--pressure", "4bar", "--load", "400N"]
+    args += ["--background", "nocolour", "-o", str(tmp_path / "v.png")]
+    proc = subprocess.run(
+        [sys.executable, "-m", "tiremesh.cli", *args], capture_output=True, text=True, timeout=300
+    )
+    assert proc.returncode != 0 and not (tmp_path / "v.png").exists()
+    assert "--background = 'nocolour' is invalid" in proc.stderr
+
+
+def test_front_view_looks_through_the_ground_at_the_patch(tire_mesh):
+    front = view_camera("front", tire_mesh)
+    assert front.elevation < 0  # from below: the ground is a grid, the patch shows
+    img = render(tire_mesh, view="front", size=GOLDEN_SIZE, title=False, scalar_bar=False)
+    red = (img[..., 0] > 180) & (img[..., 1] < 80) & (img[..., 2] < 80)
+    assert red.sum() > 150  # the patch outline, not a thin line at the bottom

@@ -8,6 +8,7 @@ seed-text lines).
 import csv
 import io
 import math
+import re
 import subprocess
 import sys
 from collections import Counter
@@ -19,6 +20,7 @@ import pytest
 import contactpatch
 import tiremesh as tm
 from contactpatch.study import validate as V
+from contactpatch.study import validate_pages as P
 from contactpatch.study import validate_relax as vr
 from contactpatch.study.validate_data import MEASURED_CSV, read_measurements
 from contactpatch.study.validate_points import classify_all, parse_load, parse_surface
@@ -294,6 +296,32 @@ def test_report_section_escapes_and_caches(run, monkeypatch):
     html2, _ = V.report_section(out)  # cached: same inputs and model source
     assert html2 == html
     assert contactpatch.report_section is V.report_section
+
+
+def test_report_section_numbers_follow_the_report(run):
+    _, out = run
+    html, md = V.report_section(out)
+    # ratios to 3 decimals, right-aligned; no 4-6 digit noise, no tiny spreads
+    assert re.search(r"<td class=num>1\.06[0-9]</td>", html)
+    assert "sd 1.5e-11" not in html and "sd 0," in html
+    assert "e-1" not in re.sub(r"base64,[^\"]+", "", html)
+    # one pressure unit: load / area in bar; the modulus says it is one
+    assert "<td>N/mm^2</td>" not in html and "<td>bar</td>" in html
+    assert "casing modulus E without it [N/mm^2]" in html
+    assert "| bar |" in md and "---:|" in md
+    # the figures sit in a scroll box rather than shrinking
+    assert html.count('<div class="figscroll">') == 2
+
+
+def test_validation_fmt_by_quantity():
+    assert [P.fmt(v, k) for v, k in ((1.06173552, "median_ratio"), (1e-13, "ratio"))] == [
+        "1.062",
+        "0",
+    ]
+    assert P.fmt(6.8948, "pressure_bar") == "6.89" and P.fmt(304.0, "load_N") == "304"
+    assert P.fmt(13, "n") == "13" and P.fmt(83.8652) == "83.87" and P.fmt(math.nan) == ""
+    row = {"unit": "N/mm^2", "measured": 0.5, "model": 0.52, "ratio": 1.04}
+    assert P.display_rows([row]) == [{"unit": "bar", "measured": 5.0, "model": 5.2, "ratio": 1.04}]
 
 
 def test_report_section_recomputes_when_stale(tmp_path, monkeypatch):
