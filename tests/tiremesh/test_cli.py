@@ -340,7 +340,8 @@ def test_cli_render_passes_camera_background_title_and_size(monkeypatch, tmp_pat
     monkeypatch.setattr(render, "render", fake)
     args = ["render", *CASE, "--around", "60", "-o", str(tmp_path / "r.png")]
     assert cli.main([*args, "--camera", "30,20,1.5", "--background", "black", "--no-title"]) == 0
-    assert seen["camera"] == (30.0, 20.0, 1.5) and seen["background"] == "black"
+    # the colour is parsed at the edge (an error names --background), passed as RGB
+    assert seen["camera"] == (30.0, 20.0, 1.5) and seen["background"] == (0.0, 0.0, 0.0)
     assert seen["title"] is False and seen["size"] == (1200, 900)
     seen.clear()
     assert cli.main([*args, "--image-size", "320x240"]) == 0

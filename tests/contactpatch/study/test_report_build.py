@@ -6,8 +6,7 @@ import pytest
 from contactpatch import build_report
 from contactpatch.study import report as R
 from contactpatch.study.pages import md_text
-
-from .test_report_parts import synthetic_paired
+from contactpatch.study.samples import synthetic_print_rows
 
 SCRIPT = "<script>alert(1)</script>"
 IMG = "<img src=x onerror=alert(2)>"
@@ -22,7 +21,7 @@ def test_md_text_escapes_html_pipes_and_line_breaks():
 def test_markdown_page_carries_no_markup_from_manifest_cells(tmp_path):
     rows = [
         dict(r, tire=f"Tire {SCRIPT}", file=f"{IMG}{k}.png")
-        for k, r in enumerate(synthetic_paired(8))
+        for k, r in enumerate(synthetic_print_rows(8))
     ]
     build_report(rows, tmp_path, renders=False, validation=False, source=f"{IMG}.csv")
     md = (tmp_path / "report.md").read_text()
@@ -35,7 +34,7 @@ def test_markdown_page_carries_no_markup_from_manifest_cells(tmp_path):
 
 def test_build_report_failing_step_leaves_the_previous_report(tmp_path, monkeypatch):
     out = tmp_path / "report"
-    rows = synthetic_paired(8)
+    rows = synthetic_print_rows(8)
     build_report(rows, out, renders=False, validation=False)
     (out / "notes.txt").write_text("mine")
     before = {p.relative_to(out): p.read_bytes() for p in out.rglob("*") if p.is_file()}
@@ -45,17 +44,17 @@ def test_build_report_failing_step_leaves_the_previous_report(tmp_path, monkeypa
 
     monkeypatch.setattr(R, "draw_figures", broken)
     with pytest.raises(RuntimeError, match="figure step failed"):
-        build_report(synthetic_paired(12, seed=3), out, renders=False, validation=False)
+        build_report(synthetic_print_rows(12, seed=3), out, renders=False, validation=False)
     after = {p.relative_to(out): p.read_bytes() for p in out.rglob("*") if p.is_file()}
     assert after == before
     assert sorted(p.name for p in tmp_path.iterdir()) == ["report"]  # no partial folder left
 
 
 def test_build_report_replaces_a_previous_report_whole(tmp_path):
-    build_report(synthetic_paired(16), tmp_path, renders=False, validation=False)
+    build_report(synthetic_print_rows(16), tmp_path, renders=False, validation=False)
     (tmp_path / "figures" / "stale.svg").write_text("<svg/>")
     (tmp_path / "notes.txt").write_text("mine")
-    index = build_report(synthetic_paired(8), tmp_path, renders=False, validation=False)
+    index = build_report(synthetic_print_rows(8), tmp_path, renders=False, validation=False)
     assert index == tmp_path / "index.html" and index.read_text().count("<tr>") >= 8
     assert not (tmp_path / "figures" / "stale.svg").exists()
     assert (tmp_path / "notes.txt").read_text() == "mine"
@@ -63,7 +62,7 @@ def test_build_report_replaces_a_previous_report_whole(tmp_path):
 
 
 def test_a_report_of_1000_prints_stays_usable(tmp_path):
-    index = build_report(synthetic_paired(1000), tmp_path, renders=False, validation=False)
+    index = build_report(synthetic_print_rows(1000), tmp_path, renders=False, validation=False)
     text = index.read_text()
     assert len(text.encode()) < 5_000_000  # 3.2 MB when written
     # every print in the paired table, which the inline script filters and sorts
@@ -80,10 +79,12 @@ def test_a_report_of_1000_prints_stays_usable(tmp_path):
 
 
 def test_build_report_shows_a_progress_bar(tmp_path, capsys):
-    build_report(synthetic_paired(8), tmp_path, renders=False, validation=False, progress=True)
+    build_report(synthetic_print_rows(8), tmp_path, renders=False, validation=False, progress=True)
     err = capsys.readouterr().err
     assert "report" in err and "100%" in err
-    build_report(synthetic_paired(8), tmp_path, renders=False, validation=False, progress=False)
+    build_report(
+        synthetic_print_rows(8), tmp_path, renders=False, validation=False, progress=False
+    )
     assert "100%" not in capsys.readouterr().err
 
 
@@ -115,7 +116,7 @@ def test_key_figure_legend_matches_what_is_drawn(tmp_path):
     from contactpatch.study import figures as F
     from contactpatch.study.style import tire_colours
 
-    paired = pair_prints(synthetic_paired(8))
+    paired = pair_prints(synthetic_print_rows(8))
     svg = F.area_vs_length_width(paired, tire_colours(r["tire"] for r in paired))
     assert "prints: filled" in svg and "model: open" in svg
     assert "solid" not in svg and "dashed" not in svg and "stroke-dasharray" not in svg
