@@ -15,7 +15,8 @@ Relations     : fit_relations, evaluate_relation, write_relations, read_relation
                 (closed-form fits to dense sweeps, docs/relations.md)
 Errors        : TireModelError, InvalidParameter, LoadTooHigh, ModelLimit (RimBottoms,
                 BulgeLimit, PatchEndLimit), NoContact, NotConverged
-Tolerances    : tol (numerical epsilons only)
+Tolerances    : tol (numerical epsilons only); SolverOptions (judgement thresholds,
+                passed as options= and sent to workers)
 Shared tools  : tiremesh.io (atomic files, tables, figures), tiremesh.parallel,
                 tiremesh.units
 
@@ -41,6 +42,7 @@ from .errors import (
 )
 from .geometry import TireGeometry
 from .lateral import LateralResult, solve_lateral, stiffnesses
+from .options import SolverOptions
 from .relations import Relation, evaluate_relation, fit_relations, read_relations, write_relations
 from .section import SectionSolution, solve_sections
 from .solver import ContactPatch, find_sinkage, max_load, solve, solve_many, solve_patch
@@ -67,6 +69,7 @@ __all__ = [
     "Relaxation",
     "RimBottoms",
     "SectionSolution",
+    "SolverOptions",
     "Surface",
     "SurfaceBase",
     "TireGeometry",

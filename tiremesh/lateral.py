@@ -47,13 +47,10 @@ from ._tol import tol
 from .case import LoadCase, Relaxation
 from .errors import InvalidParameter, NotConverged
 from .geometry import TireGeometry
+from .options import SolverOptions, active, using
 from .section import section_arrays
 from .solver import ContactPatch, clenshaw_curtis, solve
 from .solver.api import as_case
-
-TRAIL_MIN_PATCH_SHARE = 0.1
-"""Below this share of the lateral force carried by the patch's own sections, the
-pneumatic trail is reported as NaN (undefined)."""
 
 
 @dataclass(frozen=True)
@@ -88,9 +85,11 @@ class LateralResult:
         Total over patch lateral force used by the final friction check: each patch
         section had to hold ``friction_share x`` its own force.
     reaction : (n_patch,) float [N/mm]
-        Lateral ground reaction per length on each patch section (its own force
-        times the share, capped at ``mu dN`` where it slides); ``lateral_force`` is
-        its integral.
+        Lateral ground reaction per length on each patch section (its would-be grip
+        demand, capped at ``mu dN`` where it slides); ``lateral_force`` is its
+        integral.
+    options : SolverOptions
+        The judgement thresholds of the solve (they decide when the trail is NaN).
     """
 
     patch: ContactPatch = field(repr=False)
@@ -111,6 +110,7 @@ class LateralResult:
     iterations: int
     friction_share: float = 1.0
     reaction: np.ndarray = field(default=None, repr=False)
+    options: SolverOptions = field(default_factory=SolverOptions, repr=False)
 
     def __repr__(self) -> str:
         return (
@@ -160,14 +160,14 @@ class LateralResult:
         """``-aligning_moment / patch_lateral_force`` [mm] (positive: force behind the centre).
 
         NaN when the patch's own sections carry no net lateral force (below
-        ``tol.force_rtol`` of the vertical force), or less than
-        :data:`TRAIL_MIN_PATCH_SHARE` of the total (most of the force then comes from
+        ``options.force_rtol`` of the vertical force), or less than
+        ``options.trail_min_patch_share`` of the total (most of the force then comes from
         beyond the patch and the patch's own forces nearly cancel: their centroid, the
         trail, is meaningless; the validation found -660 mm there)."""
         f = self.patch_lateral_force
-        if abs(f) <= tol.force_rtol * abs(self.vertical_force):
+        if abs(f) <= self.options.force_rtol * abs(self.vertical_force):
             return math.nan
-        if abs(f) < TRAIL_MIN_PATCH_SHARE * abs(self.lateral_force):
+        if abs(f) < self.options.trail_min_patch_share * abs(self.lateral_force):
             return math.nan
         return float(-self.aligning_moment / f)
 
@@ -552,12 +552,13 @@ def appendix_friction(patch: ContactPatch, case: LoadCase) -> FrictionState:
     FrictionState
     """
     relax, mu, nb = case.relaxation, case.friction, case.n_beyond
+    opts = active()
     x, dv = patch.x, patch.sections.vert_deflection
     dh_imp, w_patch = patch.sections.horz_deflection, patch.x_weights
     dh_free = zero_force_displacement(patch, dv)
     dS, dN = section_forces(patch, dv, dh_imp)
     ratio, history = 1.0, []
-    for it in range(1, tol.max_iter + 1):
+    for it in range(1, opts.friction_max_iter + 1):
         demand = np.abs(dS * ratio)
         sliding = demand > mu * dN + 1e-12 * (1.0 + demand)
         dh = dh_free + slide(dh_imp - dh_free, sliding, x, relax)
@@ -566,7 +567,7 @@ def appendix_friction(patch: ContactPatch, case: LoadCase) -> FrictionState:
         beyond = beyond_both(patch, dv, dh, relax=relax, n=nb)
         total = f_patch + sum(b.force for b in beyond)
         history.append(total)
-        if len(history) >= 2 and abs(history[-1] - history[-2]) <= tol.friction_rtol * (
+        if len(history) >= 2 and abs(history[-1] - history[-2]) <= opts.friction_rtol * (
             1.0 + abs(total)
         ):
             share = total / f_patch if f_patch else 1.0
@@ -577,7 +578,7 @@ def appendix_friction(patch: ContactPatch, case: LoadCase) -> FrictionState:
         dS, dN = section_forces(patch, dv, dh_imp)  # friction demand from the imposed state
     raise NotConverged(
         "friction iteration (section 5.6)",
-        {"iterations": tol.max_iter, "last_totals_N": history[-3:]},
+        {"iterations": opts.friction_max_iter, "last_totals_N": history[-3:]},
     )
 
 
@@ -602,7 +603,9 @@ def relaxation_length(side: BeyondSide) -> float:
     return float(s_b[k - 1] + (a - (np.log(abs(dh_b[0])) - 1.0)) / (a - b) * (s_b[k] - s_b[k - 1]))
 
 
-def solve_lateral(case: LoadCase | TireGeometry, /, **fields) -> LateralResult:
+def solve_lateral(
+    case: LoadCase | TireGeometry, /, *, options: SolverOptions | None = None, **fields
+) -> LateralResult:
     """Lateral forces of the tire with deflection beyond the patch and friction
     (sections 5.5 to 5.8).
 
@@ -611,6 +614,9 @@ def solve_lateral(case: LoadCase | TireGeometry, /, **fields) -> LateralResult:
     case : LoadCase or TireGeometry
         The load case (its ``relaxation``, ``friction``, ``slip_kinematics`` and
         ``n_beyond`` apply here); or a tire with the fields as keywords.
+    options : SolverOptions, optional
+        Judgement thresholds (:class:`tiremesh.SolverOptions`); default: those of the
+        enclosing call, or the defaults.
     **fields
         Load-case fields, as for :func:`tiremesh.solve`.
 
@@ -619,14 +625,15 @@ def solve_lateral(case: LoadCase | TireGeometry, /, **fields) -> LateralResult:
     LateralResult
     """
     case = as_case(case, fields)
-    patch = solve(case)
-    if not math.isfinite(case.friction):
-        return _assemble(patch, grip_state(patch, case))
-    model = {"coulomb": coulomb_friction, "appendix": appendix_friction}[case.friction_model]
-    return _assemble(patch, model(patch, case))
+    with using(options) as opts:
+        patch = solve(case)
+        if not math.isfinite(case.friction):
+            return _assemble(patch, grip_state(patch, case), opts)
+        model = {"coulomb": coulomb_friction, "appendix": appendix_friction}[case.friction_model]
+        return _assemble(patch, model(patch, case), opts)
 
 
-def _assemble(patch: ContactPatch, st: FrictionState) -> LateralResult:
+def _assemble(patch: ContactPatch, st: FrictionState, opts: SolverOptions) -> LateralResult:
     """Concatenate trailing side, patch and leading side into one LateralResult."""
     x, dv = patch.x, patch.sections.vert_deflection
     trail, lead = st.beyond
@@ -655,6 +662,7 @@ def _assemble(patch: ContactPatch, st: FrictionState) -> LateralResult:
         iterations=st.iterations,
         friction_share=st.share,
         reaction=st.reaction,
+        options=opts,
     )
 
 

@@ -322,7 +322,7 @@ def _error_row(row: dict, exc: Exception | str) -> dict:
     return {**row, "status": "error", "error": msg}
 
 
-def solve_case(row: dict) -> dict:
+def solve_case(row: dict, *, options=None) -> dict:
     """Solve one sweep row with :func:`tiremesh.solve_lateral` (friction, deflection
     beyond the patch, slip kinematics as the row says).
 
@@ -330,6 +330,9 @@ def solve_case(row: dict) -> dict:
     ----------
     row : dict
         Case keys, see :func:`case_from_row`.
+    options : SolverOptions, optional
+        Judgement thresholds (:class:`tiremesh.SolverOptions`); sent to every worker
+        by :func:`run_sweep`.
 
     Returns
     -------
@@ -342,7 +345,7 @@ def solve_case(row: dict) -> dict:
 
     try:
         case = case_from_row(row)
-        r = solve_lateral(case)
+        r = solve_lateral(case, options=options)
     except (TireModelError, ValueError) as exc:
         return _error_row(row, exc)
     p = r.patch
@@ -364,13 +367,14 @@ def solve_case(row: dict) -> dict:
     return _result_row(row, case, values, {"patch_lateral_force_N": r.patch_lateral_force}, tail)
 
 
-def _solve_vector(cases: list[LoadCase]) -> list:
+def _solve_vector(cases: list[LoadCase], options) -> list:
     """:func:`solve_many` of ``cases``: per case a dict of floats, or the error of a
     case the model rejects (a failing batch is bisected down to its bad cases)."""
     from .case import CaseTable
     from .solver import solve_many
 
-    out = solve_many(CaseTable.from_cases(cases), n_sections=VECTOR_SECTIONS, errors="flag")
+    table = CaseTable.from_cases(cases)
+    out = solve_many(table, n_sections=VECTOR_SECTIONS, errors="flag", options=options)
     keys = [k for k in out if k not in ("ok", "error")]
     return [
         {k: float(out[k][i]) for k in keys} if out["ok"][i] else str(out["error"][i])
@@ -378,7 +382,7 @@ def _solve_vector(cases: list[LoadCase]) -> list:
     ]
 
 
-def _vector_rows(rows: list[dict]) -> list[dict]:
+def _vector_rows(rows: list[dict], options) -> list[dict]:
     """Plain rows (no friction, relaxation or slip) solved together as arrays."""
     out: list = [None] * len(rows)
     cases = {}
@@ -388,7 +392,7 @@ def _vector_rows(rows: list[dict]) -> list[dict]:
         except (TireModelError, ValueError) as exc:
             out[i] = _error_row(row, exc)
     idx = list(cases)
-    for i, got in zip(idx, _solve_vector([cases[i] for i in idx]), strict=True):
+    for i, got in zip(idx, _solve_vector([cases[i] for i in idx], options), strict=True):
         if isinstance(got, str):
             out[i] = _error_row(rows[i], got)
         else:
@@ -415,6 +419,7 @@ def run_sweep(
     workers: int | None = None,
     scheduler: str | None = None,
     progress: bool = False,
+    options=None,
 ) -> list[dict]:
     """Solve every case of a sweep.
 
@@ -429,6 +434,10 @@ def run_sweep(
         Address of a Dask scheduler; overrides ``workers``.
     progress : bool
         Show a progress bar (stderr) over the cases solved one by one.
+    options : SolverOptions, optional
+        Judgement thresholds (:class:`tiremesh.SolverOptions`), the same in this
+        process, in local worker processes and on Dask workers (sent with every
+        task). Default: the defaults.
 
     Returns
     -------
@@ -440,16 +449,25 @@ def run_sweep(
     InvalidParameter
         A case has an unknown key (nothing is solved).
     """
+    from .options import SolverOptions
     from .parallel import parallel_map
 
     check_keys(cases)
+    options = SolverOptions() if options is None else options
+    if not isinstance(options, SolverOptions):
+        raise InvalidParameter("options", type(options).__name__, "a tiremesh.SolverOptions")
     rows: list = [None] * len(cases)
     plain = [i for i, c in enumerate(cases) if _vectorizable(c)]
-    for i, r in zip(plain, _vector_rows([cases[i] for i in plain]), strict=True):
+    for i, r in zip(plain, _vector_rows([cases[i] for i in plain], options), strict=True):
         rows[i] = r
     rest = [i for i in range(len(cases)) if rows[i] is None]
     results = parallel_map(
-        solve_case, [cases[i] for i in rest], workers=workers, scheduler=scheduler, min_items=4
+        solve_case,
+        [cases[i] for i in rest],
+        workers=workers,
+        scheduler=scheduler,
+        min_items=4,
+        kwargs={"options": options},
     )
     if progress and rest:
         from tqdm import tqdm

@@ -55,10 +55,12 @@ def test_solve_many_domain_2000_cases_named_errors_or_finite_results():
     np.testing.assert_allclose(out["vertical_force"][ok], loads[ok], rtol=1e-6)
 
 
-@pytest.mark.parametrize("seed", [0, 1, 2])
+# 400 cases through solve_lateral (was 120): about 40 ms each, ~16 s on a loaded
+# 2-core machine; the 2,000-case draw of the issue runs through solve_many above
+@pytest.mark.parametrize("seed", [0, 1, 2, 3])
 def test_solve_and_solve_lateral_domain_named_errors(seed):
     rng = np.random.default_rng(seed)
-    for case in _random_cases(rng, 40):
+    for case in _random_cases(rng, 100):
         case = case.replace(friction=float(rng.choice([0.05, 0.3, 1.0, math.inf])))
         try:
             r = tm.solve_lateral(case)
@@ -72,8 +74,8 @@ def test_solve_and_solve_lateral_domain_named_errors(seed):
         share = abs(r.patch_lateral_force) / max(abs(r.lateral_force), 1e-300)
         assert (
             math.isfinite(trail)
-            or share < tm.lateral.TRAIL_MIN_PATCH_SHARE
-            or (abs(r.patch_lateral_force) <= 1e-12 * r.vertical_force)
+            or share < r.options.trail_min_patch_share
+            or (abs(r.patch_lateral_force) <= r.options.force_rtol * r.vertical_force)
         )
 
 

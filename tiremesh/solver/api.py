@@ -14,6 +14,7 @@ from .._tol import tol
 from ..case import MAX_SECTIONS, CaseTable, LoadCase, slip_anchor
 from ..errors import BulgeLimit, InvalidParameter, LoadTooHigh, NotConverged, TireModelError
 from ..geometry import TireGeometry
+from ..options import SolverOptions, using
 from .arrays import (
     CaseArrays,
     case_arrays,
@@ -198,7 +199,9 @@ def solve_arrays(cs: CaseArrays, *, load=None, deflection=None, anchor=None, sta
     raise NotConverged("leading-edge slip anchor", {"offset_mm": offset.ravel()})
 
 
-def solve(case: LoadCase | TireGeometry, /, **fields) -> ContactPatch:
+def solve(
+    case: LoadCase | TireGeometry, /, *, options: SolverOptions | None = None, **fields
+) -> ContactPatch:
     """Solve the 3D Rotta model for one load case (sections 5.2, 5.3, 5.4 and 5.5).
 
     Parameters
@@ -206,6 +209,9 @@ def solve(case: LoadCase | TireGeometry, /, **fields) -> ContactPatch:
     case : LoadCase or TireGeometry
         The load case; or a tire, with the other :class:`LoadCase` fields as keywords
         (``pressure``, ``load`` or ``deflection``, ``camber``...).
+    options : SolverOptions, optional
+        Judgement thresholds (:class:`tiremesh.SolverOptions`); default: those of the
+        enclosing call, or the defaults.
     **fields
         Load-case fields (applied with :meth:`LoadCase.replace` when ``case`` is a
         LoadCase).
@@ -222,12 +228,13 @@ def solve(case: LoadCase | TireGeometry, /, **fields) -> ContactPatch:
     400.0
     """
     case = as_case(case, fields)
-    cs = single_case_arrays(case)
-    load = None if case.load is None else np.array([[case.load]])
-    dw0 = None if case.deflection is None else np.array([[case.deflection]])
-    anchor = np.array([[slip_anchor(case.slip_kinematics, case.relaxation)]])
-    sv = solve_arrays(cs, load=load, deflection=dw0, anchor=anchor)
-    out = sv.evaluate(case.n_sections)
+    with using(options):
+        cs = single_case_arrays(case)
+        load = None if case.load is None else np.array([[case.load]])
+        dw0 = None if case.deflection is None else np.array([[case.deflection]])
+        anchor = np.array([[slip_anchor(case.slip_kinematics, case.relaxation)]])
+        sv = solve_arrays(cs, load=load, deflection=dw0, anchor=anchor)
+        out = sv.evaluate(case.n_sections)
     return patch_from_arrays(case, out, 0, float(sv.dw[0, 0]), float(sv.slip_offset[0, 0]))
 
 
@@ -251,7 +258,14 @@ def solve_patch(case: LoadCase | TireGeometry, deflection: float | None = None, 
     return solve(case, **fields)
 
 
-def find_sinkage(case: LoadCase | TireGeometry, load: float | None = None, /, **fields) -> float:
+def find_sinkage(
+    case: LoadCase | TireGeometry,
+    load: float | None = None,
+    /,
+    *,
+    options: SolverOptions | None = None,
+    **fields,
+) -> float:
     """Wheel deflection [mm] at which the tire carries the case's load (Appendix C
     ``find_sinkage``).
 
@@ -260,6 +274,11 @@ def find_sinkage(case: LoadCase | TireGeometry, load: float | None = None, /, **
     case : LoadCase or TireGeometry
         With ``load`` given here or in the case.
     load : float [N], optional
+    options : SolverOptions, optional
+        Judgement thresholds (:class:`tiremesh.SolverOptions`); default: those of the
+        enclosing call, or the defaults.
+    **fields
+        Load-case fields.
 
     Returns
     -------
@@ -276,24 +295,29 @@ def find_sinkage(case: LoadCase | TireGeometry, load: float | None = None, /, **
     case = as_case(case, fields)
     if case.load is None:
         raise InvalidParameter("load", None, "> 0 N (find_sinkage needs a load)")
-    cs = single_case_arrays(case)
-    sv = solve_arrays(
-        cs,
-        load=np.array([[case.load]]),
-        anchor=np.array([[slip_anchor(case.slip_kinematics, case.relaxation)]]),
-    )
+    with using(options):
+        sv = solve_arrays(
+            single_case_arrays(case),
+            load=np.array([[case.load]]),
+            anchor=np.array([[slip_anchor(case.slip_kinematics, case.relaxation)]]),
+        )
     return float(sv.dw[0, 0])
 
 
-def max_load(case: LoadCase | TireGeometry, /, **fields) -> float:
+def max_load(
+    case: LoadCase | TireGeometry, /, *, options: SolverOptions | None = None, **fields
+) -> float:
     """Largest vertical load the model carries at this pressure: ``p A`` at
-    :meth:`CaseArrays.max_deflection` (``tol.rim_clearance`` times the deflection at
+    :meth:`CaseArrays.max_deflection` (``options.rim_clearance`` times the deflection at
     which a bead reaches the surface or a side bulge runs out of carcass).
 
     Parameters
     ----------
     case : LoadCase or TireGeometry
         The case's own load or deflection is not used; a tire needs neither.
+    options : SolverOptions, optional
+        Judgement thresholds (:class:`tiremesh.SolverOptions`); default: those of the
+        enclosing call, or the defaults.
     **fields
         Load-case fields (``pressure``, ``camber``...).
 
@@ -304,7 +328,9 @@ def max_load(case: LoadCase | TireGeometry, /, **fields) -> float:
     if isinstance(case, TireGeometry) and "load" not in fields and "deflection" not in fields:
         fields = {**fields, "deflection": 1.0}
     case = as_case(case, fields)
-    return float(max_load_arrays(single_case_arrays(case), tol.search_sections)[0][0, 0])
+    with using(options):
+        fmax = max_load_arrays(single_case_arrays(case), tol.search_sections)[0]
+    return float(fmax[0, 0])
 
 
 RESULT_KEYS = (
@@ -410,6 +436,7 @@ def solve_many(
     n_sections: int = 65,
     errors: str = "raise",
     chunk_size: int = 2048,
+    options: SolverOptions | None = None,
     **columns,
 ) -> dict[str, np.ndarray]:
     """Solve many load cases at once, vectorized.
@@ -430,6 +457,11 @@ def solve_many(
     chunk_size : int
         Cases solved together at most (bounds the memory: about 50 kB per case at
         65 sections).
+    options : SolverOptions, optional
+        Judgement thresholds (:class:`tiremesh.SolverOptions`); default: those of the
+        enclosing call, or the defaults.
+    **columns
+        Columns of :meth:`CaseTable.from_columns` (when ``cases`` is None).
 
     Returns
     -------
@@ -451,12 +483,13 @@ def solve_many(
     result = {k: np.full(len(table), np.nan) for k in RESULT_KEYS}
     messages: dict[int, str] = {}
     by_load = ~np.isnan(table.load)
-    for kind in (by_load, ~by_load):  # load cases and deflection cases apart
-        sub_idx = np.nonzero(kind)[0]
-        for rows in group_by_surface(table.take(sub_idx)):
-            rows = sub_idx[rows]
-            for start in range(0, rows.size, chunk):
-                _solve_chunk(table, rows[start : start + chunk], n, errors, result, messages)
+    with using(options):
+        for kind in (by_load, ~by_load):  # load cases and deflection cases apart
+            sub_idx = np.nonzero(kind)[0]
+            for rows in group_by_surface(table.take(sub_idx)):
+                rows = sub_idx[rows]
+                for start in range(0, rows.size, chunk):
+                    _solve_chunk(table, rows[start : start + chunk], n, errors, result, messages)
     if errors == "flag":
         result["ok"] = np.ones(len(table), bool)
         result["error"] = np.full(len(table), "", dtype=object)
