@@ -14,7 +14,7 @@ Lateral       : solve_lateral, LateralResult, stiffnesses
 Relations     : fit_relations, evaluate_relation, write_relations, read_relations, Relation
                 (closed-form fits to dense sweeps, docs/relations.md)
 Errors        : TireModelError, InvalidParameter, LoadTooHigh, ModelLimit (RimBottoms,
-                BulgeLimit, PatchEndLimit), NoContact, NotConverged
+                BulgeLimit, PatchEndLimit, SurfaceTooCurved), NoContact, NotConverged
 Tolerances    : tol (numerical epsilons only); SolverOptions (judgement thresholds,
                 passed as options= and sent to workers)
 Shared tools  : tiremesh.io (atomic files, tables, figures), tiremesh.parallel,
@@ -38,6 +38,7 @@ from .errors import (
     NotConverged,
     PatchEndLimit,
     RimBottoms,
+    SurfaceTooCurved,
     TireModelError,
 )
 from .geometry import TireGeometry
@@ -72,6 +73,7 @@ __all__ = [
     "SolverOptions",
     "Surface",
     "SurfaceBase",
+    "SurfaceTooCurved",
     "TireGeometry",
     "TireModelError",
     "evaluate_relation",

@@ -92,3 +92,43 @@ def test_issue_reproducers_give_named_errors():
         )
     with pytest.raises(tm.InvalidParameter, match="drum diameter"):
         tm.Drum(100)
+
+
+@pytest.mark.parametrize("diameter", [300.0, 350.0, 400.0])
+def test_small_drum_solves_tire6(diameter):
+    # the audit: tire 6 at 4 bar on a 300-400 mm drum raised NoContact "increase the
+    # load" at every load. The load search started at the flat-ground patch ends,
+    # beyond where a small drum leaves the tread (no contact, NaN width), and every
+    # damped step returned there; it now starts at the surface's own contact ends.
+    tire, drum = tm.get_tire(6), tm.Drum(diameter)
+    lengths = []
+    for load in (50.0, 200.0, 500.0):
+        p = tm.solve(tire, pressure=0.4, load=load, surface=drum)
+        np.testing.assert_allclose(p.vertical_force, load, rtol=1e-8)
+        flat = tm.solve(tire, pressure=0.4, load=load)
+        assert p.length < flat.length and p.deflection > flat.deflection  # 5.3.1
+        lengths.append(p.length)
+    assert np.all(np.diff(lengths) > 0)
+    by_deflection = tm.solve(tire, pressure=0.4, deflection=p.deflection, surface=drum)
+    np.testing.assert_allclose(by_deflection.vertical_force, 500.0, rtol=1e-6)
+
+
+def test_surface_limit_names_the_drum_diameter():
+    # the model's curvature limit: a patch end at R sin(phi) >= R_drum has no drum
+    # under it (equation 5-20). Inside the domain (drum > 100 mm) the rim clearance
+    # comes first (tire 8 on 101 mm at its largest load: 0.966 of the drum radius),
+    # so the check is exercised directly.
+    from tiremesh.solver.arrays import single_case_arrays
+    from tiremesh.solver.load import surface_limit
+
+    case = tm.LoadCase(tm.get_tire(8), pressure=0.1, load=300.0, surface=tm.Drum(101))
+    cs = single_case_arrays(case)
+    edge = math.asin(50.5 / float(cs.R[0, 0]))
+    assert surface_limit(cs, 0, 30.0, (-0.99 * edge, 0.99 * edge)) is None
+    err = surface_limit(cs, 0, 30.0, (-0.5 * edge, 1.01 * edge))
+    assert isinstance(err, tm.SurfaceTooCurved) and isinstance(err, tm.ModelLimit)
+    with pytest.raises(tm.SurfaceTooCurved, match=r"drum diameter = 101.*surface too curved"):
+        raise err
+    assert err.state["deflection_mm"] == 30.0 and err.state["case"] == 0
+    flat = single_case_arrays(case.replace(surface=tm.Flat()))
+    assert surface_limit(flat, 0, 30.0, (-1.0, 1.0)) is None
