@@ -151,16 +151,21 @@ def _plain(x):
     return x.item() if isinstance(x, np.generic) else x
 
 
+TEXT_KEYS = ("tire", "surface", "slip_kinematics")
+"""Grid keys whose values are text (the others are numbers)."""
+
+
 def parse_grid(spec: str, *, max_cases: int = MAX_CASES) -> list[dict]:
-    """Cases from a command-line grid.
+    """Cases from a command-line grid, validated before any work.
 
     Parameters
     ----------
-    max_cases : int
-        Refuse a grid of more cases than this (before building anything).
     spec : str
         Space-separated ``key=v1,v2,...`` or ``key=start:stop:count`` (a linspace),
-        e.g. ``'tire=5,8 pressure_bar=2:11:10 load_N=304,500'``.
+        e.g. ``'tire=5,8 pressure_bar=2:11:10 load_N=304,500'``. Text keys
+        (:data:`TEXT_KEYS`) take any non-empty values (``surface=drum:2500``).
+    max_cases : int
+        Refuse a grid of more cases than this (before building anything).
 
     Returns
     -------
@@ -169,24 +174,50 @@ def parse_grid(spec: str, *, max_cases: int = MAX_CASES) -> list[dict]:
     Raises
     ------
     InvalidParameter
-        A malformed part or an unknown key.
+        A malformed part (no ``=``, an empty value, a range not ``start:stop:count``
+        with numbers and an integer count >= 1, a non-number for a numeric key), a
+        key given twice, an unknown key, or more than ``max_cases`` cases.
     """
-    axes = {}
+    axes: dict = {}
     for part in spec.split():
-        if "=" not in part:
+        k, eq, val = part.partition("=")
+        if not eq or not k:
             raise InvalidParameter("grid", part, "key=v1,v2,... or key=start:stop:count")
-        k, val = part.split("=", 1)
-        if val.count(":") == 2 and _is_number(val.split(":")[0]):
-            a, b, n = val.split(":")
-            try:
-                a, b, n = float(a), float(b), int(n)
-            except ValueError as exc:
-                raise InvalidParameter(k, val, "start:stop:count (count an integer)") from exc
-            _check_size({k: n}, max_cases)  # before allocating the axis
-            axes[k] = list(np.linspace(a, b, n))
+        check_keys([{k: val}])
+        if k in axes:
+            raise InvalidParameter(k, val, "one entry per key", f"{k!r} is given twice")
+        if k not in TEXT_KEYS and ":" in val:
+            axes[k] = _range(k, val, max_cases)
         else:
-            axes[k] = [_auto(x) for x in val.split(",")]
+            axes[k] = [_grid_value(k, x) for x in val.split(",")]
     return grid(max_cases=max_cases, **axes)
+
+
+def _range(key: str, val: str, max_cases: int) -> list:
+    """``start:stop:count`` of a numeric key as a linspace (count checked first)."""
+    parts = val.split(":")
+    allowed = "start:stop:count (numbers, count an integer >= 1), e.g. 2:4:3"
+    if len(parts) != 3:
+        raise InvalidParameter(key, val, allowed)
+    try:
+        a, b, n = float(parts[0]), float(parts[1]), int(parts[2])
+    except ValueError as exc:
+        raise InvalidParameter(key, val, allowed) from exc
+    if not (math.isfinite(a) and math.isfinite(b)):
+        raise InvalidParameter(key, val, allowed)
+    _check_size({key: n}, max_cases)  # before allocating the axis
+    return list(np.linspace(a, b, n))
+
+
+def _grid_value(key: str, text: str):
+    """One grid value: non-empty; a number unless ``key`` is a text key."""
+    if not text.strip():
+        raise InvalidParameter(key, text, "a non-empty value (key=v1,v2,...)")
+    if key in TEXT_KEYS:
+        return _auto(text)
+    if not _is_number(text):
+        raise InvalidParameter(key, text, "a number (or start:stop:count)")
+    return float(text)
 
 
 def read_cases(path) -> list[dict]:
