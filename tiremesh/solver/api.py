@@ -23,7 +23,7 @@ from .arrays import (
     stack_surfaces,
 )
 from .evaluate import evaluate
-from .kinematics import displacements
+from .kinematics import displacements, raise_case_errors
 from .load import find_deflection, max_load_arrays
 from .patch import ContactPatch, patch_from_arrays
 
@@ -175,28 +175,65 @@ def solve_arrays(cs: CaseArrays, *, load=None, deflection=None, anchor=None, sta
     ahead = np.zeros_like(cs.r0) if anchor is None else np.asarray(anchor, float)
     active = (ta != 0) & np.isfinite(ahead)
     ahead = np.where(active, ahead, 0.0)
-    base = cs.lateral
-    offset, prev = np.zeros_like(cs.r0), None
+    offset = np.zeros_like(cs.r0)
+    cs_k = cs.with_lateral(cs.lateral)
+    dw, ends, track = _deflection(cs_k, load, deflection, start)
+    if not np.any(active):
+        return Solved(cs_k, dw, ends, track, offset)
+    if ends is None:
+        ends, track = evaluate(cs_k, dw, 9).ends_and_offset()
+    ends, prev = (ends[0].copy(), ends[1].copy()), None
     for _ in range(tol.max_iter):
-        cs_k = cs.with_lateral(base + offset)
-        dw, ends, track = _deflection(cs_k, load, deflection, start)
-        start = (dw, ends) if ends is not None else None
-        if not np.any(active):
-            return Solved(cs_k, dw, ends, track, offset)
-        if ends is None:
-            ends, track = evaluate(cs_k, dw, 9).ends_and_offset()
         x_front = displacements(ends[1], dw, cs_k, 0.0).x
         g = offset + np.where(active, (x_front + ahead) * ta, 0.0)  # dh = lateral at the anchor
-        if np.all(np.abs(g) <= tol.disk_offset_atol):
+        todo = np.nonzero(np.abs(g[:, 0]) > tol.disk_offset_atol)[0]
+        if todo.size == 0:
             return Solved(cs_k, dw, ends, track, offset)
         step = -g  # fixed-point step, then secant steps (the map is smooth and monotone)
         if prev is not None:
             with np.errstate(divide="ignore", invalid="ignore"):
                 secant = -g * (offset - prev[0]) / (g - prev[1])
             step = np.where(np.isfinite(secant), secant, step)
-        prev = (offset, g)
-        offset = offset + step
-    raise NotConverged("leading-edge slip anchor", {"offset_mm": offset.ravel()})
+        prev = (offset.copy(), g)
+        offset[todo] += step[todo]
+        cs_k = cs.with_lateral(cs.lateral + offset)
+        # only the cases still moving are solved again: the others keep their solution
+        _resolve(cs_k, todo, (load, deflection), (dw, ends, track))
+    bad = np.nonzero(np.abs(g[:, 0]) > tol.disk_offset_atol)[0]
+    raise_case_errors(
+        {
+            int(i): NotConverged(
+                "leading-edge slip anchor", {"case": int(i), "offset_mm": float(offset[i, 0])}
+            )
+            for i in bad
+        }
+    )
+
+
+def _resolve(cs_k: CaseArrays, todo, given, state) -> None:
+    """Solve the cases ``todo`` of ``cs_k`` again, in place in ``state`` =
+    ``(dw, (rear, front), track)``; their errors name the cases in ``cs_k``."""
+    load, deflection = given
+    dw, ends, track = state
+    pick = lambda a: None if a is None else a[todo]
+    sub = cs_k.take(todo)
+    warm = (dw[todo], (ends[0][todo], ends[1][todo])) if load is not None else None
+    try:
+        dw_t, ends_t, track_t = _deflection(sub, pick(load), pick(deflection), warm)
+    except TireModelError as exc:
+        named = getattr(exc, "case_errors", None)
+        if named:
+            for err in named.values():
+                if isinstance(getattr(err, "state", None), dict) and "case" in err.state:
+                    err.state["case"] = int(todo[err.state["case"]])
+            exc.case_errors = {int(todo[k]): e for k, e in named.items()}
+            exc.partial = None  # the warm start of the subset does not fit the group
+        raise
+    if ends_t is None:
+        ends_t, track_t = evaluate(sub, dw_t, 9).ends_and_offset()
+    dw[todo], ends[0][todo], ends[1][todo] = dw_t, ends_t[0], ends_t[1]
+    if track is not None and track_t is not None:
+        track[todo] = track_t
 
 
 def solve(
@@ -381,7 +418,7 @@ def _prescreen(table: CaseTable) -> dict[int, str]:
     rest = np.array([i for i in range(len(table)) if i not in flagged], int)
     if rest.size == 0 or np.all(np.isnan(table.load)):
         return flagged
-    for _ in range(3):  # cases that fail even at the largest deflection: left to the solve
+    while True:  # cases that fail even at the largest deflection: left to the solve
         try:
             fmax, _ = max_load_arrays(cs.take(rest), tol.search_sections)
             break
@@ -389,11 +426,9 @@ def _prescreen(table: CaseTable) -> dict[int, str]:
             named = getattr(exc, "case_errors", None)
             if not named:
                 return flagged
-            rest = np.delete(rest, list(named))
+            rest = np.delete(rest, list(named))  # at least one case fewer each time
             if rest.size == 0:
                 return flagged
-    else:
-        return flagged
     for j in np.nonzero(table.load[rest] > fmax[:, 0])[0]:
         i = int(rest[j])
         flagged[i] = f"LoadTooHigh: {LoadTooHigh('load', float(table.load[i]), float(fmax[j, 0]))}"
