@@ -14,8 +14,9 @@ Lateral       : solve_lateral, LateralResult, stiffnesses
 Relations     : fit_relations, evaluate_relation, write_relations, read_relations, Relation
                 (closed-form fits to dense sweeps, docs/relations.md)
 Errors        : TireModelError, InvalidParameter, LoadTooHigh, ModelLimit (RimBottoms,
-                BulgeLimit, PatchEndLimit), NoContact, NotConverged
-Tolerances    : tol (numerical epsilons only)
+                BulgeLimit, PatchEndLimit, SurfaceTooCurved), NoContact, NotConverged
+Tolerances    : tol (numerical epsilons only); SolverOptions (judgement thresholds,
+                passed as options= and sent to workers)
 Shared tools  : tiremesh.io (atomic files, tables, figures), tiremesh.parallel,
                 tiremesh.units
 
@@ -37,10 +38,12 @@ from .errors import (
     NotConverged,
     PatchEndLimit,
     RimBottoms,
+    SurfaceTooCurved,
     TireModelError,
 )
 from .geometry import TireGeometry
 from .lateral import LateralResult, solve_lateral, stiffnesses
+from .options import SolverOptions
 from .relations import Relation, evaluate_relation, fit_relations, read_relations, write_relations
 from .section import SectionSolution, solve_sections
 from .solver import ContactPatch, find_sinkage, max_load, solve, solve_many, solve_patch
@@ -67,8 +70,10 @@ __all__ = [
     "Relaxation",
     "RimBottoms",
     "SectionSolution",
+    "SolverOptions",
     "Surface",
     "SurfaceBase",
+    "SurfaceTooCurved",
     "TireGeometry",
     "TireModelError",
     "evaluate_relation",

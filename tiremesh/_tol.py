@@ -1,12 +1,20 @@
 """All numerical tolerances of :mod:`tiremesh`, in one documented place.
 
-Modelled on ``trimesh.tol``: no stray epsilons elsewhere in the package. Change
-a value here (e.g. ``tiremesh.tol.load_rtol = 1e-12``) and every solver uses it.
+Modelled on ``trimesh.tol``: no stray epsilons elsewhere in the package. Only
+numerical epsilons live here (convergence tolerances and iteration safeguards of
+the root finders), which change a result at most at the rounding level; a change
+(e.g. ``tiremesh.tol.load_rtol = 1e-12``) applies to this process only, not to
+worker processes. Judgement thresholds (rim clearance, when a force counts as zero,
+Appendix C's friction iteration) are :class:`tiremesh.SolverOptions`, passed
+explicitly as ``options=`` and sent to workers.
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass
+
+MOVED_TO_OPTIONS = ("rim_clearance", "force_rtol", "friction_rtol")
+"""Former fields, now judgement thresholds of :class:`tiremesh.SolverOptions`."""
 
 
 @dataclass
@@ -28,8 +36,9 @@ class Tolerances:
     disk_offset_atol : float [mm]
         Convergence of the disk offset fixed point (section 5.3.2).
     max_iter : int
-        Iteration cap of every Newton / fixed-point loop. Exceeding it raises
-        :class:`tiremesh.NotConverged` with the state reached.
+        Iteration cap of every Newton / fixed-point root loop (a safeguard: they
+        converge in a few steps). Exceeding it raises :class:`tiremesh.NotConverged`
+        with the state reached.
     geometry_xtol : float [rad]
         Convergence of the rim-angle root of equation 5-6 (arc length -> tire radius).
     search_sections : int
@@ -46,16 +55,8 @@ class Tolerances:
     series_below : float [rad]
         Below this bulge angle, ``theta - sin(theta)`` is evaluated by its Taylor
         series (no cancellation).
-    friction_rtol : float [-]
-        Convergence of the total lateral force in the friction iteration (5.6).
     zero_force_xtol : float [mm]
         Root of a section's zero-lateral-force displacement (friction sliding).
-    force_rtol : float [-]
-        A lateral force below this fraction of the vertical force is zero (the
-        rounding level of the force integrals); the pneumatic trail is then NaN.
-    rim_clearance : float [-]
-        Largest usable wheel deflection as a fraction of the deflection at which a
-        bead reaches the ground (where Rotta's bulge radius becomes infinite).
     """
 
     angle_xtol: float = 4e-15
@@ -68,10 +69,20 @@ class Tolerances:
     end_width_atol: float = 1e-9
     bulge_fast_step: float = 1e-11
     series_below: float = 0.3
-    friction_rtol: float = 1e-9
     zero_force_xtol: float = 1e-10
-    force_rtol: float = 1e-12
-    rim_clearance: float = 0.995
+
+    def __setattr__(self, name: str, value) -> None:
+        # a misspelled or moved name must not pass silently
+        if name in MOVED_TO_OPTIONS or name not in type(self).__dataclass_fields__:
+            from .errors import InvalidParameter
+
+            raise InvalidParameter(
+                f"tol.{name}",
+                value,
+                "a numerical tolerance of Tolerances; judgement thresholds are "
+                f"SolverOptions fields, e.g. solve(..., options=SolverOptions({name}=...))",
+            )
+        object.__setattr__(self, name, value)
 
 
 tol = Tolerances()

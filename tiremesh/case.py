@@ -48,6 +48,21 @@ FORCE_CONVENTIONS = ("ground", "appendix")
 MAX_SECTIONS = 20001
 
 
+def one_of(names) -> str:
+    """``"'a', 'b' or 'c'"``: the allowed values of an option, for error messages.
+
+    Parameters
+    ----------
+    names : sequence of str
+
+    Returns
+    -------
+    str
+    """
+    quoted = [repr(n) for n in names]
+    return quoted[0] if len(quoted) == 1 else ", ".join(quoted[:-1]) + " or " + quoted[-1]
+
+
 @dataclass(frozen=True)
 class Relaxation:
     """Relaxation rates of Appendix C, per mm along the wheel (section 5.8).
@@ -220,16 +235,14 @@ class LoadCase:
         set_("friction", mu)
         if self.slip_kinematics not in SLIP_KINEMATICS:
             raise InvalidParameter(
-                "slip_kinematics", self.slip_kinematics, "'leading' or 'centre'"
+                "slip_kinematics", self.slip_kinematics, one_of(SLIP_KINEMATICS)
             )
         if self.force_convention not in FORCE_CONVENTIONS:
             raise InvalidParameter(
-                "force_convention", self.force_convention, "'ground' or 'appendix'"
+                "force_convention", self.force_convention, one_of(FORCE_CONVENTIONS)
             )
         if self.friction_model not in FRICTION_MODELS:
-            raise InvalidParameter(
-                "friction_model", self.friction_model, "'coulomb' or 'appendix'"
-            )
+            raise InvalidParameter("friction_model", self.friction_model, one_of(FRICTION_MODELS))
 
     def replace(self, **changes) -> LoadCase:
         """A copy with ``changes`` applied (validated again). Giving ``load`` clears
@@ -423,11 +436,9 @@ class CaseTable:
             dw = v.positive("deflection", deflection, unit="mm")
             f = np.full(np.shape(dw), np.nan)
         if slip_kinematics not in SLIP_KINEMATICS:
-            raise InvalidParameter(
-                "slip_kinematics", slip_kinematics, "'leading', 'relaxation' or 'centre'"
-            )
+            raise InvalidParameter("slip_kinematics", slip_kinematics, one_of(SLIP_KINEMATICS))
         if force_convention not in FORCE_CONVENTIONS:
-            raise InvalidParameter("force_convention", force_convention, "'ground' or 'appendix'")
+            raise InvalidParameter("force_convention", force_convention, one_of(FORCE_CONVENTIONS))
         many = isinstance(surface, list | tuple)
         n_surf = len(surface) if many else 1
         try:

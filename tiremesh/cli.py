@@ -94,8 +94,10 @@ def add_tire_options(p: argparse.ArgumentParser) -> None:
         "--slip-kinematics",
         choices=SLIP_KINEMATICS,
         default="leading",
-        help="how a slip angle displaces the tread: undisplaced at the leading edge "
-        "(default) or turned about the patch centre (Appendix C)",
+        help="how a slip angle displaces the tread: 'leading' undisplaced at the leading "
+        "edge (default, brush model), 'relaxation' displaced ahead of the patch as the "
+        "relaxation beyond it (Figure 4-15, 5.7), 'centre' turned about the patch centre "
+        "(Appendix C)",
     )
     c.add_argument(
         "--sections", type=int, default=201, help="sections along the patch (default 201)"

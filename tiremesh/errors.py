@@ -102,6 +102,14 @@ class PatchEndLimit(ModelLimit):
     limit = "patch end"
 
 
+class SurfaceTooCurved(ModelLimit):
+    """A patch end reaches the edge of the curved surface's cross-section along the
+    wheel (``R sin(phi) >= R_s``, equations 5-20 and 5-23): the drum or disk track is
+    too small for this tire and deflection."""
+
+    limit = "surface too curved"
+
+
 class NoContact(TireModelError):
     """The tire does not touch the support surface (e.g. zero deflection, or a
     lateral displacement so large that even the central section's edges cross)."""

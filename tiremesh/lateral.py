@@ -9,14 +9,14 @@ width, two distinct bulge radii, Figure 5-18) and carries ``dS = p (r1 - r2)`` b
 no vertical load. The decay length is ``1 / (1 - i)``. Leading and trailing sides
 have their own rates.
 
-Friction (5.6, equation 5-27): a patch section whose lateral force (plus its share of
-the force from beyond the patch, shared in proportion to its own) exceeds
-``mu dN`` slides toward the position where it carries no lateral force, following
-its gripping neighbour nearer the patch centre at the sliding relaxation rate
-(Appendix C limits a section's slide by its neighbour's). The share of the beyond-patch
-force depends on the result, so the whole is iterated to a converged total
-lateral force (the dissertation needs 3 to 4 iterations); oscillation is detected
-and damped by averaging.
+Friction (5.6, equation 5-27), Coulomb: each patch section's would-be ground reaction
+is taken from the grip solution (its own lateral force plus a share of the force
+beyond the patch in proportion to its normal load). Where it exceeds ``mu dN`` the
+section slides and reacts exactly ``mu dN`` along the grip total; sliding sections'
+displacement follows their gripping neighbour nearer the patch centre at the sliding
+relaxation rate (Appendix C limits a section's slide by its neighbour's). The demand
+does not depend on the sliding, so the result is monotone in ``mu`` without
+iteration. Appendix C's iteration is kept as ``friction_model='appendix'``.
 
 Slip: the kinematics are the load case's ``slip_kinematics`` (see
 :mod:`tiremesh.case`), applied by :func:`tiremesh.solve` exactly as here.
@@ -24,7 +24,9 @@ Slip: the kinematics are the load case's ``slip_kinematics`` (see
 Departures: the appendix slides toward ``dh = 0``; here toward each section's
 zero-force displacement, so that zero friction gives zero lateral force also with
 camber. It scales the beyond-patch share as ``dy * F / F_cp`` (a dimensional slip);
-here ``dS * F / F_cp``.
+the Coulomb model here shares it in proportion to the normal load (a share in
+proportion to the patch's own force is singular where that force nears zero, e.g.
+camber against a lateral displacement).
 
 References
 ----------
@@ -35,7 +37,6 @@ A. E. Dressel (2013), sections 5.5, 5.6, 5.7 and 5.8 (equations 5-25, 5-26, 5-27
 
 from __future__ import annotations
 
-import dataclasses
 import math
 from dataclasses import dataclass, field
 
@@ -46,13 +47,10 @@ from ._tol import tol
 from .case import LoadCase, Relaxation
 from .errors import InvalidParameter, NotConverged
 from .geometry import TireGeometry
+from .options import SolverOptions, active, using
 from .section import section_arrays
 from .solver import ContactPatch, clenshaw_curtis, solve
 from .solver.api import as_case
-
-TRAIL_MIN_PATCH_SHARE = 0.1
-"""Below this share of the lateral force carried by the patch's own sections, the
-pneumatic trail is reported as NaN (undefined)."""
 
 
 @dataclass(frozen=True)
@@ -87,9 +85,11 @@ class LateralResult:
         Total over patch lateral force used by the final friction check: each patch
         section had to hold ``friction_share x`` its own force.
     reaction : (n_patch,) float [N/mm]
-        Lateral ground reaction per length on each patch section (its own force
-        times the share, capped at ``mu dN`` where it slides); ``lateral_force`` is
-        its integral.
+        Lateral ground reaction per length on each patch section (its would-be grip
+        demand, capped at ``mu dN`` where it slides); ``lateral_force`` is its
+        integral.
+    options : SolverOptions
+        The judgement thresholds of the solve (they decide when the trail is NaN).
     """
 
     patch: ContactPatch = field(repr=False)
@@ -110,6 +110,7 @@ class LateralResult:
     iterations: int
     friction_share: float = 1.0
     reaction: np.ndarray = field(default=None, repr=False)
+    options: SolverOptions = field(default_factory=SolverOptions, repr=False)
 
     def __repr__(self) -> str:
         return (
@@ -159,14 +160,14 @@ class LateralResult:
         """``-aligning_moment / patch_lateral_force`` [mm] (positive: force behind the centre).
 
         NaN when the patch's own sections carry no net lateral force (below
-        ``tol.force_rtol`` of the vertical force), or less than
-        :data:`TRAIL_MIN_PATCH_SHARE` of the total (most of the force then comes from
+        ``options.force_rtol`` of the vertical force), or less than
+        ``options.trail_min_patch_share`` of the total (most of the force then comes from
         beyond the patch and the patch's own forces nearly cancel: their centroid, the
         trail, is meaningless; the validation found -660 mm there)."""
         f = self.patch_lateral_force
-        if abs(f) <= tol.force_rtol * abs(self.vertical_force):
+        if abs(f) <= self.options.force_rtol * abs(self.vertical_force):
             return math.nan
-        if abs(f) < TRAIL_MIN_PATCH_SHARE * abs(self.lateral_force):
+        if abs(f) < self.options.trail_min_patch_share * abs(self.lateral_force):
             return math.nan
         return float(-self.aligning_moment / f)
 
@@ -396,8 +397,8 @@ class FrictionState:
     dh, dS, dN : (n,) float [mm, N/mm, N/mm]
         Section displacement and the carcass's lateral and vertical force per length.
     reaction : (n,) float [N/mm]
-        Lateral ground reaction per length on each patch section: its own force plus
-        its share of the force beyond the patch, capped at ``mu dN`` where it slides.
+        Lateral ground reaction per length on each patch section: its would-be (grip)
+        demand (:func:`_demand`), capped at ``mu dN`` where it slides.
     sliding : (n,) bool
     beyond : (BeyondSide, BeyondSide)
         Trailing and leading side.
@@ -432,8 +433,10 @@ def grip_state(patch: ContactPatch, case: LoadCase) -> FrictionState:
     dS, dN = section_forces(patch, dv, dh)
     beyond = beyond_both(patch, dv, dh, relax=case.relaxation, n=case.n_beyond)
     own = float(np.sum(patch.x_weights * dS))
-    q = (own + sum(b.force for b in beyond)) / own if own else 1.0
-    return FrictionState(dh, dS, dN, q * dS, np.zeros(dS.shape, bool), beyond, 0, q)
+    f_beyond = sum(b.force for b in beyond)
+    q = (own + f_beyond) / own if own else 1.0
+    sign, demand = _demand(patch, dS, _normal_load(patch, dN), f_beyond)
+    return FrictionState(dh, dS, dN, sign * demand, np.zeros(dS.shape, bool), beyond, 0, q)
 
 
 def _normal_load(patch: ContactPatch, dN) -> np.ndarray:
@@ -442,22 +445,68 @@ def _normal_load(patch: ContactPatch, dN) -> np.ndarray:
     return dN * (patch.vertical_force / total) if total > 0 else dN
 
 
+MIN_UTILIZATION = 0.1
+"""Smallest friction utilization ``demand / dN`` of a loaded patch section, as a
+fraction of the patch's mean ``|Fy| / Fz``, in the Coulomb demand (:func:`_demand`)."""
+
+
+def _demand(patch: ContactPatch, dS, dN, f_beyond):
+    """Would-be (grip) lateral ground reaction per patch section, along the total.
+
+    Each section reacts its own force plus a share of the force beyond the patch in
+    proportion to its normal load (the beyond-patch force reaches the ground through
+    the contact pressure). Where a loaded section's demand opposes the total or
+    nearly vanishes (camber against a lateral displacement), the tread band passes
+    it on: the demand is blended with a uniform utilization ``|F| / Fz`` just enough
+    that every loaded section uses at least :data:`MIN_UTILIZATION` of the mean.
+    The total is unchanged, so a fully sliding patch reacts ``mu Fz``.
+
+    Parameters
+    ----------
+    patch : ContactPatch
+    dS, dN : (n,) float [N/mm]
+        Grip lateral force and normal load per length of the patch sections.
+    f_beyond : float [N]
+        Lateral force beyond both patch ends.
+
+    Returns
+    -------
+    sign : float
+        Sign of the grip total (0 if it is zero).
+    demand : (n,) float [N/mm]
+        Non-negative demand along ``sign``; ``sum(w demand) = |total|``.
+    """
+    w = patch.x_weights
+    fz = float(np.sum(w * dN))
+    d = dS + (f_beyond / fz) * dN if fz > 0 else dS.copy()
+    total = float(np.sum(w * d))
+    sign = float(np.sign(total))
+    loaded = dN > 0
+    if sign == 0 or not np.any(loaded):
+        return sign, np.zeros_like(d)
+    mean = abs(total) / fz
+    u_min = float(np.min(sign * d[loaded] / dN[loaded]))
+    theta = max(0.0, (MIN_UTILIZATION * mean - u_min) / (mean - u_min))
+    demand = np.maximum((1.0 - theta) * sign * d + theta * mean * dN, 0.0)
+    return sign, demand * (abs(total) / float(np.sum(w * demand)))
+
+
 def coulomb_friction(patch: ContactPatch, case: LoadCase) -> FrictionState:
     """Coulomb friction on the patch (section 5.6), the default ``friction_model``.
 
-    Each patch section must react its own lateral force times the share ``q`` =
-    (patch + beyond-patch force) / patch force (the force beyond the patch is carried
-    to the ground by the patch, in proportion to each section's own force). Where
-    that demand exceeds ``mu dN`` the section slides (equation 5-27): its ground
-    reaction is exactly ``mu dN`` in the direction of the demand, and its
-    displacement relaxes toward its gripping neighbour nearer the patch centre
-    (:func:`slide`), which changes the force beyond the patch and so ``q``. ``q`` is
-    iterated as a fixed point until its root is bracketed, then by regula falsi with
-    bisection safeguards, so it converges also where a section toggles between grip
-    and slide (the iteration then stops at the switch).
+    The would-be ground reaction of each patch section is taken from the grip
+    solution (:func:`_demand`: its own force plus its normal-load share of the
+    force beyond the patch, along the grip total). Where it exceeds ``mu dN`` the
+    section slides (equation 5-27) and reacts exactly ``mu dN`` in the direction of
+    the grip total; elsewhere it reacts its demand. The demand is fixed, so the set
+    of sliding sections shrinks as ``mu`` grows and no iteration is needed. The
+    sliding sections' carcass displacement follows the nearest gripping neighbour
+    toward the patch centre (:func:`slide`), which gives the reported ``dh``,
+    ``dS`` and the force beyond the patch; it does not feed back into the demand.
 
-    Guarantees: ``|Fy| <= mu Fz`` (every reaction is within its cap); ``mu = 0``
-    gives ``Fy = 0``; full sliding gives ``Fy = mu Fz`` with the sign of the demand.
+    Guarantees: ``|Fy| <= min(mu Fz, |Fy_grip|)``; ``Fy`` has the sign of the grip
+    solution and ``|Fy|`` is nondecreasing in ``mu``; ``mu = 0`` gives 0; full sliding
+    gives ``mu Fz``.
 
     Parameters
     ----------
@@ -470,49 +519,19 @@ def coulomb_friction(patch: ContactPatch, case: LoadCase) -> FrictionState:
     FrictionState
     """
     mu, relax, nb = case.friction, case.relaxation, case.n_beyond
-    x, dv, w = patch.x, patch.sections.vert_deflection, patch.x_weights
-    dh_imp = patch.sections.horz_deflection
-    dh_free = zero_force_displacement(patch, dv)
-    dS_imp, dN_imp = section_forces(patch, dv, dh_imp)
-    normal = _normal_load(patch, dN_imp)  # the vertical load stays where the patch put it
+    x, dv = patch.x, patch.sections.vert_deflection
+    grip = grip_state(patch, case)
+    normal = _normal_load(patch, grip.dN)  # the vertical load stays where the patch put it
+    f_beyond = sum(b.force for b in grip.beyond)
+    sign, demand = _demand(patch, grip.dS, normal, f_beyond)
     cap = mu * normal
-
-    def state(q):
-        sliding = np.abs(q * dS_imp) > cap  # Eq. 5-27
-        dh = dh_free + slide(dh_imp - dh_free, sliding, x, relax)
-        dS, _ = section_forces(patch, dv, dh)
-        beyond = beyond_both(patch, dv, dh, relax=relax, n=nb)
-        own = float(np.sum(w * dS))
-        q_new = (own + sum(b.force for b in beyond)) / own if own else q
-        reaction = np.where(sliding, np.sign(q * dS_imp) * cap, q * dS)
-        return FrictionState(dh, dS, normal, reaction, sliding, beyond, 0, q), q_new
-
-    q = grip_state(patch, case).share
-    bracket = None  # (q, G(q)) on each side of the root of G(q) = q_new(q) - q
-    prev = None
-    for it in range(1, tol.max_iter + 1):
-        st, q_new = state(q)
-        g = q_new - q
-        if abs(g) <= tol.friction_rtol * (1.0 + abs(q)) or np.all(st.sliding):
-            return dataclasses.replace(st, iterations=it)
-        if prev is not None and g * prev[1] < 0:
-            bracket = (prev, (q, g))
-        elif bracket is not None:
-            lo, hi = bracket
-            bracket = ((q, g), hi) if g * lo[1] > 0 else (lo, (q, g))
-        prev = (q, g)
-        if bracket is None:
-            q = q_new  # fixed-point step until the root is bracketed
-            continue
-        (a, ga), (b, gb) = bracket
-        q_sec = b - gb * (b - a) / (gb - ga)  # regula falsi, bisection if it stalls
-        q = q_sec if min(a, b) < q_sec < max(a, b) and it % 3 else 0.5 * (a + b)
-        if abs(b - a) <= tol.friction_rtol * (1.0 + abs(q)):
-            return dataclasses.replace(state(q)[0], iterations=it)  # at a grip/slide switch
-    raise NotConverged(
-        "Coulomb friction iteration (section 5.6)",
-        {"iterations": tol.max_iter, "share": q, "bracket": bracket},
-    )
+    sliding = demand > cap  # Eq. 5-27
+    reaction = sign * np.minimum(demand, cap)
+    dh_free = zero_force_displacement(patch, dv)
+    dh = dh_free + slide(grip.dh - dh_free, sliding, x, relax)
+    dS, _ = section_forces(patch, dv, dh)
+    beyond = beyond_both(patch, dv, dh, relax=relax, n=nb)
+    return FrictionState(dh, dS, normal, reaction, sliding, beyond, 1, grip.share)
 
 
 def appendix_friction(patch: ContactPatch, case: LoadCase) -> FrictionState:
@@ -533,12 +552,13 @@ def appendix_friction(patch: ContactPatch, case: LoadCase) -> FrictionState:
     FrictionState
     """
     relax, mu, nb = case.relaxation, case.friction, case.n_beyond
+    opts = active()
     x, dv = patch.x, patch.sections.vert_deflection
     dh_imp, w_patch = patch.sections.horz_deflection, patch.x_weights
     dh_free = zero_force_displacement(patch, dv)
     dS, dN = section_forces(patch, dv, dh_imp)
     ratio, history = 1.0, []
-    for it in range(1, tol.max_iter + 1):
+    for it in range(1, opts.friction_max_iter + 1):
         demand = np.abs(dS * ratio)
         sliding = demand > mu * dN + 1e-12 * (1.0 + demand)
         dh = dh_free + slide(dh_imp - dh_free, sliding, x, relax)
@@ -547,7 +567,7 @@ def appendix_friction(patch: ContactPatch, case: LoadCase) -> FrictionState:
         beyond = beyond_both(patch, dv, dh, relax=relax, n=nb)
         total = f_patch + sum(b.force for b in beyond)
         history.append(total)
-        if len(history) >= 2 and abs(history[-1] - history[-2]) <= tol.friction_rtol * (
+        if len(history) >= 2 and abs(history[-1] - history[-2]) <= opts.friction_rtol * (
             1.0 + abs(total)
         ):
             share = total / f_patch if f_patch else 1.0
@@ -558,7 +578,7 @@ def appendix_friction(patch: ContactPatch, case: LoadCase) -> FrictionState:
         dS, dN = section_forces(patch, dv, dh_imp)  # friction demand from the imposed state
     raise NotConverged(
         "friction iteration (section 5.6)",
-        {"iterations": tol.max_iter, "last_totals_N": history[-3:]},
+        {"iterations": opts.friction_max_iter, "last_totals_N": history[-3:]},
     )
 
 
@@ -583,7 +603,9 @@ def relaxation_length(side: BeyondSide) -> float:
     return float(s_b[k - 1] + (a - (np.log(abs(dh_b[0])) - 1.0)) / (a - b) * (s_b[k] - s_b[k - 1]))
 
 
-def solve_lateral(case: LoadCase | TireGeometry, /, **fields) -> LateralResult:
+def solve_lateral(
+    case: LoadCase | TireGeometry, /, *, options: SolverOptions | None = None, **fields
+) -> LateralResult:
     """Lateral forces of the tire with deflection beyond the patch and friction
     (sections 5.5 to 5.8).
 
@@ -592,6 +614,9 @@ def solve_lateral(case: LoadCase | TireGeometry, /, **fields) -> LateralResult:
     case : LoadCase or TireGeometry
         The load case (its ``relaxation``, ``friction``, ``slip_kinematics`` and
         ``n_beyond`` apply here); or a tire with the fields as keywords.
+    options : SolverOptions, optional
+        Judgement thresholds (:class:`tiremesh.SolverOptions`); default: those of the
+        enclosing call, or the defaults.
     **fields
         Load-case fields, as for :func:`tiremesh.solve`.
 
@@ -600,14 +625,15 @@ def solve_lateral(case: LoadCase | TireGeometry, /, **fields) -> LateralResult:
     LateralResult
     """
     case = as_case(case, fields)
-    patch = solve(case)
-    if not math.isfinite(case.friction):
-        return _assemble(patch, grip_state(patch, case))
-    model = {"coulomb": coulomb_friction, "appendix": appendix_friction}[case.friction_model]
-    return _assemble(patch, model(patch, case))
+    with using(options) as opts:
+        patch = solve(case)
+        if not math.isfinite(case.friction):
+            return _assemble(patch, grip_state(patch, case), opts)
+        model = {"coulomb": coulomb_friction, "appendix": appendix_friction}[case.friction_model]
+        return _assemble(patch, model(patch, case), opts)
 
 
-def _assemble(patch: ContactPatch, st: FrictionState) -> LateralResult:
+def _assemble(patch: ContactPatch, st: FrictionState, opts: SolverOptions) -> LateralResult:
     """Concatenate trailing side, patch and leading side into one LateralResult."""
     x, dv = patch.x, patch.sections.vert_deflection
     trail, lead = st.beyond
@@ -636,6 +662,7 @@ def _assemble(patch: ContactPatch, st: FrictionState) -> LateralResult:
         iterations=st.iterations,
         friction_share=st.share,
         reaction=st.reaction,
+        options=opts,
     )
 
 

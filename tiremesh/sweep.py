@@ -151,16 +151,21 @@ def _plain(x):
     return x.item() if isinstance(x, np.generic) else x
 
 
+TEXT_KEYS = ("tire", "surface", "slip_kinematics")
+"""Grid keys whose values are text (the others are numbers)."""
+
+
 def parse_grid(spec: str, *, max_cases: int = MAX_CASES) -> list[dict]:
-    """Cases from a command-line grid.
+    """Cases from a command-line grid, validated before any work.
 
     Parameters
     ----------
-    max_cases : int
-        Refuse a grid of more cases than this (before building anything).
     spec : str
         Space-separated ``key=v1,v2,...`` or ``key=start:stop:count`` (a linspace),
-        e.g. ``'tire=5,8 pressure_bar=2:11:10 load_N=304,500'``.
+        e.g. ``'tire=5,8 pressure_bar=2:11:10 load_N=304,500'``. Text keys
+        (:data:`TEXT_KEYS`) take any non-empty values (``surface=drum:2500``).
+    max_cases : int
+        Refuse a grid of more cases than this (before building anything).
 
     Returns
     -------
@@ -169,24 +174,50 @@ def parse_grid(spec: str, *, max_cases: int = MAX_CASES) -> list[dict]:
     Raises
     ------
     InvalidParameter
-        A malformed part or an unknown key.
+        A malformed part (no ``=``, an empty value, a range not ``start:stop:count``
+        with numbers and an integer count >= 1, a non-number for a numeric key), a
+        key given twice, an unknown key, or more than ``max_cases`` cases.
     """
-    axes = {}
+    axes: dict = {}
     for part in spec.split():
-        if "=" not in part:
+        k, eq, val = part.partition("=")
+        if not eq or not k:
             raise InvalidParameter("grid", part, "key=v1,v2,... or key=start:stop:count")
-        k, val = part.split("=", 1)
-        if val.count(":") == 2 and _is_number(val.split(":")[0]):
-            a, b, n = val.split(":")
-            try:
-                a, b, n = float(a), float(b), int(n)
-            except ValueError as exc:
-                raise InvalidParameter(k, val, "start:stop:count (count an integer)") from exc
-            _check_size({k: n}, max_cases)  # before allocating the axis
-            axes[k] = list(np.linspace(a, b, n))
+        check_keys([{k: val}])
+        if k in axes:
+            raise InvalidParameter(k, val, "one entry per key", f"{k!r} is given twice")
+        if k not in TEXT_KEYS and ":" in val:
+            axes[k] = _range(k, val, max_cases)
         else:
-            axes[k] = [_auto(x, k) for x in val.split(",")]
+            axes[k] = [_grid_value(k, x) for x in val.split(",")]
     return grid(max_cases=max_cases, **axes)
+
+
+def _range(key: str, val: str, max_cases: int) -> list:
+    """``start:stop:count`` of a numeric key as a linspace (count checked first)."""
+    parts = val.split(":")
+    allowed = "start:stop:count (numbers, count an integer >= 1), e.g. 2:4:3"
+    if len(parts) != 3:
+        raise InvalidParameter(key, val, allowed)
+    try:
+        a, b, n = float(parts[0]), float(parts[1]), int(parts[2])
+    except ValueError as exc:
+        raise InvalidParameter(key, val, allowed) from exc
+    if not (math.isfinite(a) and math.isfinite(b)):
+        raise InvalidParameter(key, val, allowed)
+    _check_size({key: n}, max_cases)  # before allocating the axis
+    return list(np.linspace(a, b, n))
+
+
+def _grid_value(key: str, text: str):
+    """One grid value: non-empty; a number unless ``key`` is a text key."""
+    if not text.strip():
+        raise InvalidParameter(key, text, "a non-empty value (key=v1,v2,...)")
+    if key in TEXT_KEYS:
+        return _auto(text, key)
+    if not _is_number(text):
+        raise InvalidParameter(key, text, "a number (or start:stop:count)")
+    return float(text)
 
 
 def read_cases(path) -> list[dict]:
@@ -323,7 +354,7 @@ def _error_row(row: dict, exc: Exception | str) -> dict:
     return {**row, "status": "error", "error": msg}
 
 
-def solve_case(row: dict) -> dict:
+def solve_case(row: dict, *, options=None) -> dict:
     """Solve one sweep row with :func:`tiremesh.solve_lateral` (friction, deflection
     beyond the patch, slip kinematics as the row says).
 
@@ -331,6 +362,9 @@ def solve_case(row: dict) -> dict:
     ----------
     row : dict
         Case keys, see :func:`case_from_row`.
+    options : SolverOptions, optional
+        Judgement thresholds (:class:`tiremesh.SolverOptions`); sent to every worker
+        by :func:`run_sweep`.
 
     Returns
     -------
@@ -343,7 +377,7 @@ def solve_case(row: dict) -> dict:
 
     try:
         case = case_from_row(row)
-        r = solve_lateral(case)
+        r = solve_lateral(case, options=options)
     except (TireModelError, ValueError) as exc:
         return _error_row(row, exc)
     p = r.patch
@@ -365,13 +399,14 @@ def solve_case(row: dict) -> dict:
     return _result_row(row, case, values, {"patch_lateral_force_N": r.patch_lateral_force}, tail)
 
 
-def _solve_vector(cases: list[LoadCase]) -> list:
+def _solve_vector(cases: list[LoadCase], options) -> list:
     """:func:`solve_many` of ``cases``: per case a dict of floats, or the error of a
     case the model rejects (a failing batch is bisected down to its bad cases)."""
     from .case import CaseTable
     from .solver import solve_many
 
-    out = solve_many(CaseTable.from_cases(cases), n_sections=VECTOR_SECTIONS, errors="flag")
+    table = CaseTable.from_cases(cases)
+    out = solve_many(table, n_sections=VECTOR_SECTIONS, errors="flag", options=options)
     keys = [k for k in out if k not in ("ok", "error")]
     return [
         {k: float(out[k][i]) for k in keys} if out["ok"][i] else str(out["error"][i])
@@ -379,7 +414,7 @@ def _solve_vector(cases: list[LoadCase]) -> list:
     ]
 
 
-def _vector_rows(rows: list[dict]) -> list[dict]:
+def _vector_rows(rows: list[dict], options) -> list[dict]:
     """Plain rows (no friction, relaxation or slip) solved together as arrays."""
     out: list = [None] * len(rows)
     cases = {}
@@ -389,7 +424,7 @@ def _vector_rows(rows: list[dict]) -> list[dict]:
         except (TireModelError, ValueError) as exc:
             out[i] = _error_row(row, exc)
     idx = list(cases)
-    for i, got in zip(idx, _solve_vector([cases[i] for i in idx]), strict=True):
+    for i, got in zip(idx, _solve_vector([cases[i] for i in idx], options), strict=True):
         if isinstance(got, str):
             out[i] = _error_row(rows[i], got)
         else:
@@ -416,6 +451,7 @@ def run_sweep(
     workers: int | None = None,
     scheduler: str | None = None,
     progress: bool = False,
+    options=None,
 ) -> list[dict]:
     """Solve every case of a sweep.
 
@@ -430,6 +466,10 @@ def run_sweep(
         Address of a Dask scheduler; overrides ``workers``.
     progress : bool
         Show a progress bar (stderr) over the cases solved one by one.
+    options : SolverOptions, optional
+        Judgement thresholds (:class:`tiremesh.SolverOptions`), the same in this
+        process, in local worker processes and on Dask workers (sent with every
+        task). Default: the defaults.
 
     Returns
     -------
@@ -441,16 +481,25 @@ def run_sweep(
     InvalidParameter
         A case has an unknown key (nothing is solved).
     """
+    from .options import SolverOptions
     from .parallel import parallel_map
 
     check_keys(cases)
+    options = SolverOptions() if options is None else options
+    if not isinstance(options, SolverOptions):
+        raise InvalidParameter("options", type(options).__name__, "a tiremesh.SolverOptions")
     rows: list = [None] * len(cases)
     plain = [i for i, c in enumerate(cases) if _vectorizable(c)]
-    for i, r in zip(plain, _vector_rows([cases[i] for i in plain]), strict=True):
+    for i, r in zip(plain, _vector_rows([cases[i] for i in plain], options), strict=True):
         rows[i] = r
     rest = [i for i in range(len(cases)) if rows[i] is None]
     results = parallel_map(
-        solve_case, [cases[i] for i in rest], workers=workers, scheduler=scheduler, min_items=4
+        solve_case,
+        [cases[i] for i in rest],
+        workers=workers,
+        scheduler=scheduler,
+        min_items=4,
+        kwargs={"options": options},
     )
     if progress and rest:
         from tqdm import tqdm

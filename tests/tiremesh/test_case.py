@@ -127,3 +127,41 @@ def test_contactpatch_repr_is_short_and_html_escapes():
     html = p._repr_html_()
     assert "<b>$x$</b>" not in html and "&lt;b&gt;" in html
     assert "length_mm" in html
+
+
+def test_loadcase_option_errors_list_every_allowed_value():
+    base = dict(pressure=0.4, load=400.0)
+    for name, allowed in (
+        ("slip_kinematics", tm.case.SLIP_KINEMATICS),
+        ("friction_model", tm.case.FRICTION_MODELS),
+        ("force_convention", tm.case.FORCE_CONVENTIONS),
+    ):
+        with pytest.raises(tm.InvalidParameter, match=name) as info:
+            tm.LoadCase(T, **base, **{name: "middle"})
+        assert all(repr(a) in str(info.value) for a in allowed), str(info.value)
+    with pytest.raises(tm.InvalidParameter, match="'leading', 'centre' or 'relaxation'"):
+        tm.CaseTable.from_columns(
+            tire_radius=20.0, rim_width=19.0, pressure=0.4, load=400.0, slip_kinematics="x"
+        )
+
+
+@pytest.mark.parametrize("kinematics", tm.case.SLIP_KINEMATICS)
+def test_loadcase_slip_kinematics_same_patch_force_in_solve_and_solve_lateral(kinematics):
+    # one definition of the slip kinematics (module docstring of tiremesh.case): the
+    # patch of solve_lateral is solve's, section by section
+    case = tm.LoadCase(
+        T,
+        pressure=0.4,
+        load=400.0,
+        slip=math.radians(2),
+        lateral=0.3,
+        relaxation=0.993,
+        slip_kinematics=kinematics,
+    )
+    p = tm.solve(case)
+    r = tm.solve_lateral(case)
+    assert_allclose(r.patch.lateral_force, p.lateral_force, rtol=1e-12)
+    assert_allclose(r.patch_lateral_force, p.lateral_force, rtol=1e-9, atol=1e-9)
+    assert_allclose(r.dh[r.in_patch], p.sections.horz_deflection, rtol=0, atol=1e-12)
+    if kinematics != "centre":  # the leading-edge kinematics give a cornering force
+        assert abs(p.lateral_force) > 5.0

@@ -177,6 +177,54 @@ def test_parse_grid_forms():
         parse_grid("tire")
 
 
+@pytest.mark.parametrize(
+    ("spec", "match"),
+    [
+        ("tire=5 pressure_bar=", "pressure_bar.*non-empty"),
+        ("tire=5 pressure_bar=2:4", "pressure_bar.*start:stop:count"),
+        ("tire=5 pressure_bar=a:b:c", "pressure_bar.*start:stop:count"),
+        ("tire=5 pressure_bar=2:4:x", "pressure_bar.*start:stop:count"),
+        ("tire=5 pressure_bar=2:4:3:1", "pressure_bar.*start:stop:count"),
+        ("tire=5 pressure_bar=2:inf:3", "pressure_bar.*start:stop:count"),
+        ("tire=5 pressure_bar=2,,3", "pressure_bar.*non-empty"),
+        ("tire=5 pressure_bar=four", "pressure_bar.*a number"),
+        ("tire=5 pressure_bar=2 load_N=400 pressure_bar=3", "pressure_bar.*given twice"),
+        ("tire=5 =4", "grid"),
+        ("tire=5 camber=45", "camber.*did you mean 'camber_deg'"),
+        ("tire=5 surface=", "surface.*non-empty"),
+    ],
+)
+def test_parse_grid_rejects_malformed_parts_up_front(spec, match):
+    with pytest.raises(tm.InvalidParameter, match=match):
+        parse_grid(spec)
+
+
+@pytest.mark.parametrize("count", ["0", "-3"])
+def test_parse_grid_rejects_empty_ranges(count):
+    with pytest.raises(tm.InvalidParameter, match="at least one value"):
+        parse_grid(f"tire=5 pressure_bar=2:4:{count}")
+    with pytest.raises(tm.InvalidParameter, match="at least one value"):
+        grid(tire=5, pressure_bar=[])
+
+
+def test_parse_grid_case_count_limit_before_allocation():
+    # 1e8 values would take gigabytes: refused from the count alone
+    with pytest.raises(tm.InvalidParameter, match="at most max_cases = 1000000"):
+        parse_grid("tire=5 pressure_bar=1:2:100000000")
+    with pytest.raises(tm.InvalidParameter, match=r"12 cases.*at most max_cases = 10"):
+        parse_grid("tire=5,6 pressure_bar=1:2:3 load_N=300,400", max_cases=10)
+    assert len(parse_grid("tire=5,6 pressure_bar=1:2:3 load_N=300,400", max_cases=12)) == 12
+    with pytest.raises(tm.InvalidParameter, match="at most max_cases = 3"):
+        grid(tire=[5, 6], load_N=[300.0, 400.0], max_cases=3)
+
+
+def test_parse_grid_text_values_keep_colons():
+    cases = parse_grid("tire=5 load_N=400 surface=drum:2500 slip_kinematics=relaxation,centre")
+    assert [c["surface"] for c in cases] == ["drum:2500", "drum:2500"]
+    assert [c["slip_kinematics"] for c in cases] == ["relaxation", "centre"]
+    assert parse_grid("tire=5 friction=inf,0.5")[0]["friction"] == math.inf
+
+
 def test_sweep_per_case_path_is_solve_lateral_of_the_case():
     row = dict(tire=5, pressure_bar=4.0, load_N=400.0, slip_deg=1.0, relaxation=0.993)
     (out,) = run_sweep([row], workers=1)

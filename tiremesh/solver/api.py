@@ -14,6 +14,7 @@ from .._tol import tol
 from ..case import MAX_SECTIONS, CaseTable, LoadCase, slip_anchor
 from ..errors import BulgeLimit, InvalidParameter, LoadTooHigh, NotConverged, TireModelError
 from ..geometry import TireGeometry
+from ..options import SolverOptions, using
 from .arrays import (
     CaseArrays,
     case_arrays,
@@ -22,7 +23,7 @@ from .arrays import (
     stack_surfaces,
 )
 from .evaluate import evaluate
-from .kinematics import displacements
+from .kinematics import displacements, raise_case_errors
 from .load import find_deflection, max_load_arrays
 from .patch import ContactPatch, patch_from_arrays
 
@@ -174,31 +175,70 @@ def solve_arrays(cs: CaseArrays, *, load=None, deflection=None, anchor=None, sta
     ahead = np.zeros_like(cs.r0) if anchor is None else np.asarray(anchor, float)
     active = (ta != 0) & np.isfinite(ahead)
     ahead = np.where(active, ahead, 0.0)
-    base = cs.lateral
-    offset, prev = np.zeros_like(cs.r0), None
+    offset = np.zeros_like(cs.r0)
+    cs_k = cs.with_lateral(cs.lateral)
+    dw, ends, track = _deflection(cs_k, load, deflection, start)
+    if not np.any(active):
+        return Solved(cs_k, dw, ends, track, offset)
+    if ends is None:
+        ends, track = evaluate(cs_k, dw, 9).ends_and_offset()
+    ends, prev = (ends[0].copy(), ends[1].copy()), None
     for _ in range(tol.max_iter):
-        cs_k = cs.with_lateral(base + offset)
-        dw, ends, track = _deflection(cs_k, load, deflection, start)
-        start = (dw, ends) if ends is not None else None
-        if not np.any(active):
-            return Solved(cs_k, dw, ends, track, offset)
-        if ends is None:
-            ends, track = evaluate(cs_k, dw, 9).ends_and_offset()
         x_front = displacements(ends[1], dw, cs_k, 0.0).x
         g = offset + np.where(active, (x_front + ahead) * ta, 0.0)  # dh = lateral at the anchor
-        if np.all(np.abs(g) <= tol.disk_offset_atol):
+        todo = np.nonzero(np.abs(g[:, 0]) > tol.disk_offset_atol)[0]
+        if todo.size == 0:
             return Solved(cs_k, dw, ends, track, offset)
         step = -g  # fixed-point step, then secant steps (the map is smooth and monotone)
         if prev is not None:
             with np.errstate(divide="ignore", invalid="ignore"):
                 secant = -g * (offset - prev[0]) / (g - prev[1])
             step = np.where(np.isfinite(secant), secant, step)
-        prev = (offset, g)
-        offset = offset + step
-    raise NotConverged("leading-edge slip anchor", {"offset_mm": offset.ravel()})
+        prev = (offset.copy(), g)
+        offset[todo] += step[todo]
+        cs_k = cs.with_lateral(cs.lateral + offset)
+        # only the cases still moving are solved again: the others keep their solution
+        _resolve(cs_k, todo, (load, deflection), (dw, ends, track))
+    bad = np.nonzero(np.abs(g[:, 0]) > tol.disk_offset_atol)[0]
+    raise_case_errors(
+        {
+            int(i): NotConverged(
+                "leading-edge slip anchor", {"case": int(i), "offset_mm": float(offset[i, 0])}
+            )
+            for i in bad
+        }
+    )
 
 
-def solve(case: LoadCase | TireGeometry, /, **fields) -> ContactPatch:
+def _resolve(cs_k: CaseArrays, todo, given, state) -> None:
+    """Solve the cases ``todo`` of ``cs_k`` again, in place in ``state`` =
+    ``(dw, (rear, front), track)``; their errors name the cases in ``cs_k``."""
+    load, deflection = given
+    dw, ends, track = state
+    pick = lambda a: None if a is None else a[todo]
+    sub = cs_k.take(todo)
+    warm = (dw[todo], (ends[0][todo], ends[1][todo])) if load is not None else None
+    try:
+        dw_t, ends_t, track_t = _deflection(sub, pick(load), pick(deflection), warm)
+    except TireModelError as exc:
+        named = getattr(exc, "case_errors", None)
+        if named:
+            for err in named.values():
+                if isinstance(getattr(err, "state", None), dict) and "case" in err.state:
+                    err.state["case"] = int(todo[err.state["case"]])
+            exc.case_errors = {int(todo[k]): e for k, e in named.items()}
+            exc.partial = None  # the warm start of the subset does not fit the group
+        raise
+    if ends_t is None:
+        ends_t, track_t = evaluate(sub, dw_t, 9).ends_and_offset()
+    dw[todo], ends[0][todo], ends[1][todo] = dw_t, ends_t[0], ends_t[1]
+    if track is not None and track_t is not None:
+        track[todo] = track_t
+
+
+def solve(
+    case: LoadCase | TireGeometry, /, *, options: SolverOptions | None = None, **fields
+) -> ContactPatch:
     """Solve the 3D Rotta model for one load case (sections 5.2, 5.3, 5.4 and 5.5).
 
     Parameters
@@ -206,6 +246,9 @@ def solve(case: LoadCase | TireGeometry, /, **fields) -> ContactPatch:
     case : LoadCase or TireGeometry
         The load case; or a tire, with the other :class:`LoadCase` fields as keywords
         (``pressure``, ``load`` or ``deflection``, ``camber``...).
+    options : SolverOptions, optional
+        Judgement thresholds (:class:`tiremesh.SolverOptions`); default: those of the
+        enclosing call, or the defaults.
     **fields
         Load-case fields (applied with :meth:`LoadCase.replace` when ``case`` is a
         LoadCase).
@@ -222,12 +265,13 @@ def solve(case: LoadCase | TireGeometry, /, **fields) -> ContactPatch:
     400.0
     """
     case = as_case(case, fields)
-    cs = single_case_arrays(case)
-    load = None if case.load is None else np.array([[case.load]])
-    dw0 = None if case.deflection is None else np.array([[case.deflection]])
-    anchor = np.array([[slip_anchor(case.slip_kinematics, case.relaxation)]])
-    sv = solve_arrays(cs, load=load, deflection=dw0, anchor=anchor)
-    out = sv.evaluate(case.n_sections)
+    with using(options):
+        cs = single_case_arrays(case)
+        load = None if case.load is None else np.array([[case.load]])
+        dw0 = None if case.deflection is None else np.array([[case.deflection]])
+        anchor = np.array([[slip_anchor(case.slip_kinematics, case.relaxation)]])
+        sv = solve_arrays(cs, load=load, deflection=dw0, anchor=anchor)
+        out = sv.evaluate(case.n_sections)
     return patch_from_arrays(case, out, 0, float(sv.dw[0, 0]), float(sv.slip_offset[0, 0]))
 
 
@@ -251,7 +295,14 @@ def solve_patch(case: LoadCase | TireGeometry, deflection: float | None = None, 
     return solve(case, **fields)
 
 
-def find_sinkage(case: LoadCase | TireGeometry, load: float | None = None, /, **fields) -> float:
+def find_sinkage(
+    case: LoadCase | TireGeometry,
+    load: float | None = None,
+    /,
+    *,
+    options: SolverOptions | None = None,
+    **fields,
+) -> float:
     """Wheel deflection [mm] at which the tire carries the case's load (Appendix C
     ``find_sinkage``).
 
@@ -260,6 +311,11 @@ def find_sinkage(case: LoadCase | TireGeometry, load: float | None = None, /, **
     case : LoadCase or TireGeometry
         With ``load`` given here or in the case.
     load : float [N], optional
+    options : SolverOptions, optional
+        Judgement thresholds (:class:`tiremesh.SolverOptions`); default: those of the
+        enclosing call, or the defaults.
+    **fields
+        Load-case fields.
 
     Returns
     -------
@@ -276,24 +332,29 @@ def find_sinkage(case: LoadCase | TireGeometry, load: float | None = None, /, **
     case = as_case(case, fields)
     if case.load is None:
         raise InvalidParameter("load", None, "> 0 N (find_sinkage needs a load)")
-    cs = single_case_arrays(case)
-    sv = solve_arrays(
-        cs,
-        load=np.array([[case.load]]),
-        anchor=np.array([[slip_anchor(case.slip_kinematics, case.relaxation)]]),
-    )
+    with using(options):
+        sv = solve_arrays(
+            single_case_arrays(case),
+            load=np.array([[case.load]]),
+            anchor=np.array([[slip_anchor(case.slip_kinematics, case.relaxation)]]),
+        )
     return float(sv.dw[0, 0])
 
 
-def max_load(case: LoadCase | TireGeometry, /, **fields) -> float:
+def max_load(
+    case: LoadCase | TireGeometry, /, *, options: SolverOptions | None = None, **fields
+) -> float:
     """Largest vertical load the model carries at this pressure: ``p A`` at
-    :meth:`CaseArrays.max_deflection` (``tol.rim_clearance`` times the deflection at
+    :meth:`CaseArrays.max_deflection` (``options.rim_clearance`` times the deflection at
     which a bead reaches the surface or a side bulge runs out of carcass).
 
     Parameters
     ----------
     case : LoadCase or TireGeometry
         The case's own load or deflection is not used; a tire needs neither.
+    options : SolverOptions, optional
+        Judgement thresholds (:class:`tiremesh.SolverOptions`); default: those of the
+        enclosing call, or the defaults.
     **fields
         Load-case fields (``pressure``, ``camber``...).
 
@@ -304,7 +365,9 @@ def max_load(case: LoadCase | TireGeometry, /, **fields) -> float:
     if isinstance(case, TireGeometry) and "load" not in fields and "deflection" not in fields:
         fields = {**fields, "deflection": 1.0}
     case = as_case(case, fields)
-    return float(max_load_arrays(single_case_arrays(case), tol.search_sections)[0][0, 0])
+    with using(options):
+        fmax = max_load_arrays(single_case_arrays(case), tol.search_sections)[0]
+    return float(fmax[0, 0])
 
 
 RESULT_KEYS = (
@@ -355,7 +418,7 @@ def _prescreen(table: CaseTable) -> dict[int, str]:
     rest = np.array([i for i in range(len(table)) if i not in flagged], int)
     if rest.size == 0 or np.all(np.isnan(table.load)):
         return flagged
-    for _ in range(3):  # cases that fail even at the largest deflection: left to the solve
+    while True:  # cases that fail even at the largest deflection: left to the solve
         try:
             fmax, _ = max_load_arrays(cs.take(rest), tol.search_sections)
             break
@@ -363,11 +426,9 @@ def _prescreen(table: CaseTable) -> dict[int, str]:
             named = getattr(exc, "case_errors", None)
             if not named:
                 return flagged
-            rest = np.delete(rest, list(named))
+            rest = np.delete(rest, list(named))  # at least one case fewer each time
             if rest.size == 0:
                 return flagged
-    else:
-        return flagged
     for j in np.nonzero(table.load[rest] > fmax[:, 0])[0]:
         i = int(rest[j])
         flagged[i] = f"LoadTooHigh: {LoadTooHigh('load', float(table.load[i]), float(fmax[j, 0]))}"
@@ -410,6 +471,7 @@ def solve_many(
     n_sections: int = 65,
     errors: str = "raise",
     chunk_size: int = 2048,
+    options: SolverOptions | None = None,
     **columns,
 ) -> dict[str, np.ndarray]:
     """Solve many load cases at once, vectorized.
@@ -430,6 +492,11 @@ def solve_many(
     chunk_size : int
         Cases solved together at most (bounds the memory: about 50 kB per case at
         65 sections).
+    options : SolverOptions, optional
+        Judgement thresholds (:class:`tiremesh.SolverOptions`); default: those of the
+        enclosing call, or the defaults.
+    **columns
+        Columns of :meth:`CaseTable.from_columns` (when ``cases`` is None).
 
     Returns
     -------
@@ -451,12 +518,13 @@ def solve_many(
     result = {k: np.full(len(table), np.nan) for k in RESULT_KEYS}
     messages: dict[int, str] = {}
     by_load = ~np.isnan(table.load)
-    for kind in (by_load, ~by_load):  # load cases and deflection cases apart
-        sub_idx = np.nonzero(kind)[0]
-        for rows in group_by_surface(table.take(sub_idx)):
-            rows = sub_idx[rows]
-            for start in range(0, rows.size, chunk):
-                _solve_chunk(table, rows[start : start + chunk], n, errors, result, messages)
+    with using(options):
+        for kind in (by_load, ~by_load):  # load cases and deflection cases apart
+            sub_idx = np.nonzero(kind)[0]
+            for rows in group_by_surface(table.take(sub_idx)):
+                rows = sub_idx[rows]
+                for start in range(0, rows.size, chunk):
+                    _solve_chunk(table, rows[start : start + chunk], n, errors, result, messages)
     if errors == "flag":
         result["ok"] = np.ones(len(table), bool)
         result["error"] = np.full(len(table), "", dtype=object)

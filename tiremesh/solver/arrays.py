@@ -13,9 +13,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .._tol import tol
 from ..case import CaseTable, LoadCase
 from ..geometry import arc_length, rim_angle
+from ..options import active
 from ..section import bead_positions
 from ..surface import Surface
 
@@ -77,7 +77,8 @@ class CaseArrays:
 
     def max_deflection(self) -> np.ndarray:
         """Largest wheel deflection (m, 1) [mm] before a bead reaches the ground or a
-        bulge runs out of carcass at the central section, times ``tol.rim_clearance``."""
+        bulge runs out of carcass at the central section, times the active
+        :attr:`SolverOptions.rim_clearance <tiremesh.SolverOptions>`."""
         cg, sg = np.cos(self.gamma), np.sin(self.gamma)
         xb1, zb1, xb2, zb2 = bead_positions(self.r0, self.w, self.gamma)
         limit = (np.minimum(zb1, zb2) + self.r0) / cg
@@ -88,7 +89,7 @@ class CaseArrays:
         with np.errstate(all="ignore"):
             lim1 = np.where(sg > 0, c1_room / sg, np.inf)
             lim2 = np.where(sg < 0, -c2_room / sg, np.inf)
-        return tol.rim_clearance * np.minimum(limit, np.minimum(lim1, lim2))
+        return active().rim_clearance * np.minimum(limit, np.minimum(lim1, lim2))
 
 
 def case_arrays(table: CaseTable, surface: Surface) -> CaseArrays:

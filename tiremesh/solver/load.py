@@ -17,7 +17,14 @@ import numpy as np
 
 from .._roots import newton_bracketed
 from .._tol import tol
-from ..errors import LoadTooHigh, NoContact, NotConverged, PatchEndLimit, TireModelError
+from ..errors import (
+    LoadTooHigh,
+    NoContact,
+    NotConverged,
+    PatchEndLimit,
+    SurfaceTooCurved,
+    TireModelError,
+)
 from ..section import section_arrays
 from ..units import MPA_PER_BAR
 from .arrays import CaseArrays
@@ -128,13 +135,103 @@ class _NewtonState:
             getattr(self, f)[index] = getattr(other, f)[index]
 
 
-def _start(cs: CaseArrays, load, dmax, start) -> _NewtonState:
+def surface_limit(cs: CaseArrays, i: int, dw: float, ends) -> SurfaceTooCurved | None:
+    """:class:`SurfaceTooCurved` if a patch end of case ``i`` reaches the edge of the
+    curved surface along the wheel, ``|kappa| R |sin(phi)| >= 1`` (equations 5-20 and
+    5-23: there is no surface point under the section); else None.
+
+    Parameters
+    ----------
+    cs : CaseArrays
+    i : int
+        Case index.
+    dw : float [mm]
+        Wheel deflection reached.
+    ends : (rear, front) of float [rad]
+
+    Returns
+    -------
+    SurfaceTooCurved or None
+    """
+    k = np.broadcast_to(np.asarray(getattr(cs.surface, "curvature", 0.0), float), cs.R.shape)
+    reach = abs(float(k[i, 0])) * float(cs.R[i, 0]) * max(abs(np.sin(e)) for e in ends)
+    if reach < 1.0:
+        return None
+    diameter = 2.0 / abs(float(k[i, 0]))
+    return SurfaceTooCurved(
+        f"{cs.surface.kind} diameter",
+        diameter,
+        f"> {2.0 * float(cs.R[i, 0]) * max(abs(np.sin(e)) for e in ends):.6g} mm (the patch "
+        "must lie within the surface's cross-section along the wheel)",
+        {"case": i, "deflection_mm": dw, "patch_half_length_over_surface_radius": reach},
+    )
+
+
+def _search_failure(cs: CaseArrays, st, i: int, offset) -> TireModelError:
+    """The error of a load search that cannot step from its last valid iterate:
+    the surface limit, no contact of the central section, or NotConverged."""
+    dw, ends = float(st.dw[i, 0]), (float(st.rear[i, 0]), float(st.front[i, 0]))
+    curved = surface_limit(cs, i, dw, ends)
+    if curved is not None:
+        return curved
+    one = cs.take(np.array([i]))
+    with np.errstate(all="ignore"):
+        d = displacements(np.zeros((1, 1)), st.dw[i : i + 1], one, offset[i : i + 1])
+        sol, _, _ = section_arrays(
+            one.r0, one.w, d.dv, d.dh, camber=one.gamma, delta=one.r0 * one.gamma
+        )
+    if not float(sol.width[0, 0]) > 0:
+        return NoContact(
+            f"no contact: the central section does not touch at deflection {dw:.6g} mm "
+            f"(case {i}); reduce the lateral displacement or increase the load"
+        )
+    return NotConverged(
+        "load search (section 5.2): no valid step from the last iterate",
+        {"case": i, "deflection_mm": dw, "end_angles_rad": ends},
+    )
+
+
+def _contact_ends(cs: CaseArrays, dw, offset, steps: int = 40):
+    """Angles where the section's vertical displacement falls to zero on each side
+    (the surface leaves the tread), by bisection inside the flat-ground end.
+
+    On a curved surface the patch is shorter than on flat ground: starting the load
+    search at the flat-ground ends put its outer sections off a small drum (no
+    contact, NaN width), and every damped step returned there.
+
+    Parameters
+    ----------
+    cs : CaseArrays
+    dw : (m, 1) float [mm]
+    offset : (m, 1) float [mm]
+    steps : int
+        Bisection steps (2^-40 of the bracket).
+
+    Returns
+    -------
+    rear, front : (m, 1) float [rad]
+    """
+    hi = np.arccos(np.clip((cs.R - dw) / cs.R, -1.0, 1.0))
+    out = []
+    for sign in (-1.0, 1.0):
+        lo_, hi_ = np.zeros_like(hi), hi.copy()
+        for _ in range(steps):
+            mid = 0.5 * (lo_ + hi_)
+            with np.errstate(all="ignore"):
+                dv = displacements(sign * mid, dw, cs, offset).dv
+            touch = dv > 0
+            lo_, hi_ = np.where(touch, mid, lo_), np.where(touch, hi_, mid)
+        out.append(sign * np.maximum(lo_, 1e-9))
+    return out[0], out[1]
+
+
+def _start(cs: CaseArrays, load, dmax, start, offset) -> _NewtonState:
     if start is None:
         dw = np.clip(
             (load / (cs.pressure * 3.7 * np.sqrt(cs.R))) ** (2.0 / 3.0), 1e-3 * dmax, 0.9 * dmax
         )
-        phi_f = np.arccos((cs.R - dw) / cs.R)
-        return _NewtonState(dw, -phi_f, phi_f, np.ones_like(dw))
+        rear, front = _contact_ends(cs, dw, np.broadcast_to(offset, dw.shape))
+        return _NewtonState(dw, rear, front, np.ones_like(dw))
     dw, (rear, front) = start
     return _NewtonState(dw.copy(), rear.copy(), front.copy(), np.ones_like(dw))
 
@@ -168,9 +265,9 @@ def joint_newton(cs: CaseArrays, load, n: int, offset=0.0, start=None):
     """
     t, wts = clenshaw_curtis(n)
     dmax = cs.max_deflection()
-    st = _start(cs, load, dmax, start)
-    good = st.copy()
     offset = np.broadcast_to(np.asarray(offset, float), cs.r0.shape)
+    st = _start(cs, load, dmax, start, offset)
+    good = st.copy()
     failed: dict[int, TireModelError] = {}
     dead = np.zeros(cs.m, bool)
     done = np.zeros(cs.m, bool)
@@ -189,10 +286,7 @@ def joint_newton(cs: CaseArrays, load, n: int, offset=0.0, start=None):
             errs = limit_errors(cs_a, step.bad_h, step.bad_c, s_a.dw)
             for i in newly:
                 j = int(np.nonzero(act == i)[0][0])
-                err = errs.get(j) or NoContact(
-                    f"no contact patch at deflection {float(st.dw[i, 0]):.6g} mm; increase "
-                    "the load or reduce the lateral displacement"
-                )
+                err = errs.get(j) or _search_failure(cs, st, int(i), offset)
                 if hasattr(err, "state"):
                     err.state["case"] = int(i)
                 failed[int(i)] = err
