@@ -19,6 +19,7 @@ disk:D, or a :class:`~tiremesh.surface.Surface`); ``friction`` (inf);
 from __future__ import annotations
 
 import csv
+import dataclasses
 import difflib
 import itertools
 import math
@@ -29,6 +30,7 @@ import numpy as np
 
 from .case import LoadCase
 from .errors import InvalidParameter, TireModelError
+from .units import MPA_PER_BAR
 
 CASE_KEYS = (
     "tire",
@@ -315,6 +317,59 @@ def case_from_row(row: dict) -> LoadCase:
     )
 
 
+def row_from_case(case: LoadCase) -> dict:
+    """The sweep row of a load case (the inverse of :func:`case_from_row`).
+
+    Parameters
+    ----------
+    case : LoadCase
+        A load-searched case (``load`` given) whose options a sweep row can hold:
+        one relaxation rate for all four, default sections and conventions.
+
+    Returns
+    -------
+    dict
+        Case keys (:data:`CASE_KEYS`) in the edge units: ``tire_radius_mm``,
+        ``rim_width_mm`` [mm], ``pressure_bar`` [bar], ``load_N`` [N],
+        ``camber_deg`` / ``slip_deg`` [deg], ``lateral_mm`` [mm], ``surface`` (spec),
+        ``friction``, ``relaxation`` [1/mm], ``slip_kinematics``.
+
+    Raises
+    ------
+    InvalidParameter
+        The case holds what a row cannot (a deflection instead of a load, a bead
+        seat other than 622 mm, four different relaxation rates, non-default
+        sections or conventions); the message names the field: solve such a case
+        with :func:`tiremesh.solve_lateral` directly.
+    """
+    if not isinstance(case, LoadCase):
+        raise InvalidParameter("cases", type(case).__name__, "dict rows or tiremesh.LoadCase")
+    fields = {f.name: f.default for f in dataclasses.fields(LoadCase)}
+    for name in ("n_sections", "n_beyond", "friction_model", "force_convention"):
+        if getattr(case, name) != fields[name]:
+            raise InvalidParameter(name, getattr(case, name), f"{fields[name]!r} in a sweep")
+    if case.load is None:
+        raise InvalidParameter("load", None, "a load [N] in a sweep (not a deflection)")
+    if case.tire.bead_seat_diameter != 622.0:
+        raise InvalidParameter("tire.bead_seat_diameter", case.tire.bead_seat_diameter, "622")
+    rates = dataclasses.astuple(case.relaxation)
+    if len(set(rates)) != 1:
+        raise InvalidParameter("relaxation", rates, "one rate for all four in a sweep")
+    return {
+        "tire_radius_mm": case.tire.tire_radius,
+        "rim_width_mm": case.tire.rim_width,
+        "pressure_bar": case.pressure / MPA_PER_BAR,
+        "load_N": case.load,
+        "camber_deg": math.degrees(case.camber),
+        "slip_deg": math.degrees(case.slip),
+        "lateral_mm": case.lateral,
+        "surface": case.surface.spec,
+        "friction": case.friction,
+        "relaxation": rates[0],
+        "slip_kinematics": case.slip_kinematics,
+    }
+
+
 def _result_row(row: dict, case: LoadCase, values: dict, extra=(), tail=()) -> dict:
     """The input row, status, tire size, the results common to both paths (with
     ``extra`` after the forces and ``tail`` after the force orientation), then the
@@ -457,9 +512,9 @@ def run_sweep(
 
     Parameters
     ----------
-    cases : list of dict
+    cases : list of dict or LoadCase
         Case keys (:data:`CASE_KEYS`), e.g. from :func:`grid`, :func:`parse_grid`
-        or :func:`read_cases`.
+        or :func:`read_cases`, or load cases (:func:`row_from_case`).
     workers : int, optional
         Local processes for the cases solved one by one (default: the CPU count).
     scheduler : str, optional
@@ -484,6 +539,7 @@ def run_sweep(
     from .options import SolverOptions
     from .parallel import parallel_map
 
+    cases = [row_from_case(c) if isinstance(c, LoadCase) else c for c in cases]
     check_keys(cases)
     options = SolverOptions() if options is None else options
     if not isinstance(options, SolverOptions):
@@ -614,6 +670,7 @@ __all__ = [
     "grid",
     "parse_grid",
     "read_cases",
+    "row_from_case",
     "run_sweep",
     "solve_case",
     "sweep_plots",

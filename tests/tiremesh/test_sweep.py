@@ -261,3 +261,29 @@ def test_sweep_table_round_trip(tmp_path):
     # figures from a table read back (numbers as text)
     paths = sweep_plots(read_table(tmp_path / "s.csv"), tmp_path / "plots")
     assert {p.name for p in paths} >= {"norm_camber_stiffness_1_deg.png"}
+
+
+def test_run_sweep_takes_load_cases_like_rows():
+    """Issue 9: sweeps take LoadCase; a case and its row solve to the same result."""
+    from tiremesh.sweep import case_from_row, row_from_case
+
+    case = tm.LoadCase.from_units(
+        tm.get_tire(8), pressure_bar=4, load_N=400, camber_deg=10, surface="drum:2500"
+    )
+    row = row_from_case(case)
+    again = case_from_row(row)
+    assert again.tire.tire_radius == case.tire.tire_radius and again.surface == case.surface
+    assert again.pressure == pytest.approx(case.pressure, rel=1e-15)
+    by_case, by_row = run_sweep([case, case.replace(load=300.0)], workers=1), run_sweep([row])
+    assert by_case[0]["status"] == "ok" and by_case[1]["load_N"] == 300.0
+    assert by_case[0]["deflection_mm"] == pytest.approx(by_row[0]["deflection_mm"], rel=1e-12)
+
+
+def test_row_from_case_refuses_what_a_row_cannot_hold():
+    from tiremesh.sweep import row_from_case
+
+    case = tm.LoadCase(tm.get_tire(8), pressure=0.4, deflection=5.0)
+    with pytest.raises(tm.InvalidParameter, match="load"):
+        run_sweep([case])
+    with pytest.raises(tm.InvalidParameter, match="cases"):
+        row_from_case({"tire": 8})
