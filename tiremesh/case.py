@@ -99,12 +99,32 @@ class Relaxation:
     @staticmethod
     def decay_length(rate: float) -> float:
         """``1 / (1 - i)`` [mm], the distance over which a displacement falls to 1/e
-        (equation 5-29 with ``lambda = 1 - i``, equation 5-28)."""
+        (equation 5-29 with ``lambda = 1 - i``, equation 5-28).
+
+        Parameters
+        ----------
+        rate : float [1/mm]
+            A relaxation rate ``i`` in [0, 1).
+
+        Returns
+        -------
+        float [mm]
+        """
         return 1.0 / (1.0 - rate)  # Eq. 5-29
 
     @classmethod
     def uniform(cls, rate: float) -> Relaxation:
-        """All four rates equal to ``rate``."""
+        """All four rates equal to ``rate``.
+
+        Parameters
+        ----------
+        rate : float [1/mm]
+            In [0, 1); 0 switches the deflection beyond the patch off.
+
+        Returns
+        -------
+        Relaxation
+        """
         return cls(rate, rate, rate, rate)
 
 
@@ -248,6 +268,20 @@ class LoadCase:
         """A copy with ``changes`` applied (validated again). Giving ``load`` clears
         ``deflection`` and vice versa.
 
+        Parameters
+        ----------
+        **changes
+            Field values by name (units as the fields: mm, N, N/mm^2, rad).
+
+        Returns
+        -------
+        LoadCase
+
+        Raises
+        ------
+        InvalidParameter
+            A changed value is out of range (the error names the field).
+
         Examples
         --------
         >>> import tiremesh as tm
@@ -276,7 +310,27 @@ class LoadCase:
         **options,
     ) -> LoadCase:
         """A load case from unit-carrying values (bar, N, mm, degrees); ``options``
-        are the other fields (``n_sections``, ``friction``, ``relaxation``...)."""
+        are the other fields (``n_sections``, ``friction``, ``relaxation``...).
+
+        Parameters
+        ----------
+        tire : TireGeometry
+        pressure_bar : float [bar]
+        load_N : float [N], optional
+        deflection_mm : float [mm], optional
+            Exactly one of ``load_N`` and ``deflection_mm``.
+        camber_deg, slip_deg : float [deg]
+        lateral_mm : float [mm]
+        surface : Surface or str
+            A surface or its CLI form (``flat | drum:D | disk:D[:toward|away]``).
+        **options
+            Further :class:`LoadCase` fields by name.
+
+        Returns
+        -------
+        LoadCase
+            In the model's units (N/mm^2, rad).
+        """
         return cls(
             tire,
             pressure=_scalar("pressure_bar", pressure_bar, v.positive, unit="bar") * MPA_PER_BAR,
@@ -290,7 +344,16 @@ class LoadCase:
         )
 
     def describe(self) -> dict[str, float | str]:
-        """The case with unit-carrying names (for tables, titles, file metadata)."""
+        """The case with unit-carrying names (for tables, titles, file metadata).
+
+        Returns
+        -------
+        dict of str to float or str
+            The tire's :meth:`TireGeometry.describe` plus ``pressure_bar``, ``load_N``,
+            ``deflection_mm`` (NaN where not given), ``camber_deg``, ``slip_deg``,
+            ``lateral_mm``, ``surface`` (its CLI form), ``friction``,
+            ``slip_kinematics`` and ``force_convention``.
+        """
         return {
             **self.tire.describe(),
             "pressure_bar": self.pressure / MPA_PER_BAR,
@@ -375,7 +438,22 @@ class CaseTable:
 
     @classmethod
     def from_cases(cls, cases: Sequence[LoadCase]) -> CaseTable:
-        """Stack validated load cases into columns."""
+        """Stack validated load cases into columns.
+
+        Parameters
+        ----------
+        cases : sequence of LoadCase, length m
+
+        Returns
+        -------
+        CaseTable
+            ``m`` rows.
+
+        Raises
+        ------
+        InvalidParameter
+            An item is not a :class:`LoadCase` (named ``cases[i]``).
+        """
         for i, c in enumerate(cases):
             if not isinstance(c, LoadCase):
                 raise InvalidParameter(f"cases[{i}]", c, "a LoadCase")
@@ -418,6 +496,33 @@ class CaseTable:
 
         Exactly one of ``load`` [N] and ``deflection`` [mm] is given; ``surface`` is
         one surface for all cases or one per case.
+
+        Parameters
+        ----------
+        tire_radius, rim_width : array_like [mm]
+        pressure : array_like [N/mm^2]
+        load : array_like [N], optional
+        deflection : array_like [mm], optional
+        camber, slip : array_like [rad]
+            In (-pi/2, pi/2).
+        lateral : array_like [mm]
+        bead_seat_diameter : array_like [mm]
+        surface : Surface or str, or a sequence of them (length m)
+        slip_kinematics : str
+            ``'leading'``, ``'relaxation'`` or ``'centre'`` (:func:`slip_anchor`).
+        force_convention : str
+            ``'ground'`` or ``'appendix'`` (``FORCE_CONVENTIONS``).
+
+        Returns
+        -------
+        CaseTable
+            ``m`` rows, ``m`` the size of the broadcast columns.
+
+        Raises
+        ------
+        InvalidParameter
+            A column out of range or not broadcastable (named), both or neither of
+            ``load`` and ``deflection``.
         """
         if (load is None) == (deflection is None):
             raise InvalidParameter("load/deflection", (load, deflection), "exactly one of the two")
@@ -462,7 +567,16 @@ class CaseTable:
         )
 
     def take(self, index) -> CaseTable:
-        """The rows ``index`` (int array or boolean mask) as a new table."""
+        """The rows ``index`` (int array or boolean mask) as a new table.
+
+        Parameters
+        ----------
+        index : int array, slice or (m,) bool array
+
+        Returns
+        -------
+        CaseTable
+        """
         idx = np.arange(len(self))[index]
         arr = {f.name: getattr(self, f.name) for f in dataclasses.fields(self)}
         return CaseTable(

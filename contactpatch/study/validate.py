@@ -153,7 +153,15 @@ class Validation:
 
     def to_dict(self) -> dict:
         """JSON-ready result: settings, tables (``points`` as rows of
-        :data:`POINT_COLUMNS`), the fit curve and the list of limits."""
+        :data:`POINT_COLUMNS`), the fit curve and the list of limits.
+
+        Returns
+        -------
+        dict
+            Keys ``settings``, ``points`` (list of row dicts), ``statistics``,
+            ``trends``, ``summaries``, ``variants``, ``cornering``, ``loto``,
+            ``fit_curve`` and ``limits`` (list of str); values are plain JSON types.
+        """
         out = {
             "settings": self.settings,
             "points": [point_row(p) for p in self.points],

@@ -115,7 +115,18 @@ class Solved:
     slip_offset: np.ndarray
 
     def evaluate(self, n: int):
-        """The patches with ``n`` sections (:func:`evaluate`)."""
+        """The patches with ``n`` sections (:func:`evaluate`).
+
+        Parameters
+        ----------
+        n : int
+            Sections (Clenshaw-Curtis nodes) between the exact patch ends, >= 3.
+
+        Returns
+        -------
+        PatchArrays
+            Per-section arrays (m, n), per-case results (m,).
+        """
         return evaluate(self.cs, self.dw, n, ends=self.ends, offset=self.track_offset)
 
 

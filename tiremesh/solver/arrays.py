@@ -60,11 +60,30 @@ class CaseArrays:
         return self.r0 + np.sqrt(self.r0**2 - 0.25 * self.w**2)
 
     def with_lateral(self, lateral) -> CaseArrays:
-        """The same cases with another lateral displacement (m, 1) [mm]."""
+        """The same cases with another lateral displacement (m, 1) [mm].
+
+        Parameters
+        ----------
+        lateral : (m, 1) float [mm]
+
+        Returns
+        -------
+        CaseArrays
+        """
         return dataclasses.replace(self, lateral=lateral)
 
     def take(self, index) -> CaseArrays:
-        """The cases ``index`` (int array) as new arrays."""
+        """The cases ``index`` (int array) as new arrays.
+
+        Parameters
+        ----------
+        index : (k,) int
+
+        Returns
+        -------
+        CaseArrays
+            ``k`` cases, parameters (k, 1).
+        """
         pick = lambda a: a[index]
         return CaseArrays(
             *(
@@ -78,7 +97,12 @@ class CaseArrays:
     def max_deflection(self) -> np.ndarray:
         """Largest wheel deflection (m, 1) [mm] before a bead reaches the ground or a
         bulge runs out of carcass at the central section, times the active
-        :attr:`SolverOptions.rim_clearance <tiremesh.SolverOptions>`."""
+        :attr:`SolverOptions.rim_clearance <tiremesh.SolverOptions>`.
+
+        Returns
+        -------
+        (m, 1) float [mm]
+        """
         cg, sg = np.cos(self.gamma), np.sin(self.gamma)
         xb1, zb1, xb2, zb2 = bead_positions(self.r0, self.w, self.gamma)
         limit = (np.minimum(zb1, zb2) + self.r0) / cg
