@@ -116,7 +116,15 @@ class NoContact(TireModelError):
 
 
 class NotConverged(TireModelError):
-    """An iteration did not converge; ``state`` holds what it reached."""
+    """An iteration did not converge; ``state`` holds what it reached.
+
+    Attributes
+    ----------
+    what : str
+        The iteration (e.g. ``"friction iteration"``), quoted in the message.
+    state : dict of str to Any
+        What it reached (residuals, iteration counts, case indices), quoted too.
+    """
 
     def __init__(self, what: str, state: dict[str, Any]) -> None:
         self.what = what

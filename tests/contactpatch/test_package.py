@@ -11,6 +11,7 @@ from pathlib import Path
 import pytest
 
 import contactpatch as cp
+from tests.docrules import check_numpy_docstring, public_objects
 
 PACKAGE = Path(cp.__file__).parent
 MODULES = sorted(m.name for m in pkgutil.walk_packages([str(PACKAGE)], prefix="contactpatch."))
@@ -73,29 +74,9 @@ def test_the_ruler_does_not_import_the_study():
         assert "contactpatch" not in imported, f"{path.name} imports the package top level"
 
 
-def _public_objects():
-    for modname in MODULES:
-        mod = importlib.import_module(modname)
-        for name, obj in vars(mod).items():
-            if name.startswith("_") or getattr(obj, "__module__", None) != modname:
-                continue
-            if inspect.isfunction(obj) or inspect.isclass(obj):
-                yield f"{modname}.{name}", obj
-
-
-@pytest.mark.parametrize(("name", "obj"), list(_public_objects()), ids=lambda x: str(x))
+@pytest.mark.parametrize(("name", "obj"), public_objects(MODULES), ids=lambda x: str(x))
 def test_public_docstrings_numpy_style(name, obj):
-    doc = inspect.getdoc(obj) or ""
-    assert doc, f"{name}: no docstring"
-    if inspect.isclass(obj) and issubclass(obj, Exception) and "__init__" not in vars(obj):
-        return
-    params = [p for p in inspect.signature(obj).parameters if p not in ("self", "cls")]
-    sections = ("Parameters\n----------", "Attributes\n----------")
-    if inspect.isclass(obj):
-        assert not params or any(s in doc for s in sections), f"{name}: no Parameters"
-        return
-    assert not params or sections[0] in doc, f"{name}: no Parameters section"
-    assert "Returns\n-------" in doc, f"{name}: no Returns section"
+    check_numpy_docstring(name, obj)
 
 
 # Modules whose public methods still lack Parameters/Returns (issue 9, item 7): not

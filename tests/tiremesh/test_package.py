@@ -5,13 +5,13 @@ and the examples in docstrings run."""
 import ast
 import doctest
 import importlib
-import inspect
 import pkgutil
 from pathlib import Path
 
 import pytest
 
 import tiremesh as tm
+from tests.docrules import check_numpy_docstring, public_objects
 
 PACKAGE = Path(tm.__file__).parent
 MODULES = sorted(m.name for m in pkgutil.walk_packages([str(PACKAGE)], prefix="tiremesh."))
@@ -50,32 +50,9 @@ def test_no_private_name_imported_across_modules():
                 assert not private, f"{path.relative_to(PACKAGE)} imports {private}"
 
 
-def _public_objects():
-    for modname in MODULES:
-        if modname.endswith("__main__"):
-            continue
-        mod = importlib.import_module(modname)
-        for name, obj in vars(mod).items():
-            if name.startswith("_") or getattr(obj, "__module__", None) != modname:
-                continue
-            if inspect.isfunction(obj) or inspect.isclass(obj):
-                yield f"{modname}.{name}", obj
-
-
-@pytest.mark.parametrize(("name", "obj"), list(_public_objects()), ids=lambda x: str(x))
+@pytest.mark.parametrize(("name", "obj"), public_objects(MODULES), ids=lambda x: str(x))
 def test_public_docstrings_numpy_style(name, obj):
-    doc = inspect.getdoc(obj) or ""
-    assert doc, f"{name}: no docstring"
-    if inspect.isclass(obj):
-        if issubclass(obj, Exception) or getattr(obj, "_is_protocol", False):
-            return
-        params = [p for p in inspect.signature(obj).parameters if p not in ("self", "cls")]
-        sections = ("Parameters\n----------", "Attributes\n----------")
-        assert not params or any(s in doc for s in sections), f"{name}: no Parameters/Attributes"
-        return
-    params = [p for p in inspect.signature(obj).parameters if p not in ("self", "cls")]
-    assert not params or "Parameters\n----------" in doc, f"{name}: no Parameters section"
-    assert "Returns\n-------" in doc or "Yields\n------" in doc, f"{name}: no Returns section"
+    check_numpy_docstring(name, obj)
 
 
 def test_no_long_functions_or_many_positionals():
