@@ -276,6 +276,7 @@ class LoadCase:
         Returns
         -------
         LoadCase
+            The copy; ``self`` is unchanged (frozen).
 
         Raises
         ------
