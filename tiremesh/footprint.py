@@ -37,8 +37,8 @@ from .errors import InvalidParameter, TireModelError
 FOOTPRINT_KINDS = ("rotta", "rounded")
 #: global defaults, fitted once over all tires to the preserved prints
 #: (``scripts/fit_footprint.py``, ``docs/model.md``)
-DEFAULT_SPREAD_MM = 2.0
-DEFAULT_THRESHOLD = 0.5
+DEFAULT_SPREAD_MM = 2.25
+DEFAULT_THRESHOLD = 0.45
 #: largest spread accepted [mm] (a tread/paper layer, not a tire size)
 MAX_SPREAD_MM = 50.0
 #: grid spacing bounds [mm] for the default resolution ``spread / 4``
@@ -178,7 +178,7 @@ def _crossings(outline: np.ndarray, xc: np.ndarray) -> np.ndarray:
     hit = (X >= lo) & (X < hi)
     with np.errstate(divide="ignore", invalid="ignore"):
         t = (X - x0) / (x1 - x0)
-    y = np.where(hit, y0 + t * (y1 - y0), np.nan)
+        y = np.where(hit, y0 + t * (y1 - y0), np.nan)
     y = np.sort(y, axis=1)
     c = int(np.max(np.sum(hit, axis=1), initial=0))
     c += c % 2
@@ -225,8 +225,23 @@ def smoothed_pressure(outline, *, spread: float, resolution: float):
     return xs, ys, q
 
 
-def _level_outline(xs, ys, q, level: float) -> np.ndarray:
-    """The largest closed ``q = level`` line as a counter-clockwise ring [mm]."""
+def level_outline(xs, ys, q, level: float) -> np.ndarray:
+    """The largest closed ``q = level`` line (sub-cell linear interpolation).
+
+    Parameters
+    ----------
+    xs : (m,) float [mm]
+    ys : (r,) float [mm]
+    q : (m, r) float [-]
+        Smoothed pressure over ``p`` (:func:`smoothed_pressure`).
+    level : float [-]
+        Threshold.
+
+    Returns
+    -------
+    (k, 2) float [mm]
+        Closed counter-clockwise ring; raises :class:`FootprintVanished` if none.
+    """
     import contourpy
 
     gen = contourpy.contour_generator(ys, xs, q, line_type="Separate")
@@ -285,7 +300,7 @@ def rounded_footprint(outline, footprint: Footprint, *, resolution: float | None
     if not (math.isfinite(h) and 0 < h <= MAX_RESOLUTION * 4):
         raise InvalidParameter("resolution", resolution, "0 < resolution <= 2 mm")
     xs, ys, q = smoothed_pressure(outline, spread=footprint.spread_mm, resolution=h)
-    ring = _level_outline(xs, ys, q, footprint.threshold)
+    ring = level_outline(xs, ys, q, footprint.threshold)
     return shape_of(ring, footprint)
 
 
