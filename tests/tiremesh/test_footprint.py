@@ -137,3 +137,16 @@ def test_parse_footprint_specs():
     assert parse_footprint("rounded:1.5:0.4") == Footprint("rounded", 1.5, 0.4)
     assert parse_footprint("rounded").spread_mm == Footprint().spread_mm
     assert parse_footprint(Footprint("rounded", 3.0, 0.5).spec) == Footprint("rounded", 3.0, 0.5)
+
+
+def test_cli_solve_footprint_prints_both(capsys):
+    from tiremesh.cli import main
+
+    args = ["solve", "--tire", "6", "--pressure", "6.895bar", "--load", "304N"]
+    assert main([*args, "--footprint", "rounded:2:0.5"]) == 0
+    out = capsys.readouterr().out
+    assert "contact patch: length 88.4" in out
+    assert "footprint: rounded:2:0.5" in out
+    assert "footprint_length_mm: 71.1" in out
+    assert main([*args, "--footprint", "oval"]) != 0
+    assert "footprint" in capsys.readouterr().err
