@@ -150,3 +150,17 @@ def test_cli_solve_footprint_prints_both(capsys):
     assert "footprint_length_mm: 71.1" in out
     assert main([*args, "--footprint", "oval"]) != 0
     assert "footprint" in capsys.readouterr().err
+
+
+def test_render_draws_the_rounded_footprint():
+    from tiremesh.mesh import build_mesh
+    from tiremesh.render import FOOTPRINT_COLOR, render
+
+    case = tm.LoadCase(tm.get_tire(8), pressure=0.4, load=400.0)
+    blue = np.array(FOOTPRINT_COLOR) * 255
+    share = []
+    for fp in ("rotta", "rounded"):
+        mesh = build_mesh(tm.solve(case.replace(footprint=fp)), n_around=120)
+        img = render(mesh, view="bottom", size=(320, 240)).astype(int)
+        share.append((np.abs(img - blue).sum(axis=2) < 60).mean())
+    assert share[0] < 1e-4 < share[1]
