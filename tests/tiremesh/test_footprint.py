@@ -164,3 +164,12 @@ def test_render_draws_the_rounded_footprint():
         img = render(mesh, view="bottom", size=(320, 240)).astype(int)
         share.append((np.abs(img - blue).sum(axis=2) < 60).mean())
     assert share[0] < 1e-4 < share[1]
+
+
+def test_row_from_case_refuses_a_rounded_footprint():
+    from tiremesh.sweep import row_from_case
+
+    case = tm.LoadCase(tm.get_tire(1), pressure=0.5, load=300.0, footprint="rounded")
+    with pytest.raises(tm.InvalidParameter, match="footprint"):
+        row_from_case(case)
+    assert row_from_case(case.replace(footprint="rotta"))["load_N"] == 300.0
