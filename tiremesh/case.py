@@ -38,6 +38,7 @@ import numpy as np
 
 from . import validate as v
 from .errors import InvalidParameter
+from .footprint import Footprint, parse_footprint
 from .geometry import TireGeometry
 from .surface import Flat, Surface, parse_surface
 from .units import MPA_PER_BAR
@@ -203,6 +204,10 @@ class LoadCase:
         ``|Fy| <= mu Fz`` always; ``'appendix'``: Appendix C's iteration, where
         sliding sections keep the force of their relaxed displacement
         (:mod:`tiremesh.lateral`).
+    footprint : Footprint or str
+        What :attr:`ContactPatch.footprint` reports: ``'rotta'`` (default, the exact
+        pointed patch) or ``'rounded[:SPREAD_MM:THRESHOLD]'``, the ink print's rounded
+        ends (:mod:`tiremesh.footprint`, beyond the dissertation, 7.3.1).
 
     Examples
     --------
@@ -227,6 +232,7 @@ class LoadCase:
     n_beyond: int = 129
     friction_model: str = "coulomb"
     force_convention: str = "ground"
+    footprint: Footprint = field(default_factory=Footprint)
 
     def __post_init__(self) -> None:
         if not isinstance(self.tire, TireGeometry):
@@ -263,6 +269,7 @@ class LoadCase:
             )
         if self.friction_model not in FRICTION_MODELS:
             raise InvalidParameter("friction_model", self.friction_model, one_of(FRICTION_MODELS))
+        set_("footprint", parse_footprint(self.footprint))
 
     def replace(self, **changes) -> LoadCase:
         """A copy with ``changes`` applied (validated again). Giving ``load`` clears

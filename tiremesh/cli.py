@@ -189,6 +189,7 @@ def case_from_args(a: argparse.Namespace) -> LoadCase:
         relaxation=relaxation or 0.0,
         friction=getattr(a, "friction", math.inf),
         slip_kinematics=a.slip_kinematics,
+        footprint=getattr(a, "footprint", None),
     )
 
 
@@ -319,6 +320,7 @@ def _cmd_solve(a: argparse.Namespace) -> int:
         patch, extra = result.patch, _lateral_summary(result)
     else:
         patch, extra = solve(case), {}
+    extra.update(_footprint_summary(patch))
     summary = {**patch.summary(), **extra}
     _print_summary(a, patch, summary, extra)
     if a.sections_csv:
@@ -327,6 +329,21 @@ def _cmd_solve(a: argparse.Namespace) -> int:
         rows = [{"x_mm": float(x), "y_mm": float(y)} for x, y in patch.outline]
         write_table(rows, a.outline_csv)
     return EXIT_OK
+
+
+def _footprint_summary(patch) -> dict:
+    """The rounded footprint next to the plain patch (empty for the plain patch)."""
+    if patch.case.footprint.kind == "rotta":
+        return {}
+    fp = patch.footprint
+    return {
+        "footprint": patch.case.footprint.spec,
+        "footprint_length_mm": fp.length,
+        "footprint_width_mm": fp.width,
+        "footprint_area_mm2": fp.area,
+        "footprint_load_over_area_per_pressure": fp.mean_pressure(patch.vertical_force)
+        / patch.pressure,
+    }
 
 
 def _mesh_options(p: argparse.ArgumentParser) -> None:
@@ -601,6 +618,13 @@ def _add_solve(sub, common) -> None:
         "--outline-csv",
         metavar="FILE",
         help="write the patch outline to FILE (.csv|.json|.parquet)",
+    )
+    p.add_argument(
+        "--footprint",
+        default="rotta",
+        metavar="KIND",
+        help="'rotta' (default, the exact pointed patch) or 'rounded[:SPREAD_MM:THRESHOLD]': "
+        "also print the ink print's rounded footprint (docs/model.md, beyond 7.3.1)",
     )
     lat = p.add_argument_group("lateral mechanics (sections 5.6 to 5.8)")
     lat.add_argument(

@@ -58,6 +58,8 @@ FORMATS = {
 SURFACE_COLOR = (0.80, 0.80, 0.76)
 GRID_COLOR = (0.45, 0.45, 0.45)
 PATCH_COLOR = (0.85, 0.1, 0.1)
+#: the rounded print footprint (tiremesh.footprint), when the load case asks for it
+FOOTPRINT_COLOR = (0.1, 0.25, 0.85)
 RIM_COLOR = (0.7, 0.72, 0.75)
 INSIDE_COLOR = (0.62, 0.62, 0.62)
 #: fractions of the image: title band height, colour-bar column width
@@ -564,12 +566,16 @@ def ground_grid(tire_mesh: TireMesh, *, spacing: float = 10.0) -> list[np.ndarra
 
 
 def _add_patch_outline(ren, tire_mesh: TireMesh, *, lifted: float) -> None:
-    """The solver's patch outline on the surface, ``lifted`` mm toward the camera."""
+    """The solver's patch outline on the surface, ``lifted`` mm toward the camera, and
+    the rounded print footprint when the load case asks for it (``footprint``)."""
     p = tire_mesh.patch
-    xy = p.outline
-    x = p.surface.roll(xy[:, 0])
-    pts = np.column_stack([x, xy[:, 1], p.surface.height(x) + lifted])
-    ren.AddActor(vs.actor(vs.lines([pts]), colour=PATCH_COLOR, line_width=3))
+    rings = [(p.outline, PATCH_COLOR)]
+    if p.case.footprint.kind != "rotta":
+        rings.append((p.footprint.outline, FOOTPRINT_COLOR))
+    for xy, colour in rings:
+        x = p.surface.roll(xy[:, 0])
+        pts = np.column_stack([x, xy[:, 1], p.surface.height(x) + lifted])
+        ren.AddActor(vs.actor(vs.lines([pts]), colour=colour, line_width=3))
 
 
 def _set_camera(ren, camera, view: str, tire_mesh: TireMesh) -> None:

@@ -348,6 +348,8 @@ def row_from_case(case: LoadCase) -> dict:
     for name in ("n_sections", "n_beyond", "friction_model", "force_convention"):
         if getattr(case, name) != fields[name]:
             raise InvalidParameter(name, getattr(case, name), f"{fields[name]!r} in a sweep")
+    if case.footprint.kind != "rotta":
+        raise InvalidParameter("footprint", case.footprint.spec, "'rotta' in a sweep")
     if case.load is None:
         raise InvalidParameter("load", None, "a load [N] in a sweep (not a deflection)")
     if case.tire.bead_seat_diameter != 622.0:

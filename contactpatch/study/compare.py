@@ -42,6 +42,9 @@ MODEL_KEYS = (
     "model_ellipse_width_mm",
     "model_ellipse_area_mm2",
     "model_outline_wkt",
+    "model_rounded_length_mm",
+    "model_rounded_width_mm",
+    "model_rounded_area_mm2",
 )
 #: print / model ratios: name -> (print column, model column)
 RATIOS = {
@@ -51,6 +54,9 @@ RATIOS = {
     "ratio_ellipse_length": ("ellipse_length_mm", "model_ellipse_length_mm"),
     "ratio_ellipse_width": ("ellipse_width_mm", "model_ellipse_width_mm"),
     "ratio_ellipse_area": ("ellipse_area_mm2", "model_ellipse_area_mm2"),
+    "ratio_rounded_length": ("length_mm", "model_rounded_length_mm"),
+    "ratio_rounded_width": ("width_mm", "model_rounded_width_mm"),
+    "ratio_rounded_area": ("hull_area_mm2", "model_rounded_area_mm2"),
 }
 #: the paired table's leading columns (the others follow in first-seen order)
 PAIRED_COLUMNS = [
@@ -190,8 +196,10 @@ def solve_case(case: tm.LoadCase) -> dict:
     -------
     dict
         :data:`MODEL_KEYS`: deflection [mm], sinkage [%], length, width [mm], area
-        [mm^2], the Appendix C ellipse (section 5.4) and the outline as WKT (ground
-        ``x`` forward, ``y`` lateral [mm]).
+        [mm^2], the Appendix C ellipse (section 5.4), the outline as WKT (ground
+        ``x`` forward, ``y`` lateral [mm]) and the rounded print footprint's length,
+        width [mm] and area [mm^2] (:mod:`tiremesh.footprint`: the case's own if it
+        asks for one, else the fitted defaults; NaN if it vanishes).
 
     Raises
     ------
@@ -213,7 +221,22 @@ def solve_case(case: tm.LoadCase) -> dict:
         "model_ellipse_width_mm": e.width if e else math.nan,
         "model_ellipse_area_mm2": e.area if e else math.nan,
         "model_outline_wkt": f"POLYGON (({ring}))",
+        **_rounded_columns(p),
     }
+
+
+def _rounded_columns(p) -> dict:
+    """The rounded footprint's columns next to the plain patch's."""
+    from tiremesh.footprint import Footprint, FootprintVanished, rounded_footprint
+
+    fp = p.case.footprint if p.case.footprint.kind == "rounded" else Footprint("rounded")
+    try:
+        r = rounded_footprint(p.outline, fp)
+        vals = (r.length, r.width, r.area)
+    except FootprintVanished:
+        vals = (math.nan,) * 3
+    names = ("model_rounded_length_mm", "model_rounded_width_mm", "model_rounded_area_mm2")
+    return dict(zip(names, vals, strict=True))
 
 
 def _failed(status: str, error: str) -> dict:

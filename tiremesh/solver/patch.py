@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import dataclasses
+import functools
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -86,6 +87,14 @@ class ContactPatch:
     slip = property(lambda self: self.case.slip, doc="Shortcut to ``case.slip``.")
     lateral = property(lambda self: self.case.lateral, doc="Shortcut to ``case.lateral``.")
     surface = property(lambda self: self.case.surface, doc="Shortcut to ``case.surface``.")
+
+    @functools.cached_property
+    def footprint(self):
+        """The footprint the case asks for (:func:`tiremesh.footprint.footprint_of`):
+        the patch itself for ``'rotta'``, the rounded print for ``'rounded'``."""
+        from ..footprint import footprint_of
+
+        return footprint_of(self)
 
     @property
     def net_force_orientation(self) -> float:
