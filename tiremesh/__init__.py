@@ -5,7 +5,8 @@ Tires* (2013), chapter 5 and Appendix C. Units everywhere: mm, N, N/mm^2, rad.
 
 Public API
 ----------
-Load case     : LoadCase, CaseTable, Relaxation
+Load case     : LoadCase, CaseTable, Relaxation, Footprint (plain Rotta patch or the
+                rounded print footprint, beyond the dissertation: docs/model.md)
 Geometry      : TireGeometry, get_tire, find_tire, load_catalog
 Surfaces      : Surface, SurfaceBase, Flat, Drum, Disk, parse_surface, register_surface
 Cross section : solve_sections, SectionSolution
@@ -41,6 +42,7 @@ from .errors import (
     SurfaceTooCurved,
     TireModelError,
 )
+from .footprint import Footprint
 from .geometry import TireGeometry
 from .lateral import LateralResult, solve_lateral, stiffnesses
 from .options import SolverOptions
@@ -58,6 +60,7 @@ __all__ = [
     "Disk",
     "Drum",
     "Flat",
+    "Footprint",
     "InvalidParameter",
     "LateralResult",
     "LoadCase",

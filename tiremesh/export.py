@@ -49,6 +49,7 @@ POINT_DATA_UNITS = {
     "lateral_displacement": "mm",
     "contact": "1 on the support surface, else 0",
     "section": "section index around the wheel",
+    "footprint": "1 on contact vertices inside the print footprint, else 0 (rounded footprint only)",
 }
 """Units of the per-vertex data (``TireMesh.point_data``), stored in every file."""
 LOSSY = {

@@ -54,6 +54,7 @@ class TireMesh:
         Vertices in the ground frame [mm] (x forward, y lateral, z up).
     point_data : dict of (n_vertices,) arrays
         ``radial_deformation`` [mm], ``lateral_displacement`` [mm], ``contact`` (0/1),
+        ``footprint`` (0/1, only for a rounded footprint: :func:`footprint_points`),
         ``section`` (index around the wheel).
     face_contact : (n_faces,) bool
         Faces of the contact patch (built on the support surface).
@@ -594,6 +595,38 @@ def close_beads(vertices, faces, beads) -> np.ndarray:
     return band if mesh0.is_winding_consistent else band[:, ::-1]
 
 
+def footprint_points(patch: ContactPatch, vertices, contact) -> np.ndarray:
+    """Contact vertices inside the print footprint the load case asks for.
+
+    The mesh's contact faces are the Rotta patch (section 5.2); with a rounded
+    footprint (:mod:`tiremesh.footprint`, beyond the dissertation, 7.3.1) the print
+    leaves out its pointed tips. A contact vertex belongs to the print when its
+    ground position (unrolled along a drum or disk) lies inside the footprint
+    outline. The print's narrow rim beyond the Rotta patch sides (about 0.3 mm with
+    the default parameters) has no mesh vertex on the ground; renders draw the
+    footprint outline itself.
+
+    Parameters
+    ----------
+    patch : ContactPatch
+    vertices : (n, 3) float [mm]
+        Mesh vertices (x forward, y lateral, z up).
+    contact : (n,) bool
+        Vertices on the support surface.
+
+    Returns
+    -------
+    (n,) uint8
+        1 on contact vertices inside the footprint, else 0.
+    """
+    import shapely
+
+    outline = shapely.Polygon(patch.footprint.outline)
+    x = patch.surface.unroll(vertices[:, 0])
+    inside = shapely.contains_xy(outline.buffer(1e-9), x, vertices[:, 1])
+    return (inside & np.asarray(contact, bool)).astype(np.uint8)
+
+
 def build_mesh(
     patch: ContactPatch | LoadCase,
     *,
@@ -658,6 +691,8 @@ def build_mesh(
         "contact": placed.contact.astype(np.uint8),
         "section": placed.section.astype(np.int32),
     }
+    if patch.case.footprint.kind != "rotta":
+        point_data["footprint"] = footprint_points(patch, placed.vertices, placed.contact)
     return TireMesh(
         mesh=trimesh.Trimesh(vertices=placed.vertices, faces=faces, process=False),
         point_data=point_data,

@@ -173,3 +173,27 @@ def test_row_from_case_refuses_a_rounded_footprint():
     with pytest.raises(tm.InvalidParameter, match="footprint"):
         row_from_case(case)
     assert row_from_case(case.replace(footprint="rotta"))["load_N"] == 300.0
+
+
+@pytest.mark.parametrize("surface", ["flat", "drum:2500"])
+def test_build_mesh_marks_the_rounded_footprint(surface, tmp_path):
+    """Meshes follow the footprint the case asks for: the rounded print leaves out
+    the pointed tips of the Rotta contact vertices, and exports keep the scalar."""
+    import pyvista as pv
+
+    from tiremesh.export import export_mesh
+    from tiremesh.mesh import build_mesh
+
+    case = tm.LoadCase(tm.get_tire(6), pressure=0.6895, load=304.0, surface=surface)
+    plain = build_mesh(case, n_around=360)
+    assert "footprint" not in plain.point_data  # the default stays as it was
+    rounded = build_mesh(case.replace(footprint=tm.Footprint("rounded")), n_around=360)
+    fp, contact = rounded.point_data["footprint"], rounded.point_data["contact"]
+    assert fp.any() and not (fp & ~contact.astype(bool)).any()
+    x = rounded.patch.surface.unroll(rounded.mesh.vertices[:, 0])
+    on = x[fp == 1]
+    half = rounded.patch.footprint.length / 2
+    assert np.abs(on).max() <= half + 1e-6 and np.abs(on).max() > 0.9 * half
+    assert np.abs(x[contact == 1]).max() > half + 1.0  # the tips are left out
+    out = export_mesh(rounded, tmp_path / "t.vtp")[0]  # the tire (the patch beside it)
+    assert_allclose(pv.read(out).point_data["footprint"], fp)
