@@ -24,6 +24,7 @@ from importlib import resources
 from pathlib import Path
 from typing import TYPE_CHECKING
 
+from .footprints import footprint_rows
 from .numbers import as_number, column_kind, estimate, fmt, interval, pressure_note
 from .sheets import outline_svg
 from .trends import describe_agreement
@@ -40,6 +41,7 @@ SECTIONS = (
     "ratios",
     "load-per-area",
     "paired",
+    "footprints",
     "trends",
     "tires",
     "drum-plate",
@@ -400,6 +402,33 @@ def _paired(c: ReportContent) -> str:
     return _section("paired", "Prints paired with the model", bar, table)
 
 
+FOOTPRINT_VIEW = (
+    Column("tire", "tire"),
+    Column("surface", "surface"),
+    Column("footprint", "model footprint"),
+    Column("n", "n", "prints compared"),
+    Column("ratio_length", "length print / model", "median over the prints"),
+    Column("ratio_width", "width print / model", "median over the prints"),
+    Column("ratio_area", "area print / model", "median over the prints"),
+)
+
+
+def _footprints(c: ReportContent) -> str:
+    rows = footprint_rows(c.tables.paired)
+    if not rows:
+        return ""
+    return _section(
+        "footprints",
+        "Plain patch vs rounded footprint (7.3.1)",
+        "<p>Median print / model ratios (1 = agreement). The plain Rotta patch has pointed "
+        "ends; its section 5.4 ellipse is the dissertation's comparison; the rounded "
+        "footprint (beyond the dissertation, <code>docs/model.md</code>) spreads the "
+        "membrane pressure through tread, ink and paper, with two global parameters "
+        "fitted once to the prints the dissertation preserves.</p>",
+        table_html(rows, FOOTPRINT_VIEW, "footprint-table", colours=c.colours, sortable=True),
+    )
+
+
 def _trends(c: ReportContent) -> str:
     sentences = "".join(
         f"<li>{html.escape(describe_agreement(a))}</li>" for a in c.tables.agreement
@@ -552,6 +581,7 @@ HTML_SECTIONS = (
     _ratios,
     _load_per_area,
     _paired,
+    _footprints,
     _trends,
     _tires,
     _drum_plate,
@@ -670,6 +700,8 @@ def markdown_page(content: ReportContent) -> str:
     out += ["## Trends", ""]
     out += [f"- {md_text(describe_agreement(a))}" for a in t.agreement]
     out += ["", "Exponents ± one standard error.", "", table_md(t.trends, TREND_VIEW), ""]
+    out += ["## Plain patch vs rounded footprint (7.3.1)", "", "Median print / model ratios."]
+    out += ["", table_md(footprint_rows(t.paired), FOOTPRINT_VIEW), ""]
     out += ["## Drum vs plate", "", table_md(t.drum_plate_rows, DRUM_VIEW), ""]
     out += ["## Rim width sensitivity (model)", "", table_md(t.rim_sensitivity, RIM_VIEW), ""]
     if content.validation:
@@ -683,6 +715,7 @@ def markdown_page(content: ReportContent) -> str:
 __all__ = [
     "DRUM_VIEW",
     "ERROR_VIEW",
+    "FOOTPRINT_VIEW",
     "PAIRED_VIEW",
     "RIM_VIEW",
     "SECTIONS",
