@@ -145,8 +145,10 @@ def as_geometry(obj):
     Parameters
     ----------
     obj : shapely Polygon / MultiPolygon, (n, 2) float [mm], or ContactPatch
-        A region; a closed outline (n >= 3 points); or any object with an
-        ``outline`` attribute (a :class:`tiremesh.ContactPatch`).
+        A region; a closed outline (n >= 3 points); a solved
+        :class:`tiremesh.ContactPatch` (the footprint its load case asks for: the
+        plain Rotta outline by default, the rounded print footprint with
+        ``footprint='rounded'``); or any object with an ``outline`` attribute.
 
     Returns
     -------
@@ -159,7 +161,9 @@ def as_geometry(obj):
     """
     import shapely
 
-    if hasattr(obj, "outline") and not hasattr(obj, "geom_type"):
+    if hasattr(obj, "footprint") and hasattr(obj, "case"):
+        obj = obj.footprint.outline  # a solved patch: the footprint its case asks for
+    elif hasattr(obj, "outline") and not hasattr(obj, "geom_type"):
         obj = obj.outline
     if hasattr(obj, "geom_type"):
         if obj.geom_type not in ("Polygon", "MultiPolygon"):

@@ -9,6 +9,7 @@ from numpy.testing import assert_allclose
 from shapely import affinity
 
 import contactpatch as cp
+import tiremesh as tm
 
 
 def test_measure_rectangle_with_hole():
@@ -80,3 +81,15 @@ def test_measure_outline_array_and_patch_like_object():
     a, b = cp.measure(ring), cp.measure(Patch())
     assert_allclose([a.length, a.width, a.area], [40, 8, 320])
     assert_allclose([b.length, b.width, b.area], [40, 8, 320])
+
+
+def test_measure_follows_the_footprint_the_case_asks_for():
+    """contactpatch.measure of a solved patch measures its case's footprint (the plain
+    outline by default, bit for bit)."""
+    case = tm.LoadCase(tm.get_tire(6), pressure=0.6895, load=304.0)
+    plain = tm.solve(case)
+    rounded = tm.solve(case.replace(footprint=tm.Footprint("rounded")))
+    assert cp.measure(plain).area == cp.measure(plain.outline).area
+    m = cp.measure(rounded)
+    assert_allclose(m.area, rounded.footprint.area, rtol=1e-9)
+    assert m.length < cp.measure(plain).length
