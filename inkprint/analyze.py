@@ -47,6 +47,13 @@ from .results import BAND_KEYS, PrintResult, SheetResult, contact_pressure, mark
 AXES = ("auto", "x", "y")
 #: ``auto`` on a print whose length / width is below this is flagged axis_uncertain
 AXIS_UNCERTAIN_ASPECT = 1.3
+#: a given rolling axis farther than this [deg] from the print's own axis flags it
+#: axis_misaligned (when the print's own axis is defined, see :func:`own_axis`)
+AXIS_MISALIGNED_DEG = 1.0
+#: ... and when measuring along the given axis lengthens or widens it by more than this
+#: share (a nearly round print reads the same along any axis; one whose own axis is
+#: not defined, aspect below AXIS_UNCERTAIN_ASPECT, by more than 4 x this)
+AXIS_MISALIGNED_EXCESS = 0.002
 #: a mark set aside covering more than this [mm] of a print's outline flags it
 EDGE_MARK_MM = 2.5
 #: a group with more pen strokes set aside around it than this share of its own ink
@@ -219,6 +226,43 @@ def rolling_angle(hull_px, rolling_axis: str) -> float:
     # sheet coordinates: x = col, y = -row (the scale does not change directions)
     mo = cv2.moments(np.column_stack([hull_px[:, 1], -hull_px[:, 0]]).astype(np.float32))
     return 0.5 * math.atan2(2 * mo["mu11"], mo["mu20"] - mo["mu02"])
+
+
+def own_axis(hull_px, angle: float) -> tuple[float, float]:
+    """The print's own axis nearest a given rolling direction, and the error of the given one.
+
+    The own axes are those of the hull's minimum-area bounding rectangle (robust to
+    a sparse knob pattern, whose second moments tilt by degrees); of its two axes the
+    one nearest ``angle`` (modulo 90 degrees) is compared, so a print wider than long
+    is compared along its short side.
+
+    Parameters
+    ----------
+    hull_px : (k, 2) float [px]
+        The print's hull, (row, col).
+    angle : float [rad]
+        Given rolling direction from the sheet's +x.
+
+    Returns
+    -------
+    turn : float [deg]
+        Own axis minus given axis, in [-45, 45).
+    excess : float
+        Largest relative excess of the length or the width measured along ``angle``
+        over those along the own axis (0 when aligned).
+    """
+    import cv2
+
+    xy = np.column_stack([hull_px[:, 1], -hull_px[:, 0]]).astype(np.float32)
+    own = math.radians(cv2.minAreaRect(xy)[2])
+    turn = (math.degrees(own - angle) + 45.0) % 90.0 - 45.0
+
+    def extents(a: float) -> np.ndarray:
+        c, s = math.cos(a), math.sin(a)
+        return np.ptp(xy @ np.array([[c, -s], [s, c]], np.float64), axis=0)
+
+    given, best = extents(angle), extents(angle + math.radians(turn))
+    return turn, float(np.max(given / np.maximum(best, 1e-9)) - 1.0)
 
 
 def _band_values(m) -> dict:
@@ -503,7 +547,7 @@ def measure_print(ctx: _Context, group: Group, *, index: int = 0, sensitivity: b
         else {k: (v, v) for k, v in base.items()}
     )
     margin = max(mm_to_px_length(opts.group_distance_mm, s), 1.5 * spots.tread_gap)
-    flags, warnings = _print_flags(ctx, group, m.metrics, index, int(np.ceil(margin)))
+    flags, warnings = _print_flags(ctx, group, m, index, int(np.ceil(margin)))
     return PrintResult(
         index=index,
         metrics=m.metrics,
@@ -529,7 +573,22 @@ def _padded(g: Group, shape, pad: int) -> Group:
     return dataclasses.replace(g, rows=slice(r0, r1), cols=slice(c0, c1), mask=mask)
 
 
-def _print_flags(ctx: _Context, g: Group, metrics, index: int, margin: int) -> tuple[tuple, tuple]:
+def _axis_flags(metrics, hull_px, index: int, flags: list, warnings: list) -> tuple[list, list]:
+    """Flag ``axis_misaligned``: the print turned on the sheet against the given axis."""
+    aspect = max(metrics.aspect_ratio, 1.0 / max(metrics.aspect_ratio, 1e-9))
+    turn, excess = own_axis(hull_px, float(metrics.orientation))
+    if abs(turn) > AXIS_MISALIGNED_DEG and excess > AXIS_MISALIGNED_EXCESS:
+        if aspect > AXIS_UNCERTAIN_ASPECT or excess > 4 * AXIS_MISALIGNED_EXCESS:
+            flags.append("axis_misaligned")
+            warnings.append(
+                f"print #{index} is turned {turn:+.1f} deg from the given rolling axis: its "
+                f"length and width along that axis read up to {100 * excess:.1f} % too "
+                f"large; use --rolling-axis auto or square the print on the sheet"
+            )
+    return flags, warnings
+
+
+def _print_flags(ctx: _Context, g: Group, m, index: int, margin: int) -> tuple[tuple, tuple]:
     flags, warnings = [], []
     contact = px_to_mm_length(g.edge_marks, ctx.scan.mm_per_px)
     if contact > EDGE_MARK_MM:
@@ -543,10 +602,12 @@ def _print_flags(ctx: _Context, g: Group, metrics, index: int, margin: int) -> t
     if cut:
         flags.append("clipped")
         warnings.append(f"print #{index} {cut}")
-    if ctx.rolling_axis == "auto" and metrics.aspect_ratio < AXIS_UNCERTAIN_ASPECT:
+    if ctx.rolling_axis != "auto":
+        flags, warnings = _axis_flags(m.metrics, m.hull_px, index, flags, warnings)
+    elif m.metrics.aspect_ratio < AXIS_UNCERTAIN_ASPECT:
         flags.append("axis_uncertain")
         warnings.append(
-            f"print #{index} is nearly as wide as long ({metrics.aspect_ratio:.2f}): the "
+            f"print #{index} is nearly as wide as long ({m.metrics.aspect_ratio:.2f}): the "
             f"rolling direction was taken as its longer axis (auto); give --rolling-axis x|y"
         )
     return tuple(flags), tuple(warnings)

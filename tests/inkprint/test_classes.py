@@ -6,6 +6,7 @@ a print that cannot be measured from the file (clipped, photographed at an angle
 mark on its outline) must be flagged, never a silent wrong number.
 """
 
+import dataclasses
 import math
 
 import numpy as np
@@ -13,6 +14,7 @@ import pytest
 
 import inkprint as ip
 from inkprint.accuracy import SILENT, compare
+from inkprint.analyze import own_axis
 from inkprint.batch import Job, Options, process_file
 from inkprint.synth import PrintSpec, SheetSpec, render_sheet, save_scan
 from inkprint.synth_cases import make_case, write_case
@@ -111,6 +113,33 @@ def test_analyze_scan_auto_axis_says_so_and_flags_near_round_prints():
     assert given.axis_source == "given" and within(given.prints[0].metrics, t)
     with pytest.raises(ip.InvalidInput, match="rolling_axis"):
         ip.analyze_scan(scan, rolling_axis="z")
+
+
+@pytest.mark.parametrize("seed", [0, 1])
+def test_analyze_scan_print_turned_against_the_given_axis_is_flagged(tmp_path, seed):
+    # a print taped 2-10 degrees askew, rolling axis x from the manifest: along x it
+    # reads up to +27 % wide; it must be flagged, never a silent number
+    results, rows = outcomes(tmp_path, "turned", seed)
+    assert [r["outcome"] for r in results] == ["flagged", "flagged"], results
+    assert all("axis_misaligned" in r["flags"] for r in rows)
+    assert all("--rolling-axis auto" in r["warnings"] for r in rows)
+
+
+def test_own_axis_finds_the_turn_of_a_print_and_its_error():
+    p = PrintSpec(80.0, 20.0, (60, 60), 4.0, "slick", unevenness=0.0)
+    scan, _ = scan_of(SheetSpec((p,), size=(120, 120), specks=0))
+    res = ip.analyze_scan(scan, sensitivity=False, rolling_axis="x")
+    turn, excess = own_axis(res.prints[0].hull_px, 0.0)
+    assert turn == pytest.approx(4.0, abs=0.3)
+    assert excess > 0.05  # the width along x: 80 sin 4 deg over 20 mm
+    assert "axis_misaligned" in res.prints[0].flags
+    square = ip.analyze_scan(
+        scan_of(SheetSpec((dataclasses.replace(p, angle=0.0),), size=(120, 120), specks=0))[0],
+        sensitivity=False,
+        rolling_axis="x",
+    )
+    assert own_axis(square.prints[0].hull_px, 0.0)[1] < 0.002
+    assert square.prints[0].flags == ()
 
 
 # -- marks that are not prints ------------------------------------------------------------
