@@ -10,9 +10,11 @@ Each print is measured with :func:`contactpatch.measure` (the definitions shared
 the model) along its rolling direction: ``rolling_axis`` ``'x'`` or ``'y'`` (the
 sheet's axes: x across the image from left to right, y up it) or ``'auto'`` (each
 print's principal axis, the longer direction; the row says ``axis_source = auto``).
-A given axis is used as given: a print taped 1 degree askew on the sheet reads
-about (width / length) % longer along it (its own axis is no better: the hull of a
-sparse knob pattern tilts by degrees), so tape prints square or use ``auto``. The
+A given axis is used as given: a print taped askew reads too wide along it (+4 % at
+3 degrees, +27 % at 10), so a print whose own axis (:func:`own_axis`: its hull's
+minimum-area rectangle, confirmed by the principal axis) is turned more than
+:data:`AXIS_MISALIGNED_DEG` from the given one is flagged ``axis_misaligned`` with
+the fix (``auto`` or square the print). The
 *gross* outline is the convex hull of the
 ink's sub-pixel edge (the iso-line half-way between the local paper and ink levels,
 :func:`edge_field`), the *net* area the ink pixel count (at most the hull's area).
@@ -576,8 +578,13 @@ def _padded(g: Group, shape, pad: int) -> Group:
 def _axis_flags(metrics, hull_px, index: int, flags: list, warnings: list) -> tuple[list, list]:
     """Flag ``axis_misaligned``: the print turned on the sheet against the given axis."""
     aspect = max(metrics.aspect_ratio, 1.0 / max(metrics.aspect_ratio, 1e-9))
-    turn, excess = own_axis(hull_px, float(metrics.orientation))
-    if abs(turn) > AXIS_MISALIGNED_DEG and excess > AXIS_MISALIGNED_EXCESS:
+    given = float(metrics.orientation)
+    turn, excess = own_axis(hull_px, given)
+    # the principal (second-moment) axis must agree: a rounded knob pattern's
+    # min-area rectangle can lie on a diagonal (-26 deg on a square print)
+    principal = (math.degrees(rolling_angle(hull_px, "auto") - given) + 45.0) % 90.0 - 45.0
+    agree = abs(principal - turn) <= max(AXIS_MISALIGNED_DEG, 0.3 * abs(turn))
+    if agree and abs(turn) > AXIS_MISALIGNED_DEG and excess > AXIS_MISALIGNED_EXCESS:
         if aspect > AXIS_UNCERTAIN_ASPECT or excess > 4 * AXIS_MISALIGNED_EXCESS:
             flags.append("axis_misaligned")
             warnings.append(

@@ -41,7 +41,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .coords import area_px_to_mm2, mm_to_px_length, px_to_mm_length
+from .coords import area_px_to_mm2, binned_mm_per_px, mm_to_px_length, px_to_mm_length
 from .options import AnalysisOptions, resolve_options
 
 #: a neighbour counts for the tread pattern's gap when no farther than this many
@@ -144,7 +144,9 @@ def element_graph(labels: np.ndarray, n: int, *, px_mm: float, step: int = 1) ->
         pairs.append((o0[cut], o1[cut], dist[sl0][cut] + dist[sl1][cut]))
     a = np.concatenate([p[0] for p in pairs]).astype(np.int64)
     b = np.concatenate([p[1] for p in pairs]).astype(np.int64)
-    g = np.concatenate([p[2] for p in pairs]).astype(float) * px_mm * step
+    g = px_to_mm_length(
+        np.concatenate([p[2] for p in pairs]).astype(float), binned_mm_per_px(px_mm, step)
+    )
     lo, hi = np.minimum(a, b), np.maximum(a, b)
     key = lo * (n + 1) + hi
     order = np.argsort(key, kind="stable")
@@ -163,7 +165,7 @@ def _element_widths(labels: np.ndarray, n: int, px_mm: float) -> np.ndarray:
     best = np.zeros(n + 1, np.float32)
     ink = labels > 0
     np.maximum.at(best, labels[ink], dt[ink])
-    return 2.0 * best[1:].astype(float) * px_mm
+    return px_to_mm_length(2.0 * best[1:].astype(float), px_mm)
 
 
 def _pattern_gaps(graph: ElementGraph, n: int):
