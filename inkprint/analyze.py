@@ -539,6 +539,7 @@ def measure_print(ctx: _Context, group: Group, *, index: int = 0, sensitivity: b
     kw = dict(n_rows=n_rows, mm_per_px=s, axis=ctx.rolling_axis)
     fld_all = edge_field(grey, g.mask, mm_per_px=s, options=opts)
     fld = edge_field(grey, spots.load_bearing, mm_per_px=s, options=opts)
+    fld = _paper_where_set_apart(fld, g.mask & ~spots.load_bearing, spots.load_bearing)
     m = measure_mask(spots.load_bearing, g.rows.start, g.cols.start, field=fld, **kw)
     kw["axis"] = m.metrics.orientation  # all ink measured along the same direction
     m_all = measure_mask(g.mask, g.rows.start, g.cols.start, field=fld_all, **kw)
@@ -563,6 +564,18 @@ def measure_print(ctx: _Context, group: Group, *, index: int = 0, sensitivity: b
         flags=flags,
         warnings=warnings,
     )
+
+
+def _paper_where_set_apart(fld: np.ndarray, apart: np.ndarray, ink: np.ndarray) -> np.ndarray:
+    """The edge field with the ink set apart (edge spots, pen-thin pieces sticking
+    out) and its one-pixel rim read as paper: the outline's iso-line may run one
+    pixel outside the kept ink and would follow a tick's or a speck's grey there."""
+    import cv2
+
+    if not apart.any():
+        return fld
+    rim = cv2.dilate(apart.view(np.uint8), np.ones((3, 3), np.uint8)).view(bool) & ~ink
+    return np.where(rim, np.maximum(fld, np.float32(0.5)), fld)
 
 
 def _padded(g: Group, shape, pad: int) -> Group:

@@ -483,9 +483,12 @@ def thin_protrusions(mask: np.ndarray, *, width_px: float) -> np.ndarray:
 
     A label's stroke or a ruler's tick touching a print, left in its ink after the
     marks were set aside, widens its hull (label +6 %, ruler tick +4 % in width):
-    ink narrower than ``width_px`` (gone after an opening with a disk that wide)
-    and outside the convex hull of what the opening keeps is not the print's.
-    Thin ink inside that hull (ribs, sipes) is kept.
+    ink narrower than ``width_px`` (gone after an opening with a disk that wide),
+    outside the convex hull of what the opening keeps and joined to thick ink is
+    not the print's; so is a piece thin all through beside the print (a letter of a
+    label). Thin ink inside that hull (ribs, sipes) is kept, and so are pieces thin
+    all through off the print's ends along its major axis (slivers of the tip blocks
+    continuing the tread pattern, specks: the section 7.1.1 rule decides).
 
     Parameters
     ----------
@@ -509,8 +512,29 @@ def thin_protrusions(mask: np.ndarray, *, width_px: float) -> np.ndarray:
         return mask
     hull = np.zeros(mask.shape, np.uint8)
     cv2.fillPoly(hull, [cv2.convexHull(pts)], 1)
-    hull = cv2.dilate(hull, np.ones((3, 3), np.uint8))  # the edge's anti-aliased rim
-    return mask & (hull.view(bool) | thick.view(bool))
+    thin = mask & ~(hull.view(bool) | thick.view(bool))
+    if not thin.any():
+        return mask
+    # only the thin ink of pieces that hold thick ink too (a stroke's foot on the
+    # print); a piece thin all through (a sliver of a tip block, a speck) is left to
+    # the section 7.1.1 rule
+    n, lab, _, cent = cv2.connectedComponentsWithStats(mask.view(np.uint8), connectivity=8)
+    drop = np.zeros(n, bool)
+    drop[lab[thick.view(bool)]] = True
+    drop |= ~_at_the_ends(cv2.convexHull(pts).reshape(-1, 2).astype(float), cent)
+    drop[0] = False
+    return mask & ~(thin & drop[lab])
+
+
+def _at_the_ends(hull_xy: np.ndarray, points: np.ndarray, *, end: float = 0.8) -> np.ndarray:
+    """Whether each point (x, y) lies off a hull's ends along its major axis (beyond
+    ``end`` x its half-length from the centre), not beside it."""
+    c = hull_xy.mean(axis=0)
+    d = hull_xy - c
+    w, v = np.linalg.eigh(d.T @ d)
+    axis = v[:, np.argmax(w)]
+    half = np.abs(d @ axis).max()
+    return np.abs((points - c) @ axis) > end * half
 
 
 def _count_pieces(mask: np.ndarray) -> int:

@@ -631,11 +631,9 @@ def sort_ink(mask, *, mm_per_px: float, options: AnalysisOptions | None = None) 
     pooled = _pool(mask, mm_per_px, opts)
     first = _sort_pooled(pooled, opts)
     lines, network, bands, line_marks = _lines(first, pooled, opts)
-    sorted_, lost, bridged = first, None, None
+    sorted_, lost = first, None
     if bands:  # take the lines out of the ink, bridge them inside prints, sort again
-        mask, lost, bridged = remove_lines(
-            mask, bands, bridge_px=mm_to_px_length(BRIDGE_MM, mm_per_px)
-        )
+        mask, lost = remove_lines(mask, bands, bridge_px=mm_to_px_length(BRIDGE_MM, mm_per_px))
         pooled = _pool(mask, mm_per_px, opts)
         sorted_ = _sort_pooled(pooled, opts, network & ~lines & pooled.mask, lines & ~pooled.mask)
     parts, st, owner = sorted_.parts, sorted_.stats, sorted_.owner
@@ -650,11 +648,10 @@ def sort_ink(mask, *, mm_per_px: float, options: AnalysisOptions | None = None) 
     marks = line_marks + _thin_marks(parts, st, owner, sorted_.kind, pooled, shape, opts)
     marks = [_clip_mark(m, shape) for m in marks]
     aside = _aside_ink(st, owner, len(sorted_.hulls), opts)
-    measured = mask if bridged is None else mask & ~bridged  # a line's ink is not a print's
     groups = [
         dataclasses.replace(_lost_on_edge(g, lost) if lost is not None else g, aside_mm2=a)
         for g, a in zip(
-            _full_groups(measured, group_map, sorted_.hulls, pooled, opts), aside, strict=True
+            _full_groups(mask, group_map, sorted_.hulls, pooled, opts), aside, strict=True
         )
         if g
     ]
@@ -691,9 +688,6 @@ def remove_lines(mask: np.ndarray, bands: list, *, bridge_px: float = 0.0):
     cleaned : (rows, cols) bool
     lost : (rows, cols) bool
         Ink under the lines not bridged.
-    bridged : (rows, cols) bool
-        Ink under the lines bridged (the line's own ink inside a print: it joins
-        the print's parts for grouping but is not measured as the print's).
     """
     import cv2
 
@@ -715,8 +709,7 @@ def remove_lines(mask: np.ndarray, bands: list, *, bridge_px: float = 0.0):
         width = max(int(np.ceil(b.width)) for b in bands) + 4 + 2 * int(np.ceil(bridge_px))
         restored |= band & cv2.morphologyEx(out, cv2.MORPH_CLOSE, _line_kernel(ang + 90, width))
     cleaned = (out | (m8 & restored)).view(bool)
-    lost = (m8 & all_bands & ~restored & 1).view(bool)
-    return cleaned, lost, (m8 & restored & all_bands & 1).view(bool)
+    return cleaned, (m8 & all_bands & ~restored & 1).view(bool)
 
 
 def _line_kernel(angle_deg: float, length: int) -> np.ndarray:

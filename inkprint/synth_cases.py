@@ -460,7 +460,9 @@ def write_case(case: Case, out_dir, name: str) -> tuple[Path, list[dict], list[d
     return path, [{"file": fname, "kind": case.kind, **case.manifest}], truth
 
 
-def make_mixed_set(out_dir, *, n_files: int = 120, seed: int = 2024) -> tuple[Path, Path]:
+def make_mixed_set(
+    out_dir, *, n_files: int = 120, seed: int = 2024, dpi: float | None = None
+) -> tuple[Path, Path]:
     """Write a fresh set mixing every failure class, with manifest and truth.
 
     Classes are taken in turn (every class ``n_files / len(CLASSES)`` times or
@@ -472,6 +474,8 @@ def make_mixed_set(out_dir, *, n_files: int = 120, seed: int = 2024) -> tuple[Pa
     n_files : int
         Files to write (a PDF holds 2-3 sheets).
     seed : int
+    dpi : float, optional [dots per inch]
+        One resolution for every sheet (a quick set); default drawn per file.
 
     Returns
     -------
@@ -486,7 +490,7 @@ def make_mixed_set(out_dir, *, n_files: int = 120, seed: int = 2024) -> tuple[Pa
     manifest, truth = [], []
     for k in range(n_files):
         kind = kinds[k % len(kinds)]
-        case = make_case(kind, seed=seed * 100_003 + k)
+        case = make_case(kind, seed=seed * 100_003 + k, dpi=dpi)
         _, m, t = write_case(case, out_dir, f"{k:04d}_{kind}")
         manifest.extend(m)
         truth.extend(t)
