@@ -355,6 +355,8 @@ def is_print(
         )
     hull_mm2 = area_px_to_mm2(cv2.contourArea(hull), mm_per_px)
     if hull_mm2 < SMALL_PRINT_MM2 and fill < SMALL_PRINT_FILL:
+        fill = max(fill, _main_blob_fill(group.mask))  # halo specks widen a tiny hull
+    if hull_mm2 < SMALL_PRINT_MM2 and fill < SMALL_PRINT_FILL:
         return PrintCheck(
             False,
             f"a letter or a mark ({hull_mm2:.0f} mm^2, {100 * fill:.0f} % of its hull inked: "
@@ -362,6 +364,22 @@ def is_print(
             "writing",
         )
     return PrintCheck(True)
+
+
+def _main_blob_fill(mask: np.ndarray) -> float:
+    """Inked share of the hull of the largest blob, when it holds at least 80 % of
+    the ink (a solid tiny print with halo specks around it), else 0."""
+    import cv2
+
+    n, lab, stats, _ = cv2.connectedComponentsWithStats(mask.view(np.uint8), connectivity=8)
+    if n < 3:
+        return 0.0
+    k = 1 + int(np.argmax(stats[1:, cv2.CC_STAT_AREA]))
+    px = int(stats[k, cv2.CC_STAT_AREA])
+    if px < 0.8 * int(stats[1:, cv2.CC_STAT_AREA].sum()):
+        return 0.0
+    hull = cv2.convexHull(cv2.findNonZero((lab == k).view(np.uint8)))
+    return px / max(cv2.contourArea(hull) + 0.5 * cv2.arcLength(hull, True) + 1.0, 1.0)
 
 
 def _sides(group: Group, shape: tuple[int, int]) -> int:

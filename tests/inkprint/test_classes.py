@@ -162,8 +162,31 @@ def test_sort_ink_gridlines_never_merge_into_a_print(tmp_path):
     results, rows = outcomes(tmp_path, "grid", 1)
     assert not [r for r in results if r["outcome"] in SILENT], results
     assert all("gridlines" in r["set_aside"] for r in rows)
-    for r in results:  # measured right, or flagged: a gridline along the outline
-        assert r["outcome"] == "pass" or "mark_on_edge" in r["flags"]
+    found = [r for r in results if r["expect"] == "measure"]
+    assert len(found) == 2 and all(r["outcome"] in ("pass", "overflagged") for r in found)
+    for row in rows:  # flagged only with its reason: a gridline along the outline
+        if row["status"] == "flagged":
+            assert row["flags"] == "mark_on_edge" and "a mark set aside covers" in row["warnings"]
+        else:
+            assert row["flags"] == ""
+
+
+@pytest.mark.xfail(
+    strict=True,
+    reason="audit gap (issue 11): a print under chart gridlines is flagged mark_on_edge "
+    "even where the lines only cross its edge; measured within the bar, it is lost",
+)
+def test_sort_ink_gridlines_crossing_a_print_leave_it_measured():
+    from inkprint.synth_effects import Grid
+
+    p = PrintSpec(70.0, 18.0, (64.0, 62.0), 20.0, "slick")
+    sheet = SheetSpec(
+        (p,), dpi=200.0, size=(128.0, 124.0), specks=10, marks=(Grid(10.0, 0.2, 0.6),)
+    )
+    scan, (t,) = scan_of(sheet)
+    r = ip.analyze_scan(scan, sensitivity=False)
+    assert len(r.prints) == 1
+    assert r.prints[0].status == "ok" and within(r.prints[0].metrics, t)
 
 
 @pytest.mark.parametrize("seed", [0, 1])
@@ -182,7 +205,12 @@ def test_no_print_message_names_what_was_set_aside():
     cv2.putText(a, "NOTES", (40, 200), cv2.FONT_HERSHEY_SIMPLEX, 2.0, 20, 2, cv2.LINE_AA)
     with pytest.raises(ip.NoInk, match=r"set aside .*text") as e:
         ip.analyze_scan(ip.Scan(a, 0.1, "given"), sensitivity=False)
-    assert "dust" not in str(e.value).split("(")[0] or "text" in str(e.value)
+    # the reason names what was set aside (the letters), never dust specks
+    msg = str(e.value)
+    assert msg.startswith("no print found on the sheet: set aside ")
+    assert "dust" not in msg and "too little ink" not in msg
+    kinds = msg.split("set aside ", 1)[1].split(" (", 1)[0]
+    assert set(kinds.replace(",", "").split()[1::2]) <= {"text", "writing"}, msg
 
 
 # -- light and scale -------------------------------------------------------------------
