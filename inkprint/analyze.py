@@ -259,12 +259,14 @@ def own_axis(hull_px, angle: float) -> tuple[float, float]:
     own = math.radians(cv2.minAreaRect(xy)[2])
     turn = (math.degrees(own - angle) + 45.0) % 90.0 - 45.0
 
-    def extents(a: float) -> np.ndarray:
-        c, s = math.cos(a), math.sin(a)
-        return np.ptp(xy @ np.array([[c, -s], [s, c]], np.float64), axis=0)
-
-    given, best = extents(angle), extents(angle + math.radians(turn))
+    given, best = _extents(xy, angle), _extents(xy, angle + math.radians(turn))
     return turn, float(np.max(given / np.maximum(best, 1e-9)) - 1.0)
+
+
+def _extents(xy: np.ndarray, angle: float) -> np.ndarray:
+    """Extents [px] of points along ``angle`` and across it."""
+    c, s = math.cos(angle), math.sin(angle)
+    return np.ptp(xy @ np.array([[c, -s], [s, c]], np.float64), axis=0)
 
 
 def _band_values(m) -> dict:

@@ -496,17 +496,18 @@ def _core_gaps(blobs: _Blobs, core_mask: np.ndarray) -> tuple:
     return gaps[1:], float(np.median(nearest[np.isfinite(nearest)]))
 
 
-def thin_protrusions(mask: np.ndarray, *, width_px: float) -> np.ndarray:
+def thin_protrusions(mask: np.ndarray, *, width_px: float, dots: bool = True) -> np.ndarray:
     """The ink without the pen-thin pieces sticking out of the print's outline.
 
     A label's stroke or a ruler's tick touching a print, left in its ink after the
     marks were set aside, widens its hull (label +6 %, ruler tick +4 % in width):
     ink narrower than ``width_px`` (gone after an opening with a disk that wide),
     outside the convex hull of what the opening keeps and joined to thick ink is
-    not the print's; so is a piece thin all through beside the print (a letter of a
-    label). Thin ink inside that hull (ribs, sipes) is kept, and so are pieces thin
-    all through off the print's ends along its major axis (slivers of the tip blocks
-    continuing the tread pattern, specks: the section 7.1.1 rule decides).
+    not the print's; so is a stroke thin all through beside the print (a letter of
+    a label; a dot is left to the section 7.1.1 rule). Thin ink inside that hull
+    (ribs, sipes) is kept, and so are pieces thin all through off the print's ends
+    along its major axis (slivers of the tip blocks continuing the tread pattern:
+    the section 7.1.1 rule decides).
 
     Parameters
     ----------
@@ -514,6 +515,9 @@ def thin_protrusions(mask: np.ndarray, *, width_px: float) -> np.ndarray:
         The print's ink.
     width_px : float [px]
         Widest stroke to remove (``stroke_width_mm``).
+    dots : bool
+        Drop the pieces beside the print no longer than ``width_px`` too (the bits
+        of a letter, halo specks); else only longer strokes.
 
     Returns
     -------
@@ -536,10 +540,14 @@ def thin_protrusions(mask: np.ndarray, *, width_px: float) -> np.ndarray:
     # only the thin ink of pieces that hold thick ink too (a stroke's foot on the
     # print); a piece thin all through (a sliver of a tip block, a speck) is left to
     # the section 7.1.1 rule
-    n, lab, _, cent = cv2.connectedComponentsWithStats(mask.view(np.uint8), connectivity=8)
+    n, lab, stats, cent = cv2.connectedComponentsWithStats(mask.view(np.uint8), connectivity=8)
     drop = np.zeros(n, bool)
     drop[lab[thick.view(bool)]] = True
-    drop |= ~_at_the_ends(cv2.convexHull(pts).reshape(-1, 2).astype(float), cent)
+    # apart from the print, beside it: a stroke (longer than a stroke is wide) or,
+    # with ``dots``, a dot (a letter's bit, a halo speck)
+    stroke = np.maximum(stats[:, cv2.CC_STAT_WIDTH], stats[:, cv2.CC_STAT_HEIGHT]) > width_px
+    stroke |= dots
+    drop |= stroke & ~_at_the_ends(cv2.convexHull(pts).reshape(-1, 2).astype(float), cent)
     drop[0] = False
     return mask & ~(thin & drop[lab])
 
@@ -564,7 +572,11 @@ def _count_pieces(mask: np.ndarray) -> int:
 
 
 def edge_spots(
-    group: Group, darkness, *, mm_per_px: float, options: AnalysisOptions | None = None
+    group: Group,
+    darkness,
+    *,
+    mm_per_px: float,
+    options: AnalysisOptions | None = None,
 ) -> EdgeSpots:
     """Apply the section 7.1.1 rule to one group.
 
@@ -575,24 +587,28 @@ def edge_spots(
         1 - grey over the group's box.
     mm_per_px : float [mm / px]
     options : AnalysisOptions, optional
-        Uses ``edge_spot_area_mm2``, ``edge_spot_faintness`` and
-        ``edge_spot_distance_mm`` (defaults when None).
+        Uses ``edge_spot_area_mm2``, ``edge_spot_faintness``,
+        ``edge_spot_distance_mm`` and ``stroke_width_mm`` (defaults when None).
 
     Returns
     -------
     EdgeSpots
     """
     opts = resolve_options(options)
-    kept = thin_protrusions(group.mask, width_px=mm_to_px_length(opts.stroke_width_mm, mm_per_px))
+    width = mm_to_px_length(opts.stroke_width_mm, mm_per_px)
+    # the rule is off when no blob can be faint and no distance too far (1 m)
+    rule_on = opts.edge_spot_faintness > 0 or opts.edge_spot_distance_mm < 1e3
+    kept = thin_protrusions(group.mask, width_px=width, dots=rule_on)
     thin = group.mask & ~kept if kept.any() else np.zeros_like(group.mask)
-    n_thin = _count_pieces(thin)
-    if n_thin:  # pen-thin ink sticking out: reported with the edge spots
+    strokes = thin & ~thin_protrusions(group.mask, width_px=width, dots=False)
+    n_thin, n_dots = _count_pieces(thin), _count_pieces(thin & ~strokes)
+    if n_thin:  # pen-thin ink beside the print: strokes are marks, dots edge spots
         spots = _spots(replace(group, mask=kept), darkness, mm_per_px, opts)
         return replace(
             spots,
             n_blobs=spots.n_blobs + n_thin,
-            n_spots=spots.n_spots + n_thin,
-            spot_pixels=spots.spot_pixels + int(np.count_nonzero(thin)),
+            n_spots=spots.n_spots + n_dots,
+            spot_pixels=spots.spot_pixels + int(np.count_nonzero(thin & ~strokes)),
         )
     return _spots(group, darkness, mm_per_px, opts)
 
