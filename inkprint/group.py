@@ -33,6 +33,13 @@ direction are kept (before, their centroids' distance to the core's hull dropped
 them: length -2.4 %), and a dark speck far out is dropped. The peak, not the mean,
 is used because a small dot's anti-aliased rim lowers its mean. Results are reported
 both with all ink and with load-bearing ink only.
+
+Before the rule, pen-thin ink (narrower than ``stroke_width_mm``) outside the hull of
+the print's thick ink is taken out when it is joined to the print (a stroke's foot,
+a ruler's tick) or lies beside it (a label's letters, specks: counted as edge
+spots); thin slivers off the print's ends along its major axis - tip blocks cut by
+the outline - are left to the rule, so the tips are kept (:func:`thin_protrusions`;
+an addition to section 7.1.1, which knew no labels touching a print).
 """
 
 from __future__ import annotations
