@@ -620,6 +620,14 @@ def _print_flags(ctx: _Context, g: Group, m, index: int, margin: int) -> tuple[t
             f"line along its edge, a label's strokes): the outline there is uncertain by up "
             f"to the mark's width; see the overlay, remove the mark or rescan"
         )
+    spread = _spread_marks_over(ctx.found.marks, g)
+    if spread and "mark_on_edge" not in flags:
+        flags.append("mark_on_edge")
+        warnings.append(
+            f"print #{index} lies in {spread} set aside over the sheet (faint gridlines or "
+            f"a texture): where it joins the print's edge the outline is uncertain; see "
+            f"the overlay or rescan on plain paper"
+        )
     cut = clipped(g, ctx.page.work.shape, ctx.page.sheet, margin_px=margin)
     if cut:
         flags.append("clipped")
@@ -633,6 +641,19 @@ def _print_flags(ctx: _Context, g: Group, m, index: int, margin: int) -> tuple[t
             f"rolling direction was taken as its longer axis (auto); give --rolling-axis x|y"
         )
     return tuple(flags), tuple(warnings)
+
+
+def _spread_marks_over(marks: list, g: Group) -> str:
+    """The kind of a mark spread over the sheet (``noise``, ``texture``) whose box
+    holds the print's box ('' when none): its ink may join the print's edge unseen
+    (faint gridlines at 150 dpi read as noise and widened prints by 8 %)."""
+    for m in marks:
+        r0, c0, r1, c1 = m.bbox
+        if m.kind in ("noise", "texture") and (
+            r0 <= g.rows.start and c0 <= g.cols.start and r1 >= g.rows.stop and c1 >= g.cols.stop
+        ):
+            return m.kind
+    return ""
 
 
 def _as_scan(scan, opts: AnalysisOptions) -> Scan:

@@ -171,6 +171,17 @@ def test_sort_ink_gridlines_never_merge_into_a_print(tmp_path):
             assert row["flags"] == ""
 
 
+def test_analyze_scan_faint_gridlines_read_as_noise_flag_the_prints(tmp_path):
+    # 150 dpi chart paper, 5 mm grid of faint 0.28 mm lines: set aside as noise, not
+    # gridlines; one along a print's edge widened it by 8 % without a flag
+    results, rows = outcomes(tmp_path, "grid", 4243 * 100_003 + 95)
+    assert not [r for r in results if r["outcome"] in SILENT], results
+    assert all("noise" in r["set_aside"] for r in rows)
+    assert all(
+        r["status"] == "flagged" and "set aside over the sheet" in r["warnings"] for r in rows
+    )
+
+
 @pytest.mark.xfail(
     strict=True,
     reason="audit gap (issue 11): a print under chart gridlines is flagged mark_on_edge "
