@@ -182,7 +182,9 @@ def summary(results: list[dict]) -> str:
     return "\n".join(lines)
 
 
-def run(out_dir, *, n_files: int, seed: int, workers: int | None = None) -> list[dict]:
+def run(
+    out_dir, *, n_files: int, seed: int, workers: int | None = None, dpi: float | None = None
+) -> list[dict]:
     """Generate a mixed set in ``out_dir``, analyse it with its manifest, compare.
 
     Parameters
@@ -192,6 +194,8 @@ def run(out_dir, *, n_files: int, seed: int, workers: int | None = None) -> list
     seed : int
     workers : int, optional
         Batch worker processes.
+    dpi : float, optional [dots per inch]
+        One resolution for every sheet (see :func:`make_mixed_set`).
 
     Returns
     -------
@@ -202,7 +206,7 @@ def run(out_dir, *, n_files: int, seed: int, workers: int | None = None) -> list
     from .csvsafe import read_csv
     from .synth_cases import make_mixed_set
 
-    manifest, truth = make_mixed_set(out_dir, n_files=n_files, seed=seed)
+    manifest, truth = make_mixed_set(out_dir, n_files=n_files, seed=seed, dpi=dpi)
     res = run_batch(
         None,
         Path(out_dir) / "results.csv",

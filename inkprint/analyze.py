@@ -10,9 +10,11 @@ Each print is measured with :func:`contactpatch.measure` (the definitions shared
 the model) along its rolling direction: ``rolling_axis`` ``'x'`` or ``'y'`` (the
 sheet's axes: x across the image from left to right, y up it) or ``'auto'`` (each
 print's principal axis, the longer direction; the row says ``axis_source = auto``).
-A given axis is used as given: a print taped 1 degree askew on the sheet reads
-about (width / length) % longer along it (its own axis is no better: the hull of a
-sparse knob pattern tilts by degrees), so tape prints square or use ``auto``. The
+A given axis is used as given: a print taped askew reads too wide along it (+4 % at
+3 degrees, +27 % at 10), so a print whose own axis (:func:`own_axis`: its hull's
+minimum-area rectangle, confirmed by the principal axis) is turned more than
+:data:`AXIS_MISALIGNED_DEG` from the given one is flagged ``axis_misaligned`` with
+the fix (``auto`` or square the print). The
 *gross* outline is the convex hull of the
 ink's sub-pixel edge (the iso-line half-way between the local paper and ink levels,
 :func:`edge_field`), the *net* area the ink pixel count (at most the hull's area).
@@ -47,6 +49,13 @@ from .results import BAND_KEYS, PrintResult, SheetResult, contact_pressure, mark
 AXES = ("auto", "x", "y")
 #: ``auto`` on a print whose length / width is below this is flagged axis_uncertain
 AXIS_UNCERTAIN_ASPECT = 1.3
+#: a given rolling axis farther than this [deg] from the print's own axis flags it
+#: axis_misaligned (when the print's own axis is defined, see :func:`own_axis`)
+AXIS_MISALIGNED_DEG = 1.0
+#: ... and when measuring along the given axis lengthens or widens it by more than this
+#: share (a nearly round print reads the same along any axis; one whose own axis is
+#: not defined, aspect below AXIS_UNCERTAIN_ASPECT, by more than 4 x this)
+AXIS_MISALIGNED_EXCESS = 0.002
 #: a mark set aside covering more than this [mm] of a print's outline flags it
 EDGE_MARK_MM = 2.5
 #: a group with more pen strokes set aside around it than this share of its own ink
@@ -219,6 +228,45 @@ def rolling_angle(hull_px, rolling_axis: str) -> float:
     # sheet coordinates: x = col, y = -row (the scale does not change directions)
     mo = cv2.moments(np.column_stack([hull_px[:, 1], -hull_px[:, 0]]).astype(np.float32))
     return 0.5 * math.atan2(2 * mo["mu11"], mo["mu20"] - mo["mu02"])
+
+
+def own_axis(hull_px, angle: float) -> tuple[float, float]:
+    """The print's own axis nearest a given rolling direction, and the error of the given one.
+
+    The own axes are those of the hull's minimum-area bounding rectangle (robust to
+    a sparse knob pattern, whose second moments tilt by degrees); of its two axes the
+    one nearest ``angle`` (modulo 90 degrees) is compared, so a print wider than long
+    is compared along its short side.
+
+    Parameters
+    ----------
+    hull_px : (k, 2) float [px]
+        The print's hull, (row, col).
+    angle : float [rad]
+        Given rolling direction from the sheet's +x.
+
+    Returns
+    -------
+    turn : float [deg]
+        Own axis minus given axis, in [-45, 45).
+    excess : float
+        Largest relative excess of the length or the width measured along ``angle``
+        over those along the own axis (0 when aligned).
+    """
+    import cv2
+
+    xy = np.column_stack([hull_px[:, 1], -hull_px[:, 0]]).astype(np.float32)
+    own = math.radians(cv2.minAreaRect(xy)[2])
+    turn = (math.degrees(own - angle) + 45.0) % 90.0 - 45.0
+
+    given, best = _extents(xy, angle), _extents(xy, angle + math.radians(turn))
+    return turn, float(np.max(given / np.maximum(best, 1e-9)) - 1.0)
+
+
+def _extents(xy: np.ndarray, angle: float) -> np.ndarray:
+    """Extents [px] of points along ``angle`` and across it."""
+    c, s = math.cos(angle), math.sin(angle)
+    return np.ptp(xy @ np.array([[c, -s], [s, c]], np.float64), axis=0)
 
 
 def _band_values(m) -> dict:
@@ -493,6 +541,7 @@ def measure_print(ctx: _Context, group: Group, *, index: int = 0, sensitivity: b
     kw = dict(n_rows=n_rows, mm_per_px=s, axis=ctx.rolling_axis)
     fld_all = edge_field(grey, g.mask, mm_per_px=s, options=opts)
     fld = edge_field(grey, spots.load_bearing, mm_per_px=s, options=opts)
+    fld = _paper_where_set_apart(fld, g.mask & ~spots.load_bearing, spots.load_bearing)
     m = measure_mask(spots.load_bearing, g.rows.start, g.cols.start, field=fld, **kw)
     kw["axis"] = m.metrics.orientation  # all ink measured along the same direction
     m_all = measure_mask(g.mask, g.rows.start, g.cols.start, field=fld_all, **kw)
@@ -503,7 +552,7 @@ def measure_print(ctx: _Context, group: Group, *, index: int = 0, sensitivity: b
         else {k: (v, v) for k, v in base.items()}
     )
     margin = max(mm_to_px_length(opts.group_distance_mm, s), 1.5 * spots.tread_gap)
-    flags, warnings = _print_flags(ctx, group, m.metrics, index, int(np.ceil(margin)))
+    flags, warnings = _print_flags(ctx, group, m, index, int(np.ceil(margin)))
     return PrintResult(
         index=index,
         metrics=m.metrics,
@@ -520,6 +569,18 @@ def measure_print(ctx: _Context, group: Group, *, index: int = 0, sensitivity: b
     )
 
 
+def _paper_where_set_apart(fld: np.ndarray, apart: np.ndarray, ink: np.ndarray) -> np.ndarray:
+    """The edge field with the ink set apart (edge spots, pen-thin pieces sticking
+    out) and its one-pixel rim read as paper: the outline's iso-line may run one
+    pixel outside the kept ink and would follow a tick's or a speck's grey there."""
+    import cv2
+
+    if not apart.any():
+        return fld
+    rim = cv2.dilate(apart.view(np.uint8), np.ones((3, 3), np.uint8)).view(bool) & ~ink
+    return np.where(rim, np.maximum(fld, np.float32(0.5)), fld)
+
+
 def _padded(g: Group, shape, pad: int) -> Group:
     """The group with its box grown by ``pad`` pixels (within the sheet)."""
     h, w = shape
@@ -530,7 +591,27 @@ def _padded(g: Group, shape, pad: int) -> Group:
     return dataclasses.replace(g, rows=slice(r0, r1), cols=slice(c0, c1), mask=mask)
 
 
-def _print_flags(ctx: _Context, g: Group, metrics, index: int, margin: int) -> tuple[tuple, tuple]:
+def _axis_flags(metrics, hull_px, index: int, flags: list, warnings: list) -> tuple[list, list]:
+    """Flag ``axis_misaligned``: the print turned on the sheet against the given axis."""
+    aspect = max(metrics.aspect_ratio, 1.0 / max(metrics.aspect_ratio, 1e-9))
+    given = float(metrics.orientation)
+    turn, excess = own_axis(hull_px, given)
+    # the principal (second-moment) axis must agree: a rounded knob pattern's
+    # min-area rectangle can lie on a diagonal (-26 deg on a square print)
+    principal = (math.degrees(rolling_angle(hull_px, "auto") - given) + 45.0) % 90.0 - 45.0
+    agree = abs(principal - turn) <= max(AXIS_MISALIGNED_DEG, 0.3 * abs(turn))
+    if agree and abs(turn) > AXIS_MISALIGNED_DEG and excess > AXIS_MISALIGNED_EXCESS:
+        if aspect > AXIS_UNCERTAIN_ASPECT or excess > 4 * AXIS_MISALIGNED_EXCESS:
+            flags.append("axis_misaligned")
+            warnings.append(
+                f"print #{index} is turned {turn:+.1f} deg from the given rolling axis: its "
+                f"length and width along that axis read up to {100 * excess:.1f} % too "
+                f"large; use --rolling-axis auto or square the print on the sheet"
+            )
+    return flags, warnings
+
+
+def _print_flags(ctx: _Context, g: Group, m, index: int, margin: int) -> tuple[tuple, tuple]:
     flags, warnings = [], []
     contact = px_to_mm_length(g.edge_marks, ctx.scan.mm_per_px)
     if contact > EDGE_MARK_MM:
@@ -540,17 +621,40 @@ def _print_flags(ctx: _Context, g: Group, metrics, index: int, margin: int) -> t
             f"line along its edge, a label's strokes): the outline there is uncertain by up "
             f"to the mark's width; see the overlay, remove the mark or rescan"
         )
+    spread = _spread_marks_over(ctx.found.marks, g)
+    if spread and "mark_on_edge" not in flags:
+        flags.append("mark_on_edge")
+        warnings.append(
+            f"print #{index} lies in {spread} set aside over the sheet (faint gridlines or "
+            f"a texture): where it joins the print's edge the outline is uncertain; see "
+            f"the overlay or rescan on plain paper"
+        )
     cut = clipped(g, ctx.page.work.shape, ctx.page.sheet, margin_px=margin)
     if cut:
         flags.append("clipped")
         warnings.append(f"print #{index} {cut}")
-    if ctx.rolling_axis == "auto" and metrics.aspect_ratio < AXIS_UNCERTAIN_ASPECT:
+    if ctx.rolling_axis != "auto":
+        flags, warnings = _axis_flags(m.metrics, m.hull_px, index, flags, warnings)
+    elif m.metrics.aspect_ratio < AXIS_UNCERTAIN_ASPECT:
         flags.append("axis_uncertain")
         warnings.append(
-            f"print #{index} is nearly as wide as long ({metrics.aspect_ratio:.2f}): the "
+            f"print #{index} is nearly as wide as long ({m.metrics.aspect_ratio:.2f}): the "
             f"rolling direction was taken as its longer axis (auto); give --rolling-axis x|y"
         )
     return tuple(flags), tuple(warnings)
+
+
+def _spread_marks_over(marks: list, g: Group) -> str:
+    """The kind of a mark spread over the sheet (``noise``, ``texture``) whose box
+    holds the print's box ('' when none): its ink may join the print's edge unseen
+    (faint gridlines at 150 dpi read as noise and widened prints by 8 %)."""
+    for m in marks:
+        r0, c0, r1, c1 = m.bbox
+        if m.kind in ("noise", "texture") and (
+            r0 <= g.rows.start and c0 <= g.cols.start and r1 >= g.rows.stop and c1 >= g.cols.stop
+        ):
+            return m.kind
+    return ""
 
 
 def _as_scan(scan, opts: AnalysisOptions) -> Scan:

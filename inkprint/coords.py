@@ -143,6 +143,23 @@ def mm_to_px_length(length_mm, mm_per_px: float):
     return length_mm / mm_per_px
 
 
+def binned_mm_per_px(mm_per_px: float, factor: float) -> float:
+    """Pixel size of an image binned (pooled, sampled) by ``factor`` pixels a side.
+
+    Parameters
+    ----------
+    mm_per_px : float [mm / px]
+        Pixel size of the full image.
+    factor : float
+        Pixels of the full image per binned pixel, along a side (below 1: finer).
+
+    Returns
+    -------
+    float [mm / px]
+    """
+    return mm_per_px * factor
+
+
 def area_px_to_mm2(n_pixels, mm_per_px: float):
     """Area of ``n_pixels`` whole pixels.
 
@@ -179,6 +196,7 @@ def area_mm2_to_px(area_mm2, mm_per_px: float) -> int:
 __all__ = [
     "area_mm2_to_px",
     "area_px_to_mm2",
+    "binned_mm_per_px",
     "dots_per_cm_to_dpi",
     "dpi_to_mm_per_px",
     "mm_per_px_to_dpi",

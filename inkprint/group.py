@@ -33,15 +33,22 @@ direction are kept (before, their centroids' distance to the core's hull dropped
 them: length -2.4 %), and a dark speck far out is dropped. The peak, not the mean,
 is used because a small dot's anti-aliased rim lowers its mean. Results are reported
 both with all ink and with load-bearing ink only.
+
+Before the rule, pen-thin ink (narrower than ``stroke_width_mm``) outside the hull of
+the print's thick ink is taken out when it is joined to the print (a stroke's foot,
+a ruler's tick) or lies beside it (a label's letters, specks: counted as edge
+spots); thin slivers off the print's ends along its major axis - tip blocks cut by
+the outline - are left to the rule, so the tips are kept (:func:`thin_protrusions`;
+an addition to section 7.1.1, which knew no labels touching a print).
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
-from .coords import area_px_to_mm2, mm_to_px_length, px_to_mm_length
+from .coords import area_px_to_mm2, binned_mm_per_px, mm_to_px_length, px_to_mm_length
 from .options import AnalysisOptions, resolve_options
 
 #: a neighbour counts for the tread pattern's gap when no farther than this many
@@ -144,7 +151,9 @@ def element_graph(labels: np.ndarray, n: int, *, px_mm: float, step: int = 1) ->
         pairs.append((o0[cut], o1[cut], dist[sl0][cut] + dist[sl1][cut]))
     a = np.concatenate([p[0] for p in pairs]).astype(np.int64)
     b = np.concatenate([p[1] for p in pairs]).astype(np.int64)
-    g = np.concatenate([p[2] for p in pairs]).astype(float) * px_mm * step
+    g = px_to_mm_length(
+        np.concatenate([p[2] for p in pairs]).astype(float), binned_mm_per_px(px_mm, step)
+    )
     lo, hi = np.minimum(a, b), np.maximum(a, b)
     key = lo * (n + 1) + hi
     order = np.argsort(key, kind="stable")
@@ -163,7 +172,7 @@ def _element_widths(labels: np.ndarray, n: int, px_mm: float) -> np.ndarray:
     best = np.zeros(n + 1, np.float32)
     ink = labels > 0
     np.maximum.at(best, labels[ink], dt[ink])
-    return 2.0 * best[1:].astype(float) * px_mm
+    return px_to_mm_length(2.0 * best[1:].astype(float), px_mm)
 
 
 def _pattern_gaps(graph: ElementGraph, n: int):
@@ -353,6 +362,8 @@ def is_print(
         )
     hull_mm2 = area_px_to_mm2(cv2.contourArea(hull), mm_per_px)
     if hull_mm2 < SMALL_PRINT_MM2 and fill < SMALL_PRINT_FILL:
+        fill = max(fill, _main_blob_fill(group.mask))  # halo specks widen a tiny hull
+    if hull_mm2 < SMALL_PRINT_MM2 and fill < SMALL_PRINT_FILL:
         return PrintCheck(
             False,
             f"a letter or a mark ({hull_mm2:.0f} mm^2, {100 * fill:.0f} % of its hull inked: "
@@ -360,6 +371,22 @@ def is_print(
             "writing",
         )
     return PrintCheck(True)
+
+
+def _main_blob_fill(mask: np.ndarray) -> float:
+    """Inked share of the hull of the largest blob, when it holds at least 80 % of
+    the ink (a solid tiny print with halo specks around it), else 0."""
+    import cv2
+
+    n, lab, stats, _ = cv2.connectedComponentsWithStats(mask.view(np.uint8), connectivity=8)
+    if n < 3:
+        return 0.0
+    k = 1 + int(np.argmax(stats[1:, cv2.CC_STAT_AREA]))
+    px = int(stats[k, cv2.CC_STAT_AREA])
+    if px < 0.8 * int(stats[1:, cv2.CC_STAT_AREA].sum()):
+        return 0.0
+    hull = cv2.convexHull(cv2.findNonZero((lab == k).view(np.uint8)))
+    return px / max(cv2.contourArea(hull) + 0.5 * cv2.arcLength(hull, True) + 1.0, 1.0)
 
 
 def _sides(group: Group, shape: tuple[int, int]) -> int:
@@ -476,8 +503,87 @@ def _core_gaps(blobs: _Blobs, core_mask: np.ndarray) -> tuple:
     return gaps[1:], float(np.median(nearest[np.isfinite(nearest)]))
 
 
+def thin_protrusions(mask: np.ndarray, *, width_px: float, dots: bool = True) -> np.ndarray:
+    """The ink without the pen-thin pieces sticking out of the print's outline.
+
+    A label's stroke or a ruler's tick touching a print, left in its ink after the
+    marks were set aside, widens its hull (label +6 %, ruler tick +4 % in width):
+    ink narrower than ``width_px`` (gone after an opening with a disk that wide),
+    outside the convex hull of what the opening keeps and joined to thick ink is
+    not the print's; so is a stroke thin all through beside the print (a letter of
+    a label; a dot is left to the section 7.1.1 rule). Thin ink inside that hull
+    (ribs, sipes) is kept, and so are pieces thin all through off the print's ends
+    along its major axis (slivers of the tip blocks continuing the tread pattern:
+    the section 7.1.1 rule decides).
+
+    Parameters
+    ----------
+    mask : (h, w) bool
+        The print's ink.
+    width_px : float [px]
+        Widest stroke to remove (``stroke_width_mm``).
+    dots : bool
+        Drop the pieces beside the print no longer than ``width_px`` too (the bits
+        of a letter, halo specks); else only longer strokes.
+
+    Returns
+    -------
+    (h, w) bool
+        ``mask`` less the thin ink outside the thick ink's hull.
+    """
+    import cv2
+
+    d = max(3, round(width_px) | 1)
+    disk = cv2.getStructuringElement(cv2.MORPH_ELLIPSE, (d, d))
+    thick = cv2.morphologyEx(mask.view(np.uint8), cv2.MORPH_OPEN, disk)
+    pts = cv2.findNonZero(thick)
+    if pts is None:
+        return mask
+    hull = np.zeros(mask.shape, np.uint8)
+    cv2.fillPoly(hull, [cv2.convexHull(pts)], 1)
+    thin = mask & ~(hull.view(bool) | thick.view(bool))
+    if not thin.any():
+        return mask
+    # only the thin ink of pieces that hold thick ink too (a stroke's foot on the
+    # print); a piece thin all through (a sliver of a tip block, a speck) is left to
+    # the section 7.1.1 rule
+    n, lab, stats, cent = cv2.connectedComponentsWithStats(mask.view(np.uint8), connectivity=8)
+    drop = np.zeros(n, bool)
+    drop[lab[thick.view(bool)]] = True
+    # apart from the print, beside it: a stroke (longer than a stroke is wide) or,
+    # with ``dots``, a dot (a letter's bit, a halo speck)
+    stroke = np.maximum(stats[:, cv2.CC_STAT_WIDTH], stats[:, cv2.CC_STAT_HEIGHT]) > width_px
+    stroke |= dots
+    drop |= stroke & ~_at_the_ends(cv2.convexHull(pts).reshape(-1, 2).astype(float), cent)
+    drop[0] = False
+    return mask & ~(thin & drop[lab])
+
+
+def _at_the_ends(hull_xy: np.ndarray, points: np.ndarray, *, end: float = 0.8) -> np.ndarray:
+    """Whether each point (x, y) lies off a hull's ends along its major axis (beyond
+    ``end`` x its half-length from the centre), not beside it."""
+    c = hull_xy.mean(axis=0)
+    d = hull_xy - c
+    w, v = np.linalg.eigh(d.T @ d)
+    axis = v[:, np.argmax(w)]
+    half = np.abs(d @ axis).max()
+    return np.abs((points - c) @ axis) > end * half
+
+
+def _count_pieces(mask: np.ndarray) -> int:
+    import cv2
+
+    if not mask.any():
+        return 0
+    return cv2.connectedComponents(mask.view(np.uint8), connectivity=8)[0] - 1
+
+
 def edge_spots(
-    group: Group, darkness, *, mm_per_px: float, options: AnalysisOptions | None = None
+    group: Group,
+    darkness,
+    *,
+    mm_per_px: float,
+    options: AnalysisOptions | None = None,
 ) -> EdgeSpots:
     """Apply the section 7.1.1 rule to one group.
 
@@ -488,14 +594,34 @@ def edge_spots(
         1 - grey over the group's box.
     mm_per_px : float [mm / px]
     options : AnalysisOptions, optional
-        Uses ``edge_spot_area_mm2``, ``edge_spot_faintness`` and
-        ``edge_spot_distance_mm`` (defaults when None).
+        Uses ``edge_spot_area_mm2``, ``edge_spot_faintness``,
+        ``edge_spot_distance_mm`` and ``stroke_width_mm`` (defaults when None).
 
     Returns
     -------
     EdgeSpots
     """
     opts = resolve_options(options)
+    width = mm_to_px_length(opts.stroke_width_mm, mm_per_px)
+    # the rule is off when no blob can be faint and no distance too far (1 m)
+    rule_on = opts.edge_spot_faintness > 0 or opts.edge_spot_distance_mm < 1e3
+    kept = thin_protrusions(group.mask, width_px=width, dots=rule_on)
+    thin = group.mask & ~kept if kept.any() else np.zeros_like(group.mask)
+    strokes = thin & ~thin_protrusions(group.mask, width_px=width, dots=False)
+    n_thin, n_dots = _count_pieces(thin), _count_pieces(thin & ~strokes)
+    if n_thin:  # pen-thin ink beside the print: strokes are marks, dots edge spots
+        spots = _spots(replace(group, mask=kept), darkness, mm_per_px, opts)
+        return replace(
+            spots,
+            n_blobs=spots.n_blobs + n_thin,
+            n_spots=spots.n_spots + n_dots,
+            spot_pixels=spots.spot_pixels + int(np.count_nonzero(thin & ~strokes)),
+        )
+    return _spots(group, darkness, mm_per_px, opts)
+
+
+def _spots(group: Group, darkness, mm_per_px: float, opts: AnalysisOptions) -> EdgeSpots:
+    """The section 7.1.1 rule on the blobs of ``group`` (see :func:`edge_spots`)."""
     blobs = _blobs(group, darkness, mm_per_px)
     n_blobs = len(blobs.areas)
     if n_blobs <= 1:
@@ -530,5 +656,6 @@ __all__ = [
     "is_print",
     "linked_edges",
     "merge_overlapping",
+    "thin_protrusions",
     "union_labels",
 ]

@@ -235,7 +235,7 @@ def prepare_page(scan, *, options: AnalysisOptions | None = None) -> Page:
 
     opts = resolve_options(options)
     work = to_uint8(scan.pixels)
-    f = max(1, round(LIGHT_PX_MM / scan.mm_per_px)) if scan.unit == "mm" else 4
+    f = max(1, round(mm_to_px_length(LIGHT_PX_MM, scan.mm_per_px))) if scan.unit == "mm" else 4
     small = _small(work, f)
     paper = float(np.percentile(small, 95))
     frame = find_page(small, paper)

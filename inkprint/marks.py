@@ -42,7 +42,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .coords import area_px_to_mm2, mm_to_px_length
+from .coords import area_px_to_mm2, binned_mm_per_px, mm_to_px_length, px_to_mm_length
 from .group import (
     Group,
     element_graph,
@@ -157,7 +157,7 @@ class _Pooled:
 def _pool(mask: np.ndarray, mm_per_px: float, opts: AnalysisOptions) -> _Pooled:
     import cv2
 
-    q = max(1, int(opts.stroke_width_mm / POOL_STROKES / mm_per_px))
+    q = max(1, int(mm_to_px_length(opts.stroke_width_mm / POOL_STROKES, mm_per_px)))
     m8 = mask.view(np.uint8) if mask.dtype == bool else (mask > 0).astype(np.uint8)
     if q == 1:
         return _Pooled(m8.astype(bool, copy=False), 1, mm_per_px)
@@ -167,7 +167,7 @@ def _pool(mask: np.ndarray, mm_per_px: float, opts: AnalysisOptions) -> _Pooled:
         m8 * np.uint8(255), 0, hh * q - h, 0, ww * q - w, cv2.BORDER_CONSTANT, value=0
     )
     small = cv2.resize(padded, (ww, hh), interpolation=cv2.INTER_AREA)
-    return _Pooled(small >= 128, q, mm_per_px * q)
+    return _Pooled(small >= 128, q, binned_mm_per_px(mm_per_px, q))
 
 
 def _disk(diameter_px: float) -> np.ndarray:
@@ -204,11 +204,13 @@ def _split(pooled: _Pooled, opts: AnalysisOptions) -> _Parts:
     import cv2
 
     m = pooled.mask.view(np.uint8)
-    kernel = _disk(opts.stroke_width_mm / pooled.px_mm)
+    kernel = _disk(mm_to_px_length(opts.stroke_width_mm, pooled.px_mm))
     disk = int(kernel.sum())
     opened = cv2.morphologyEx(m, cv2.MORPH_OPEN, kernel)
     # the prints' bodies: thick ink wider than two strokes
-    core = cv2.morphologyEx(opened, cv2.MORPH_OPEN, _disk(2 * opts.stroke_width_mm / pooled.px_mm))
+    core = cv2.morphologyEx(
+        opened, cv2.MORPH_OPEN, _disk(mm_to_px_length(2 * opts.stroke_width_mm, pooled.px_mm))
+    )
     opened &= ~_straight_skinny(opened & ~core, pooled, opts)
     n1, l1, s1, _ = cv2.connectedComponentsWithStats(opened, connectivity=8)
     area = s1[:, cv2.CC_STAT_AREA]
@@ -238,15 +240,14 @@ def _straight_skinny(skinny: np.ndarray, pooled: _Pooled, opts: AnalysisOptions)
     _n, lab, stats, _ = cv2.connectedComponentsWithStats(skinny, connectivity=8)
     out = np.zeros(skinny.shape, np.uint8)
     long = np.maximum(stats[:, cv2.CC_STAT_WIDTH], stats[:, cv2.CC_STAT_HEIGHT])
-    for k in np.flatnonzero(long * pooled.px_mm >= opts.line_length_mm):
+    for k in np.flatnonzero(px_to_mm_length(long, pooled.px_mm) >= opts.line_length_mm):
         if k == 0:
             continue
         x, y, w, h = stats[k, :4]
         piece = (lab[y : y + h, x : x + w] == k).view(np.uint8)
         (_, _), (a, b), _ = cv2.minAreaRect(cv2.findNonZero(piece))
-        if (min(a, b) + 1) * pooled.px_mm <= 2.0 * opts.stroke_width_mm and (
-            max(a, b) + 1
-        ) * pooled.px_mm >= opts.line_length_mm:
+        narrow = px_to_mm_length(min(a, b) + 1, pooled.px_mm) <= 2.0 * opts.stroke_width_mm
+        if narrow and px_to_mm_length(max(a, b) + 1, pooled.px_mm) >= opts.line_length_mm:
             out[y : y + h, x : x + w] |= piece
     return out
 
@@ -283,9 +284,11 @@ def _groups_of_elements(
         )
         lut = np.zeros(int(nearest.max()) + 1, np.int32)
         lut[nearest[labels > 0]] = labels[labels > 0]
-        reach = (opts.stroke_width_mm + BRIDGE_MM) / pooled.px_mm  # a line's width, a groove
+        reach = mm_to_px_length(
+            opts.stroke_width_mm + BRIDGE_MM, pooled.px_mm
+        )  # a line's width, a groove
         labels = np.where(bridge & (labels == 0) & (dist <= reach), lut[nearest], labels)
-    step = max(1, int(GRAPH_STEP_MM / pooled.px_mm))
+    step = max(1, int(mm_to_px_length(GRAPH_STEP_MM, pooled.px_mm)))
     graph = element_graph(labels, n, px_mm=pooled.px_mm, step=step)
     link = linked_edges(graph, options=opts)
     comp = union_labels(n, graph.a[link], graph.b[link])
@@ -322,7 +325,7 @@ def _line_kind(crop: np.ndarray, extent_mm: float, px_mm: float) -> tuple[str, s
 
     h, w = crop.shape
     fill = float(crop.mean())
-    big = min(h, w) * px_mm
+    big = px_to_mm_length(min(h, w), px_mm)
     pts = cv2.findNonZero(crop.astype(np.uint8)).astype(np.float32)
     (_, _), (a, b), _ = cv2.minAreaRect(pts)
     aspect = max(a, b) / max(min(a, b), 1.0)
@@ -367,10 +370,12 @@ def _thin_stats(parts: _Parts, hull_map, near_dist, near_id, pooled: _Pooled) ->
 
     n = parts.n_thin + 1
     st = parts.thin_stats
-    extent = np.maximum(st[:, cv2.CC_STAT_WIDTH], st[:, cv2.CC_STAT_HEIGHT]) * pooled.px_mm
+    extent = px_to_mm_length(
+        np.maximum(st[:, cv2.CC_STAT_WIDTH], st[:, cv2.CC_STAT_HEIGHT]), pooled.px_mm
+    )
     area = area_px_to_mm2(st[:, cv2.CC_STAT_AREA].astype(float), pooled.px_mm)
     on = parts.thin > 0
-    lab, d, ids = parts.thin[on], near_dist[on] * pooled.px_mm, near_id[on]
+    lab, d, ids = parts.thin[on], px_to_mm_length(near_dist[on], pooled.px_mm), near_id[on]
     gap, reach = np.full(n, np.inf), np.zeros(n)
     target = np.full(n, -1)
     if len(lab):
@@ -483,7 +488,9 @@ def _sort_pooled(pooled: _Pooled, opts: AnalysisOptions, network=None, bridge=No
     comp = _groups_of_elements(parts, pooled, opts, bridge)
     hulls = _hulls(parts.thick, comp, parts.core) if len(comp) else []
     hull_map = _hull_map(hulls, pooled.mask.shape)
-    near_dist, near_id = _nearest_hull(hull_map, opts.line_length_mm / pooled.px_mm)
+    near_dist, near_id = _nearest_hull(
+        hull_map, mm_to_px_length(opts.line_length_mm, pooled.px_mm)
+    )
     stats = _thin_stats(parts, hull_map, near_dist, near_id, pooled)
     owner, kind = _judge_thin(stats, parts, opts, network)
     owner[0] = -1
@@ -515,7 +522,7 @@ def _line_pixels(crop: np.ndarray, px_mm: float) -> tuple[np.ndarray, list, floa
     import cv2
 
     m = crop.view(np.uint8) * np.uint8(255)
-    n = max(8, int(LINE_SEGMENT_MM / px_mm))
+    n = max(8, int(mm_to_px_length(LINE_SEGMENT_MM, px_mm)))
     segs = cv2.HoughLinesP(m, 1, np.pi / 360, threshold=n // 2, minLineLength=n, maxLineGap=2)
     if segs is None:
         return np.zeros(crop.shape, bool), [], 0.0
@@ -820,13 +827,16 @@ def _full_group(mask, group_map, gid: int, box, hull, pooled: _Pooled, opts: Ana
     # stroke lying along the print's edge fills a stroke disk: take two
     for code, k in ((-1, 1.0), (-2, 2.0)):
         near = cv2.dilate(
-            (local == code).astype(np.uint8), _disk(k * opts.stroke_width_mm / pooled.px_mm)
+            (local == code).astype(np.uint8),
+            _disk(mm_to_px_length(k * opts.stroke_width_mm, pooled.px_mm)),
         )
         near &= region
         if near.any():
             near_full = _upsample(near, q, rows, cols) & ~_inside(hull, q, rows, cols)
             before = int(np.count_nonzero(ink))
-            width = k * opts.stroke_width_mm / (pooled.px_mm / q)
+            width = mm_to_px_length(
+                k * opts.stroke_width_mm, binned_mm_per_px(pooled.px_mm, 1 / q)
+            )
             ink = _drop_thin_near(ink, near_full, width)
             removed = max(removed, (before - int(np.count_nonzero(ink))) / width)
     if not ink.any():

@@ -31,7 +31,6 @@ from .coords import dots_per_cm_to_dpi, dpi_to_mm_per_px, mm_per_px_to_dpi, pdf_
 from .errors import ImageTooLarge, InvalidInput, ScaleMissing, ScaleUntrusted, ScanReadError
 from .options import AnalysisOptions, resolve_options
 
-RASTER = {".png", ".jpg", ".jpeg", ".tif", ".tiff", ".bmp"}
 #: DPI values written by cameras and screen software when they know no resolution
 DEFAULT_DPIS = (72.0, 96.0)
 _WHITE = {np.dtype(np.uint8): 255.0, np.dtype(np.uint16): 65535.0, np.dtype(np.float32): 1.0}

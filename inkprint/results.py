@@ -4,7 +4,9 @@ Flags say when a number must not be trusted. A print is ``status = 'flagged'`` w
 it cannot be measured from this file (:data:`UNMEASURABLE`: ``clipped`` - it runs
 off the image or the photographed page; ``perspective`` - the page was not
 photographed flat-on; ``mark_on_edge`` - a mark set aside, a line along the edge or
-a label's strokes, lay on the outline); its measurements are still in the row, for inspection, but
+a label's strokes, lay on the outline; ``axis_misaligned`` - the print is turned more
+than a degree against the rolling axis given, so its length and width along that axis
+are too large: use ``auto`` or square the print); its measurements are still in the row, for inspection, but
 :mod:`contactpatch`'s pairing skips it. Advisory flags keep ``status = 'ok'``:
 ``uneven_light`` (flattened before thresholding), ``axis_uncertain`` (``auto``
 rolling axis on a print nearly as wide as long: give ``--rolling-axis``).
@@ -21,7 +23,7 @@ import numpy as np
 from .coords import mm_per_px_to_dpi, px_to_mm
 
 BAND_KEYS = ("length", "width", "hull_area", "area", "ellipse_length", "ellipse_width")
-UNMEASURABLE = ("clipped", "perspective", "mark_on_edge")
+UNMEASURABLE = ("clipped", "perspective", "mark_on_edge", "axis_misaligned")
 
 
 @dataclass(frozen=True, repr=False)

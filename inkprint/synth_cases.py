@@ -5,8 +5,9 @@ sheets: a PDF holds several pages) with what the analysis must give:
 
 ``expect`` per print
     ``'measure'`` - the print is measurable: length, width and hull area must be
-    right (within 1 %, 1 % and 2 %); ``'clipped'`` / ``'perspective'`` - the print
-    cannot be measured from this file and must be flagged so.
+    right (within 1 %, 1 % and 2 %); ``'clipped'`` / ``'perspective'`` /
+    ``'axis_misaligned'`` - the print cannot be measured from this file as the
+    manifest asks and must be flagged so.
 ``error`` per file
     The error class the file must give instead of prints (``'NoInk'`` for a noise
     page, ``'ScaleMissing'`` for a 72-dpi file without a given scale).
@@ -17,7 +18,8 @@ knobs), ``car`` (ribs between wide grooves, often wider than long), ``wide``
 the sheet, within 0.5 degrees, and the manifest gives the rolling axis), ``label`` (pen labels touching prints),
 ``ruler`` (a ruler line across a print), ``grid`` (gridlines across the sheet),
 ``light`` (gradient and shadow), ``photo`` (on a table, flat-on), ``tilted`` (not
-flat-on), ``dpi72`` (72 dpi in the file, the true dpi in the manifest), ``pdf``
+flat-on), ``turned`` (a print turned 2-10 degrees on the sheet while the manifest
+gives the sheet's axis: flagged ``axis_misaligned``), ``dpi72`` (72 dpi in the file, the true dpi in the manifest), ``pdf``
 (several pages), ``clipped`` (a print off the edge), ``tiny`` (prints under 100
 mm^2), ``noise`` (a page of noise or texture), ``tips`` (dark blocks at the tips and
 faint specks touching the edge).
@@ -46,6 +48,7 @@ from .synth import (
 from .synth_effects import Grid, Light, Line, Photo, Text, text_extent
 
 MEASURE, CLIPPED, PERSPECTIVE = "measure", "clipped", "perspective"
+MISALIGNED = "axis_misaligned"
 
 
 @dataclass(frozen=True)
@@ -267,6 +270,17 @@ def _case_tilted(rng, dpi: float) -> Case:
     return Case("tilted", (sheet,), ".jpg", 72.0, manifest, ((PERSPECTIVE,) * 2,))
 
 
+def _case_turned(rng, dpi: float) -> Case:
+    """Prints taped 2-10 degrees askew while the manifest gives the sheet's x axis:
+    along it they read up to +27 % wide, so each must be flagged ``axis_misaligned``."""
+    prints = [
+        _bicycle(rng, (108.0, 190.0), angle=float(rng.choice([-1, 1]) * rng.uniform(2, 10))),
+        _bicycle(rng, (108.0, 90.0), angle=float(rng.choice([-1, 1]) * rng.uniform(2, 10))),
+    ]
+    manifest = {"rolling_axis": "x"}
+    return Case("turned", (_sheet(prints, dpi, rng),), ".png", dpi, manifest, ((MISALIGNED,) * 2,))
+
+
 def _case_dpi72(rng, dpi: float) -> Case:
     """A file carrying the 72 dpi default; the true resolution is in the manifest."""
     case = _case_classic(rng, dpi)
@@ -352,6 +366,7 @@ CLASSES = {
     "light": _case_light,
     "photo": _case_photo,
     "tilted": _case_tilted,
+    "turned": _case_turned,
     "dpi72": _case_dpi72,
     "dpi72_bare": _case_dpi72_bare,
     "pdf": _case_pdf,
@@ -445,7 +460,9 @@ def write_case(case: Case, out_dir, name: str) -> tuple[Path, list[dict], list[d
     return path, [{"file": fname, "kind": case.kind, **case.manifest}], truth
 
 
-def make_mixed_set(out_dir, *, n_files: int = 120, seed: int = 2024) -> tuple[Path, Path]:
+def make_mixed_set(
+    out_dir, *, n_files: int = 120, seed: int = 2024, dpi: float | None = None
+) -> tuple[Path, Path]:
     """Write a fresh set mixing every failure class, with manifest and truth.
 
     Classes are taken in turn (every class ``n_files / len(CLASSES)`` times or
@@ -457,6 +474,8 @@ def make_mixed_set(out_dir, *, n_files: int = 120, seed: int = 2024) -> tuple[Pa
     n_files : int
         Files to write (a PDF holds 2-3 sheets).
     seed : int
+    dpi : float, optional [dots per inch]
+        One resolution for every sheet (a quick set); default drawn per file.
 
     Returns
     -------
@@ -471,7 +490,7 @@ def make_mixed_set(out_dir, *, n_files: int = 120, seed: int = 2024) -> tuple[Pa
     manifest, truth = [], []
     for k in range(n_files):
         kind = kinds[k % len(kinds)]
-        case = make_case(kind, seed=seed * 100_003 + k)
+        case = make_case(kind, seed=seed * 100_003 + k, dpi=dpi)
         _, m, t = write_case(case, out_dir, f"{k:04d}_{kind}")
         manifest.extend(m)
         truth.extend(t)
@@ -483,6 +502,7 @@ __all__ = [
     "CLASSES",
     "CLIPPED",
     "MEASURE",
+    "MISALIGNED",
     "PERSPECTIVE",
     "Case",
     "make_case",

@@ -1,29 +1,55 @@
-"""Benchmark: ink-print analysis vs decoding the same file (issue 4).
+"""Benchmark: ink-print analysis against a minimal OpenCV peer pipeline (issue 11 item 7).
 
-Letter-size synthetic scans at 300 and 600 dpi (two knobby prints, a label, a ruler,
-grain): prints, side by side, the time to decode the PNG, to analyse it (with and
-without the threshold sensitivity band), and their ratio (targets: analysis <= 2x
-decode, <= 0.5 s at 300 dpi on one core); then batch throughput with 2 workers.
+In one run, on the same files, side by side:
 
-Run: python scripts/bench_inkprint.py
+* per-sheet analysis at 300 dpi, one print and eight prints on a letter sheet:
+  ``analyze_scan(path)`` (read, light, threshold, marks, grouping, edge spots,
+  measure) against the peer ``cv2.imread`` grey, Otsu, morphological close,
+  ``findContours``, ``convexHull``, ``fitEllipse`` per print; targets: <= 1.5x the
+  peer without the threshold sensitivity band, <= 2x with it;
+* ``read_scan`` of a 1200 dpi sheet against the plain decode (``cv2.imread`` grey):
+  <= 1.3x; its peak memory against the decoded image (tracemalloc: numpy's and
+  Python's allocations; and the peak RSS growth, VmHWM, of a fresh process):
+  <= 3x;
+* one ``inkprint analyze`` call on one 300 dpi file, wall time of a fresh process
+  (imports included): <= 0.35 s.
+
+Times are the best of ``--repeat`` runs (the machine may be shared: the best run is
+the one least disturbed). A table with the targets and PASS / FAIL is printed and
+the results are written as JSON to ``--out``.
+
+Run: python scripts/bench_inkprint.py --out bench_inkprint.json
 """
 
 from __future__ import annotations
 
+import argparse
+import json
 import os
+import platform
+import subprocess
 import sys
 import tempfile
 import time
+import tracemalloc
 from pathlib import Path
 
-sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
+ROOT = Path(__file__).resolve().parent.parent
+sys.path.insert(0, str(ROOT))
 
-from inkprint import analyze_scan, read_scan
-from inkprint.batch import Options, run_batch
-from inkprint.synth import drum_and_plate_sheet, render_sheet, save_scan
+import cv2  # noqa: E402
+
+from inkprint import analyze_scan, read_scan  # noqa: E402
+from inkprint.synth import PrintSpec, SheetSpec, render_sheet, save_scan  # noqa: E402
+
+#: the peer's closing joins tread elements this far apart [mm] (the grouping distance)
+PEER_CLOSE_MM = 3.0
+#: the peer keeps contours of at least this much ink [mm^2] (drops dust)
+PEER_MIN_MM2 = 100.0
 
 
-def best(fn, repeat=5):
+def best(fn, repeat: int) -> float:
+    """Smallest wall time [s] of ``repeat`` calls."""
     times = []
     for _ in range(repeat):
         t0 = time.perf_counter()
@@ -32,65 +58,187 @@ def best(fn, repeat=5):
     return min(times)
 
 
-def main() -> None:
-    os.environ.setdefault("OMP_NUM_THREADS", "1")
-    try:
-        import cv2
+def peer_pipeline(path, dpi: float) -> list:
+    """The minimal OpenCV pipeline: grey, Otsu, close, contours, hull, ellipse."""
+    px_mm = 25.4 / dpi
+    grey = cv2.imread(str(path), cv2.IMREAD_GRAYSCALE)
+    _, ink = cv2.threshold(grey, 0, 255, cv2.THRESH_BINARY_INV | cv2.THRESH_OTSU)
+    k = max(3, round(PEER_CLOSE_MM / px_mm) | 1)
+    closed = cv2.morphologyEx(
+        ink, cv2.MORPH_CLOSE, cv2.getStructuringElement(cv2.MORPH_ELLIPSE, (k, k))
+    )
+    contours, _ = cv2.findContours(closed, cv2.RETR_EXTERNAL, cv2.CHAIN_APPROX_SIMPLE)
+    out = []
+    for c in contours:
+        if cv2.contourArea(c) * px_mm**2 < PEER_MIN_MM2 or len(c) < 5:
+            continue
+        hull = cv2.convexHull(c)
+        out.append((cv2.contourArea(hull) * px_mm**2, cv2.fitEllipse(c)))
+    return out
 
-        cv2.setNumThreads(1)  # one core, as the target says
-    except ImportError:
-        pass
-    with tempfile.TemporaryDirectory() as tmp:
-        tmp = Path(tmp)
-        for dpi in (300, 600):
-            spec = drum_and_plate_sheet(
-                tire_radius=14.9,
-                load=450.0,
-                pressure=0.45,
-                dpi=dpi,
-                tread="knobby",
-                label="bench",
-                halo_spots=8,
-            )
-            img, _ = render_sheet(spec)
-            path = save_scan(img, tmp / f"sheet{dpi}.png", dpi=dpi)
-            scan = read_scan(path)
-            t_dec = best(lambda path=path: read_scan(path))
-            t_ana = best(lambda scan=scan: analyze_scan(scan, sensitivity=False))
-            t_band = best(lambda scan=scan: analyze_scan(scan))
-            print(
-                f"{dpi} dpi letter ({img.shape[1]} x {img.shape[0]} px, {path.stat().st_size / 1e6:.1f} MB PNG)"
-            )
-            print(f"  decode (read_scan)                : {t_dec:6.3f} s")
-            print(
-                f"  analyse (no sensitivity band)     : {t_ana:6.3f} s   ratio to decode {t_ana / t_dec:4.2f}"
-            )
-            print(
-                f"  analyse (with +-10 % band)        : {t_band:6.3f} s   ratio to decode {t_band / t_dec:4.2f}"
-            )
-        src = tmp / "batch"
-        src.mkdir()
-        spec = drum_and_plate_sheet(
-            tire_radius=14.9, load=450.0, pressure=0.45, dpi=300, tread="file"
+
+def sheets(tmp: Path) -> dict:
+    """Letter sheets at 300 dpi with 1 and 8 prints, and a 1200 dpi sheet."""
+    one = (PrintSpec(90.0, 20.0, (108.0, 140.0), 0.0, "knobby"),)
+    eight = tuple(
+        PrintSpec(60.0, 15.0, (x, y), 0.0, tread)
+        for i, (x, y) in enumerate(
+            (x, y) for y in (40.0, 105.0, 170.0, 235.0) for x in (60.0, 156.0)
         )
-        img, _ = render_sheet(spec)
-        for i in range(16):
-            save_scan(img[i:], src / f"s{i:02d}.png", dpi=300)
-        for workers in (1, 2):
-            t0 = time.perf_counter()
-            run_batch(
-                src,
-                tmp / f"res{workers}.csv",
-                options=Options(),
-                workers=workers,
-                progress=False,
-                resume=False,
-            )
-            dt = time.perf_counter() - t0
-            print(
-                f"batch of 16 scans at 300 dpi, {workers} worker(s): {dt:5.2f} s -> {16 / dt:5.2f} scans/s"
-            )
+        for tread in [("knobby", "ribbed", "file", "slick")[i % 4]]
+    )
+    out = {}
+    for name, prints, dpi, size in (
+        ("300dpi_1print", one, 300.0, None),
+        ("300dpi_8prints", eight, 300.0, None),
+        ("1200dpi", (PrintSpec(90.0, 20.0, (70.0, 60.0), 0.0, "ribbed"),), 1200.0, (140.0, 120.0)),
+    ):
+        kw = {"size": size} if size else {}
+        img, _ = render_sheet(SheetSpec(prints, dpi=dpi, seed=1, specks=40, **kw))
+        out[name] = (save_scan(img, tmp / f"{name}.png", dpi=dpi), dpi)
+    return out
+
+
+def bench_sheet(path, dpi: float, repeat: int) -> dict:
+    """Per-sheet analysis against the peer on one file."""
+    n_peer = len(peer_pipeline(path, dpi))
+    n_ours = len(analyze_scan(path, sensitivity=False).prints)
+    t_peer = best(lambda: peer_pipeline(path, dpi), repeat)
+    t_ours = best(lambda: analyze_scan(path, sensitivity=False), repeat)
+    t_band = best(lambda: analyze_scan(path, sensitivity=True), repeat)
+    return {
+        "prints_found": n_ours,
+        "peer_prints_found": n_peer,
+        "peer_s": t_peer,
+        "analyze_s": t_ours,
+        "analyze_band_s": t_band,
+        "ratio": t_ours / t_peer,
+        "ratio_band": t_band / t_peer,
+    }
+
+
+_RSS_CHILD = """
+import sys
+sys.path.insert(0, {root!r})
+from inkprint import read_scan
+
+
+def status(key):
+    for line in open("/proc/self/status"):
+        if line.startswith(key):
+            return int(line.split()[1]) * 1024
+
+
+read_scan({path!r})  # load the decoders; its arrays are freed again
+rss0 = status("VmRSS:")
+with open("/proc/self/clear_refs", "w") as f:
+    f.write("5")  # reset the peak (VmHWM) to the current RSS
+s = read_scan({path!r})
+print(status("VmHWM:") - rss0, s.pixels.nbytes)
+"""
+
+
+def bench_read(path, repeat: int) -> dict:
+    """read_scan against the plain decode at 1200 dpi: time and peak memory."""
+    decoded = cv2.imread(str(path), cv2.IMREAD_GRAYSCALE)
+    t_plain = best(lambda: cv2.imread(str(path), cv2.IMREAD_GRAYSCALE), repeat)
+    t_read = best(lambda: read_scan(path), repeat)
+    tracemalloc.start()
+    scan = read_scan(path)
+    _, peak = tracemalloc.get_traced_memory()
+    tracemalloc.stop()
+    child = subprocess.run(
+        [sys.executable, "-c", _RSS_CHILD.format(root=str(ROOT), path=str(path))],
+        capture_output=True,
+        text=True,
+        check=True,
+    )
+    rss, nbytes = (int(v) for v in child.stdout.split())
+    return {
+        "pixels": int(decoded.size),
+        "decoded_bytes": int(decoded.nbytes),
+        "scan_bytes": int(scan.pixels.nbytes),
+        "plain_decode_s": t_plain,
+        "read_scan_s": t_read,
+        "ratio": t_read / t_plain,
+        "tracemalloc_peak_bytes": int(peak),
+        "tracemalloc_ratio": peak / decoded.nbytes,
+        "rss_growth_bytes": rss,
+        "rss_ratio": rss / nbytes,
+    }
+
+
+def bench_cli(path, repeat: int) -> dict:
+    """Wall time of one ``inkprint analyze`` process on one file."""
+    cmd = [
+        sys.executable,
+        "-c",
+        "import sys; from inkprint.cli import main; sys.exit(main())",
+        "analyze",
+        str(path),
+    ]
+    env = {**os.environ, "PYTHONPATH": str(ROOT)}
+
+    def run():
+        subprocess.run(cmd, capture_output=True, check=True, env=env)
+
+    run()  # warm the file cache and the .pyc files
+    t_cli = best(run, repeat)
+    t_python = best(lambda: subprocess.run([sys.executable, "-c", "pass"], check=True), repeat)
+    return {"analyze_cli_s": t_cli, "bare_python_s": t_python}
+
+
+def table(res: dict) -> list[tuple]:
+    """(measure, value, target, PASS/FAIL) rows."""
+    rows = []
+    for name in ("300dpi_1print", "300dpi_8prints"):
+        r = res[name]
+        rows.append((f"{name}: analysis / peer", r["ratio"], 1.5))
+        rows.append((f"{name}: analysis with band / peer", r["ratio_band"], 2.0))
+    r = res["1200dpi_read"]
+    rows.append(("1200 dpi: read_scan / plain decode", r["ratio"], 1.3))
+    rows.append(("1200 dpi: read_scan peak (tracemalloc) / image", r["tracemalloc_ratio"], 3.0))
+    rows.append(("1200 dpi: read_scan peak (RSS growth) / image", r["rss_ratio"], 3.0))
+    rows.append(("inkprint analyze, one file [s]", res["cli"]["analyze_cli_s"], 0.35))
+    return [(m, v, t, "PASS" if v <= t else "FAIL") for m, v, t in rows]
+
+
+def main(argv=None) -> int:
+    p = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    p.add_argument("--out", default="bench_inkprint.json", help="JSON file for the results")
+    p.add_argument("--repeat", type=int, default=5, help="runs per timing (best is kept)")
+    a = p.parse_args(argv)
+    res = {"machine": {"python": platform.python_version(), "cpus": os.cpu_count()}}
+    with tempfile.TemporaryDirectory() as tmp:
+        files = sheets(Path(tmp))
+        for name in ("300dpi_1print", "300dpi_8prints"):
+            res[name] = bench_sheet(*files[name], a.repeat)
+        res["1200dpi_read"] = bench_read(files["1200dpi"][0], a.repeat)
+        res["cli"] = bench_cli(files["300dpi_1print"][0], a.repeat)
+    rows = table(res)
+    res["table"] = [
+        dict(zip(("measure", "value", "target", "result"), r, strict=True)) for r in rows
+    ]
+    for name in ("300dpi_1print", "300dpi_8prints"):
+        r = res[name]
+        print(
+            f"{name}: peer {1e3 * r['peer_s']:.1f} ms ({r['peer_prints_found']} prints), "
+            f"analyze {1e3 * r['analyze_s']:.1f} ms ({r['prints_found']} prints), "
+            f"with band {1e3 * r['analyze_band_s']:.1f} ms"
+        )
+    r = res["1200dpi_read"]
+    print(
+        f"1200 dpi ({r['pixels'] / 1e6:.1f} Mpx): plain decode {1e3 * r['plain_decode_s']:.1f} ms, "
+        f"read_scan {1e3 * r['read_scan_s']:.1f} ms"
+    )
+    print(f"bare python start {1e3 * res['cli']['bare_python_s']:.0f} ms\n")
+    print(f"{'measure':<50} {'value':>8} {'target':>8}  result")
+    for m, v, t, ok in rows:
+        print(f"{m:<50} {v:8.3f} {t:8.2f}  {ok}")
+    Path(a.out).write_text(json.dumps(res, indent=2))
+    print(f"\nwritten {a.out}")
+    return 0 if all(r[3] == "PASS" for r in rows) else 1
 
 
 if __name__ == "__main__":
-    main()
+    sys.exit(main())

@@ -6,6 +6,7 @@ a print that cannot be measured from the file (clipped, photographed at an angle
 mark on its outline) must be flagged, never a silent wrong number.
 """
 
+import dataclasses
 import math
 
 import numpy as np
@@ -13,6 +14,7 @@ import pytest
 
 import inkprint as ip
 from inkprint.accuracy import SILENT, compare
+from inkprint.analyze import own_axis
 from inkprint.batch import Job, Options, process_file
 from inkprint.synth import PrintSpec, SheetSpec, render_sheet, save_scan
 from inkprint.synth_cases import make_case, write_case
@@ -113,6 +115,33 @@ def test_analyze_scan_auto_axis_says_so_and_flags_near_round_prints():
         ip.analyze_scan(scan, rolling_axis="z")
 
 
+@pytest.mark.parametrize("seed", [0, 1])
+def test_analyze_scan_print_turned_against_the_given_axis_is_flagged(tmp_path, seed):
+    # a print taped 2-10 degrees askew, rolling axis x from the manifest: along x it
+    # reads up to +27 % wide; it must be flagged, never a silent number
+    results, rows = outcomes(tmp_path, "turned", seed)
+    assert [r["outcome"] for r in results] == ["flagged", "flagged"], results
+    assert all("axis_misaligned" in r["flags"] for r in rows)
+    assert all("--rolling-axis auto" in r["warnings"] for r in rows)
+
+
+def test_own_axis_finds_the_turn_of_a_print_and_its_error():
+    p = PrintSpec(80.0, 20.0, (60, 60), 4.0, "slick", unevenness=0.0)
+    scan, _ = scan_of(SheetSpec((p,), size=(120, 120), specks=0))
+    res = ip.analyze_scan(scan, sensitivity=False, rolling_axis="x")
+    turn, excess = own_axis(res.prints[0].hull_px, 0.0)
+    assert turn == pytest.approx(4.0, abs=0.3)
+    assert excess > 0.05  # the width along x: 80 sin 4 deg over 20 mm
+    assert "axis_misaligned" in res.prints[0].flags
+    square = ip.analyze_scan(
+        scan_of(SheetSpec((dataclasses.replace(p, angle=0.0),), size=(120, 120), specks=0))[0],
+        sensitivity=False,
+        rolling_axis="x",
+    )
+    assert own_axis(square.prints[0].hull_px, 0.0)[1] < 0.002
+    assert square.prints[0].flags == ()
+
+
 # -- marks that are not prints ------------------------------------------------------------
 
 
@@ -133,8 +162,42 @@ def test_sort_ink_gridlines_never_merge_into_a_print(tmp_path):
     results, rows = outcomes(tmp_path, "grid", 1)
     assert not [r for r in results if r["outcome"] in SILENT], results
     assert all("gridlines" in r["set_aside"] for r in rows)
-    for r in results:  # measured right, or flagged: a gridline along the outline
-        assert r["outcome"] == "pass" or "mark_on_edge" in r["flags"]
+    found = [r for r in results if r["expect"] == "measure"]
+    assert len(found) == 2 and all(r["outcome"] in ("pass", "overflagged") for r in found)
+    for row in rows:  # flagged only with its reason: a gridline along the outline
+        if row["status"] == "flagged":
+            assert row["flags"] == "mark_on_edge" and "a mark set aside covers" in row["warnings"]
+        else:
+            assert row["flags"] == ""
+
+
+def test_analyze_scan_faint_gridlines_read_as_noise_flag_the_prints(tmp_path):
+    # 150 dpi chart paper, 5 mm grid of faint 0.28 mm lines: set aside as noise, not
+    # gridlines; one along a print's edge widened it by 8 % without a flag
+    results, rows = outcomes(tmp_path, "grid", 4243 * 100_003 + 95)
+    assert not [r for r in results if r["outcome"] in SILENT], results
+    assert all("noise" in r["set_aside"] for r in rows)
+    assert all(
+        r["status"] == "flagged" and "set aside over the sheet" in r["warnings"] for r in rows
+    )
+
+
+@pytest.mark.xfail(
+    strict=True,
+    reason="audit gap (issue 11): a print under chart gridlines is flagged mark_on_edge "
+    "even where the lines only cross its edge; measured within the bar, it is lost",
+)
+def test_sort_ink_gridlines_crossing_a_print_leave_it_measured():
+    from inkprint.synth_effects import Grid
+
+    p = PrintSpec(70.0, 18.0, (64.0, 62.0), 20.0, "slick")
+    sheet = SheetSpec(
+        (p,), dpi=200.0, size=(128.0, 124.0), specks=10, marks=(Grid(10.0, 0.2, 0.6),)
+    )
+    scan, (t,) = scan_of(sheet)
+    r = ip.analyze_scan(scan, sensitivity=False)
+    assert len(r.prints) == 1
+    assert r.prints[0].status == "ok" and within(r.prints[0].metrics, t)
 
 
 @pytest.mark.parametrize("seed", [0, 1])
@@ -153,7 +216,12 @@ def test_no_print_message_names_what_was_set_aside():
     cv2.putText(a, "NOTES", (40, 200), cv2.FONT_HERSHEY_SIMPLEX, 2.0, 20, 2, cv2.LINE_AA)
     with pytest.raises(ip.NoInk, match=r"set aside .*text") as e:
         ip.analyze_scan(ip.Scan(a, 0.1, "given"), sensitivity=False)
-    assert "dust" not in str(e.value).split("(")[0] or "text" in str(e.value)
+    # the reason names what was set aside (the letters), never dust specks
+    msg = str(e.value)
+    assert msg.startswith("no print found on the sheet: set aside ")
+    assert "dust" not in msg and "too little ink" not in msg
+    kinds = msg.split("set aside ", 1)[1].split(" (", 1)[0]
+    assert set(kinds.replace(",", "").split()[1::2]) <= {"text", "writing"}, msg
 
 
 # -- light and scale -------------------------------------------------------------------

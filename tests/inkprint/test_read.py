@@ -120,3 +120,25 @@ def test_read_scan_huge_dimensions_is_refused_before_decoding(tmp_path):
     (tmp_path / "bomb.png").write_bytes(png)
     with pytest.raises(ip.ImageTooLarge, match="exceeds"):
         ip.read_scan(tmp_path / "bomb.png", dpi=150)
+
+
+def test_coords_pixel_to_mm_conversions_only_in_coords():
+    # issue 9 item 6: pixel <-> mm conversion lives in inkprint.coords only; a scale
+    # multiplied or divided inline elsewhere is a second definition that can drift
+    import re
+    from pathlib import Path
+
+    from inkprint.coords import binned_mm_per_px, mm_to_px_length, px_to_mm_length
+
+    pat = re.compile(r"[*/]\s*\(?\s*(?:\w+\.)*(?:px_mm|mm_per_px)\b(?!\s*=)")
+    pkg = Path(ip.__file__).parent
+    hits = [
+        f"{p.name}:{i}: {line.strip()}"
+        for p in sorted(pkg.glob("*.py"))
+        if p.name != "coords.py"
+        for i, line in enumerate(p.read_text().splitlines(), 1)
+        if pat.search(re.sub(r"\"[^\"]*\"", '""', line.split("#")[0]))
+    ]
+    assert not hits, hits
+    assert binned_mm_per_px(0.1, 4) == pytest.approx(0.4, rel=1e-12)
+    assert px_to_mm_length(mm_to_px_length(3.0, 0.0847), 0.0847) == pytest.approx(3.0, rel=1e-12)
