@@ -212,17 +212,16 @@ def _contact_ends(cs: CaseArrays, dw, offset, steps: int = 40):
     rear, front : (m, 1) float [rad]
     """
     hi = np.arccos(np.clip((cs.R - dw) / cs.R, -1.0, 1.0))
-    out = []
-    for sign in (-1.0, 1.0):
-        lo_, hi_ = np.zeros_like(hi), hi.copy()
-        for _ in range(steps):
-            mid = 0.5 * (lo_ + hi_)
-            with np.errstate(all="ignore"):
-                dv = displacements(sign * mid, dw, cs, offset).dv
-            touch = dv > 0
-            lo_, hi_ = np.where(touch, mid, lo_), np.where(touch, hi_, mid)
-        out.append(sign * np.maximum(lo_, 1e-9))
-    return out[0], out[1]
+    sign = np.array([[-1.0, 1.0]])  # both sides in one (m, 2) evaluation per step
+    lo_, hi_ = np.zeros((hi.shape[0], 2)), hi * np.ones_like(sign)
+    for _ in range(steps):
+        mid = 0.5 * (lo_ + hi_)
+        with np.errstate(all="ignore"):
+            dv = displacements(sign * mid, dw, cs, offset).dv
+        touch = dv > 0
+        lo_, hi_ = np.where(touch, mid, lo_), np.where(touch, hi_, mid)
+    out = sign * np.maximum(lo_, 1e-9)
+    return out[:, :1], out[:, 1:]
 
 
 def _start(cs: CaseArrays, load, dmax, start, offset) -> _NewtonState:
@@ -366,12 +365,6 @@ def _newton_step(cs: CaseArrays, st: _NewtonState, offset, target, quad) -> _Ste
     width = sol.width
     area = half * (wts * width * jac).sum(-1, keepdims=True)
     bad = np.any(bad_h | bad_c, -1, keepdims=True) | ~(area > 0)
-    outer = np.minimum(1.05 * np.arccos(np.clip((cs.R - st.dw) / cs.R, -1, 1)) + 1e-9, 1.2)
-    d_o = displacements(np.concatenate([-outer, outer], 1), st.dw, cs, offset)
-    sol_o, bh_o, bc_o = section_arrays(
-        cs.r0, cs.w, d_o.dv, d_o.dh, camber=cs.gamma, delta=cs.r0 * cs.gamma
-    )
-    reach = np.any((sol_o.width > 0) & ~bh_o & ~bc_o, -1, keepdims=True)
     dv_dw, dh_dw = dw_sensitivities(phi, cs)
     dwid_dw = sol.dwidth_ddv * dv_dw + sol.dwidth_ddh * dh_dw
     dwid_dphi = sol.dwidth_ddv * d.ddv + sol.dwidth_ddh * d.ddh
@@ -395,6 +388,7 @@ def _newton_step(cs: CaseArrays, st: _NewtonState, offset, target, quad) -> _Ste
         & (np.abs(step_dw) <= tol.load_rtol * st.dw)
     )
     finite = np.isfinite(step_dw) & np.isfinite(step_r) & np.isfinite(step_f)
+    reach = _reach(cs, st.dw, offset, done & ~bad)
     return _Step(
         bad if np.any(bad) else None,
         bad_h & bad,
@@ -407,6 +401,36 @@ def _newton_step(cs: CaseArrays, st: _NewtonState, offset, target, quad) -> _Ste
         finite=finite,
         reach=reach,
     )
+
+
+def _reach(cs: CaseArrays, dw, offset, which) -> np.ndarray:
+    """Whether the surface still touches sections just beyond the flat-ground ends,
+    probed only for the cases ``which`` (converged ones: the check costs a section
+    solve).
+
+    Parameters
+    ----------
+    cs : CaseArrays
+    dw, offset : (m, 1) float [mm]
+    which : (m, 1) bool
+
+    Returns
+    -------
+    (m, 1) bool
+        False for the cases not probed.
+    """
+    reach = np.zeros(dw.shape, bool)
+    idx = np.nonzero(which[:, 0])[0]
+    if idx.size == 0:
+        return reach
+    sub, dw_s = cs.take(idx), dw[idx]
+    outer = np.minimum(1.05 * np.arccos(np.clip((sub.R - dw_s) / sub.R, -1, 1)) + 1e-9, 1.2)
+    d_o = displacements(np.concatenate([-outer, outer], 1), dw_s, sub, offset[idx])
+    sol_o, bh_o, bc_o = section_arrays(
+        sub.r0, sub.w, d_o.dv, d_o.dh, camber=sub.gamma, delta=sub.r0 * sub.gamma
+    )
+    reach[idx] = np.any((sol_o.width > 0) & ~bh_o & ~bc_o, -1, keepdims=True)
+    return reach
 
 
 def _joint_with_offset(cs: CaseArrays, load, n: int, start=None):
