@@ -22,6 +22,7 @@ from ..errors import (
     NoContact,
     NotConverged,
     PatchEndLimit,
+    SlipLimit,
     SurfaceTooCurved,
     TireModelError,
 )
@@ -169,7 +170,8 @@ def surface_limit(cs: CaseArrays, i: int, dw: float, ends) -> SurfaceTooCurved |
 
 def _search_failure(cs: CaseArrays, st, i: int, offset) -> TireModelError:
     """The error of a load search that cannot step from its last valid iterate:
-    the surface limit, no contact of the central section, or NotConverged."""
+    the surface limit, the slip limit, no contact of the central section, or
+    NotConverged."""
     dw, ends = float(st.dw[i, 0]), (float(st.rear[i, 0]), float(st.front[i, 0]))
     curved = surface_limit(cs, i, dw, ends)
     if curved is not None:
@@ -180,6 +182,9 @@ def _search_failure(cs: CaseArrays, st, i: int, offset) -> TireModelError:
         sol, _, _ = section_arrays(
             one.r0, one.w, d.dv, d.dh, camber=one.gamma, delta=one.r0 * one.gamma
         )
+    slipped = slip_limit(one, (st.dw[i : i + 1], ends), offset[i : i + 1], i)
+    if slipped is not None:
+        return slipped
     if not float(sol.width[0, 0]) > 0:
         return NoContact(
             f"no contact: the central section does not touch at deflection {dw:.6g} mm "
@@ -188,6 +193,55 @@ def _search_failure(cs: CaseArrays, st, i: int, offset) -> TireModelError:
     return NotConverged(
         "load search (section 5.2): no valid step from the last iterate",
         {"case": i, "deflection_mm": dw, "end_angles_rad": ends},
+    )
+
+
+def slip_limit(one: CaseArrays, reached, offset, i: int) -> SlipLimit | None:
+    """The slip limit of a case whose load search cannot step: with slip, sections
+    inside the patch reached (the central one included: the slip anchor shifts it)
+    are displaced sideways (``x tan(slip)``, equation 5-17) until their edges cross.
+
+    Parameters
+    ----------
+    one : CaseArrays
+        The case alone (m = 1).
+    reached : (dw, (rear, front))
+        Deflection (1, 1) [mm] and end angles [rad] the search reached.
+    offset : (1, 1) float [mm]
+        Track offset.
+    i : int
+        The case's index in its batch (for the state).
+
+    Returns
+    -------
+    SlipLimit or None
+        None without slip or when every section inside the patch keeps contact.
+    """
+    slip = float(one.slip[0, 0])
+    if slip == 0:
+        return None
+    dw, (rear, front) = reached
+    phi = rear + (front - rear) * np.linspace(0.0, 1.0, 33)[1:-1][None, :]
+    with np.errstate(all="ignore"):
+        d = displacements(phi, dw, one, offset)
+        sol, bad_h, bad_c = section_arrays(
+            one.r0, one.w, d.dv, d.dh, camber=one.gamma, delta=one.r0 * one.gamma
+        )
+    off = ~(sol.width[0] > 0) & ~bad_h[0] & ~bad_c[0]
+    if not np.any(off):
+        return None
+    k = int(np.argmax(np.where(off, np.abs(d.dh[0]), -1.0)))
+    return SlipLimit(
+        "slip",
+        slip,
+        "a slip angle for which every section inside the patch keeps contact",
+        {
+            "case": i,
+            "deflection_mm": float(dw[0, 0]),
+            "section_x_mm": float(d.x[0, k]),
+            "section_lateral_mm": float(d.dh[0, k]),
+            "sections_off_ground": int(off.sum()),
+        },
     )
 
 
@@ -235,6 +289,12 @@ def _start(cs: CaseArrays, load, dmax, start, offset) -> _NewtonState:
     return _NewtonState(dw.copy(), rear.copy(), front.copy(), np.ones_like(dw))
 
 
+STALL_STEPS = 8
+"""Joint Newton steps without a new smallest load residual after which a case is
+handed to the bracketed :func:`nested_search` (it diverged: the search would only
+run on to ``tol.max_iter``)."""
+
+
 def joint_newton(cs: CaseArrays, load, n: int, offset=0.0, start=None):
     """Deflection and patch ends together: one section solve per Newton step.
 
@@ -270,7 +330,7 @@ def joint_newton(cs: CaseArrays, load, n: int, offset=0.0, start=None):
     failed: dict[int, TireModelError] = {}
     dead = np.zeros(cs.m, bool)
     done = np.zeros(cs.m, bool)
-    over = np.zeros(cs.m, int)
+    over, stall, best = np.zeros(cs.m, int), np.zeros(cs.m, int), np.full(cs.m, np.inf)
     for _ in range(tol.max_iter):
         act = np.nonzero(~done & ~dead)[0]  # only the cases still iterating cost a step
         if act.size == 0:
@@ -310,6 +370,10 @@ def joint_newton(cs: CaseArrays, load, n: int, offset=0.0, start=None):
             dead[i] = True
         over[act] = np.where(((s_a.dw >= dmax[act]) & (step.f3 < 0))[:, 0], over[act] + 1, 0)
         dead[act] |= over[act] >= 3  # the load is beyond what the tire carries
+        r3 = np.abs(step.f3[:, 0])  # diverging: the load residual stopped decreasing
+        stall[act] = np.where(r3 < best[act], 0, stall[act] + 1)
+        best[act] = np.minimum(best[act], r3)
+        dead[act] |= stall[act] >= STALL_STEPS  # left to the bracketed search
         done[act] = step.done[:, 0]
         live = act[~step.done[:, 0] & step.finite[:, 0] & ~dead[act]]
         dead[act[~step.done[:, 0] & ~step.finite[:, 0]]] = True
