@@ -247,3 +247,43 @@ def test_joint_newton_hands_diverging_case_to_nested_search():
         ld._newton_step = orig
     assert not out["ok"][0] and out["error"][0].split(":")[0] in {"PatchEndLimit", "SlipLimit"}
     assert len(calls) <= ld.STALL_STEPS + 10 < 60
+
+
+def test_solve_many_resolve_after_failure_takes_no_step_for_solved_cases():
+    # a mid-search failure raises with the others' converged solution (partial); the
+    # group is solved again from it, marked solved: no Newton step for those cases
+    # (it used to cost one more step over the whole batch) and bit-identical rows
+    from tiremesh.solver import load as ld
+
+    rng = np.random.default_rng(4)
+    m = 40
+    cols = dict(
+        tire_radius=rng.uniform(10, 23, m),
+        rim_width=rng.uniform(13.4, 18.7, m),
+        pressure=rng.uniform(0.2, 1.1, m),
+        load=rng.uniform(304, 731, m),
+        camber=rng.uniform(-0.5, 0.5, m),
+        slip=np.zeros(m),
+    )
+    rows = []
+    orig = ld._newton_step
+
+    def counting(cs, *a):
+        rows.append(cs.m)
+        return orig(cs, *a)
+
+    ld._newton_step = counting
+    try:
+        clean = tm.solve_many(errors="flag", **cols)
+        n_clean, rows[:] = sum(rows), []
+        cols["slip"][7] = 0.5
+        mixed = tm.solve_many(errors="flag", **cols)
+        n_mixed = sum(rows)
+    finally:
+        ld._newton_step = orig
+    assert mixed["error"][7].split(":")[0] in {"SlipLimit", "BulgeLimit"}
+    assert mixed["ok"].sum() == m - 1
+    keep = np.arange(m) != 7
+    np.testing.assert_array_equal(mixed["deflection"][keep], clean["deflection"][keep])
+    np.testing.assert_array_equal(mixed["lateral_force"][keep], clean["lateral_force"][keep])
+    assert n_mixed <= n_clean + 6  # the failing case's own (at most 6) halved steps

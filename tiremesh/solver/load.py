@@ -285,7 +285,7 @@ def _start(cs: CaseArrays, load, dmax, start, offset) -> _NewtonState:
         )
         rear, front = _contact_ends(cs, dw, np.broadcast_to(offset, dw.shape))
         return _NewtonState(dw, rear, front, np.ones_like(dw))
-    dw, (rear, front) = start
+    dw, (rear, front) = start[:2]
     return _NewtonState(dw.copy(), rear.copy(), front.copy(), np.ones_like(dw))
 
 
@@ -311,8 +311,9 @@ def joint_newton(cs: CaseArrays, load, n: int, offset=0.0, start=None):
         Clenshaw-Curtis sections per patch.
     offset : (m, 1) float [mm], optional
         Fixed track offset (section 5.3.2; default 0).
-    start : (dw, (rear, front)) of (m, 1) float [mm, rad], optional
-        Warm start.
+    start : (dw, (rear, front)[, solved]) of (m, 1) float [mm, rad] (bool), optional
+        Warm start; ``solved`` marks cases whose start is this search's own converged
+        solution (the ``partial`` of a failed batch): they take no step again.
 
     Returns
     -------
@@ -329,7 +330,7 @@ def joint_newton(cs: CaseArrays, load, n: int, offset=0.0, start=None):
     good = st.copy()
     failed: dict[int, TireModelError] = {}
     dead = np.zeros(cs.m, bool)
-    done = np.zeros(cs.m, bool)
+    done = np.zeros(cs.m, bool) if start is None or len(start) < 3 else start[2][:, 0].copy()
     over, stall, best = np.zeros(cs.m, int), np.zeros(cs.m, int), np.full(cs.m, np.inf)
     for _ in range(tol.max_iter):
         act = np.nonzero(~done & ~dead)[0]  # only the cases still iterating cost a step
@@ -505,6 +506,7 @@ def _joint_with_offset(cs: CaseArrays, load, n: int, start=None):
     if not has_track_shift(cs):
         dw, ends, done, failed = joint_newton(cs, load, n, start=start)
         return dw, ends, done, np.zeros_like(cs.r0), failed
+    start = None if start is None else start[:2]  # solved at its final offset, not at 0
     dw, rear, front = np.zeros_like(cs.r0), np.zeros_like(cs.r0), np.zeros_like(cs.r0)
     offset, done, failed = np.zeros_like(cs.r0), np.zeros(cs.r0.shape, bool), {}
     active = np.arange(cs.m)
@@ -554,8 +556,8 @@ def find_deflection(cs: CaseArrays, load, n: int | None = None, *, start=None):
     load : (m, 1) float [N]
     n : int, optional
         Clenshaw-Curtis sections per patch (default ``tol.search_sections``).
-    start : (dw, (rear, front)) of (m, 1) float [mm, rad], optional
-        Warm start.
+    start : (dw, (rear, front)[, solved]) of (m, 1) float [mm, rad] (bool), optional
+        Warm start (see :func:`joint_newton`).
 
     Returns
     -------
@@ -569,7 +571,7 @@ def find_deflection(cs: CaseArrays, load, n: int | None = None, *, start=None):
     TireModelError
         The first failed case's error, with every failed case's error in its
         ``case_errors`` (``{case index: error}``) and the solution in ``partial``
-        (``(dw, ends)``, valid for the other cases).
+        (``(dw, ends, solved)``, valid for the other cases, ``solved`` (m, 1) bool).
     """
     n = tol.search_sections if n is None else n
     dw, ends, done, offset, failed = _joint_with_offset(cs, load, n, start)
@@ -589,7 +591,8 @@ def find_deflection(cs: CaseArrays, load, n: int | None = None, *, start=None):
             dw[k], rear[k], front[k], offset[k] = dw_ok, rear_s, front_s, off_s
             ends = (rear, front)
     if failed:  # the good cases' solution travels with the error: a re-solve starts there
-        failed[min(failed)].partial = (dw, ends)
+        solved = ~np.isin(np.arange(cs.m), list(failed))[:, None]
+        failed[min(failed)].partial = (dw, ends, solved)
     raise_case_errors(failed)
     return dw, ends, offset
 
