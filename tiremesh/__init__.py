@@ -15,7 +15,7 @@ Lateral       : solve_lateral, LateralResult, stiffnesses
 Relations     : fit_relations, evaluate_relation, write_relations, read_relations, Relation
                 (closed-form fits to dense sweeps, docs/relations.md)
 Errors        : TireModelError, InvalidParameter, LoadTooHigh, ModelLimit (RimBottoms,
-                BulgeLimit, PatchEndLimit, SurfaceTooCurved), NoContact, NotConverged
+                BulgeLimit, PatchEndLimit, SlipLimit, SurfaceTooCurved), NoContact, NotConverged
 Tolerances    : tol (numerical epsilons only); SolverOptions (judgement thresholds,
                 passed as options= and sent to workers)
 Shared tools  : tiremesh.io (atomic files, tables, figures), tiremesh.parallel,
@@ -39,6 +39,7 @@ from .errors import (
     NotConverged,
     PatchEndLimit,
     RimBottoms,
+    SlipLimit,
     SurfaceTooCurved,
     TireModelError,
 )
@@ -73,6 +74,7 @@ __all__ = [
     "Relaxation",
     "RimBottoms",
     "SectionSolution",
+    "SlipLimit",
     "SolverOptions",
     "Surface",
     "SurfaceBase",

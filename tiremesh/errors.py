@@ -61,8 +61,8 @@ class ModelLimit(InvalidParameter):
     Attributes
     ----------
     limit : str
-        Which limit: ``'rim bottoms'``, ``'bulge out of carcass'`` or
-        ``'patch end'``.
+        Which limit: ``'rim bottoms'``, ``'bulge out of carcass'``, ``'patch end'``,
+        ``'slip beyond contact'`` or ``'surface too curved'``.
     state : dict
         What the solver reached (case index, deflection, the offending section).
     """
@@ -100,6 +100,15 @@ class PatchEndLimit(ModelLimit):
     camber for this tire)."""
 
     limit = "patch end"
+
+
+class SlipLimit(ModelLimit):
+    """The slip displaces sections inside the patch sideways beyond their contact:
+    the tread line turned by the slip angle (``x tan(slip)``, equation 5-17) moves a
+    section inside the patch so far that its edges cross (no contact width), so no
+    patch carries the load (section 5.4, large slip)."""
+
+    limit = "slip beyond contact"
 
 
 class SurfaceTooCurved(ModelLimit):

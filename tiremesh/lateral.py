@@ -527,6 +527,10 @@ def coulomb_friction(patch: ContactPatch, case: LoadCase) -> FrictionState:
     cap = mu * normal
     sliding = demand > cap  # Eq. 5-27
     reaction = sign * np.minimum(demand, cap)
+    if not np.any(sliding):  # nothing slides: the carcass keeps its grip state
+        return FrictionState(
+            grip.dh, grip.dS, normal, reaction, sliding, grip.beyond, 1, grip.share
+        )
     dh_free = zero_force_displacement(patch, dv)
     dh = dh_free + slide(grip.dh - dh_free, sliding, x, relax)
     dS, _ = section_forces(patch, dv, dh)

@@ -173,3 +173,117 @@ def test_solve_many_mixed_failures_are_flagged_early_and_rows_independent():
     alone = tm.solve_many(table.take(ok[::-1]), errors="raise")  # shuffled, without the bad
     np.testing.assert_allclose(alone["lateral_force"][::-1], out["lateral_force"][ok], rtol=1e-7)
     np.testing.assert_allclose(alone["deflection"][::-1], out["deflection"][ok], rtol=1e-8)
+
+
+@pytest.mark.parametrize("slip", [0.4, 0.5])
+def test_solve_large_slip_names_slip_limit(slip):
+    # a slip of 0.4-0.5 rad turns the tread line so far (x tan(slip), equation 5-17)
+    # that sections inside the patch lose contact: the load search cannot step and
+    # used to end in NotConverged ("no valid step"); it names the geometric limit
+    case = tm.LoadCase(tm.get_tire(8), pressure=0.4, load=400.0, slip=slip)
+    with pytest.raises(
+        tm.SlipLimit, match=rf"slip = {slip} is invalid.*slip beyond contact"
+    ) as ei:
+        tm.solve(case)
+    err = ei.value
+    assert isinstance(err, tm.ModelLimit) and err.limit == "slip beyond contact"
+    assert err.state["sections_off_ground"] >= 1
+    assert abs(err.state["section_lateral_mm"]) > tm.get_tire(8).tire_radius
+    assert err.state["deflection_mm"] > 0
+    got = tm.solve_many(
+        tire_radius=[20.6551473485506] * 2,
+        rim_width=[15.357432904407501] * 2,
+        pressure=[0.3950403795417967] * 2,
+        load=[602.87] * 2,
+        camber=[-0.1764785229644782] * 2,
+        slip=[0.0, slip],
+        errors="flag",
+    )
+    assert got["ok"].tolist() == [True, False]
+    assert got["error"][1].startswith("SlipLimit: slip = ")
+
+
+def test_slip_limit_none_without_slip_or_with_contact():
+    from tiremesh.solver.arrays import single_case_arrays
+    from tiremesh.solver.load import slip_limit
+
+    zero = np.zeros((1, 1))
+    for slip, expect in ((0.0, None), (0.02, None), (0.5, tm.SlipLimit)):
+        cs = single_case_arrays(tm.LoadCase(tm.get_tire(8), pressure=0.4, load=400.0, slip=slip))
+        dw = np.array([[5.0]])
+        end = math.acos((float(cs.R[0, 0]) - 5.0) / float(cs.R[0, 0]))
+        got = slip_limit(cs, (dw, (-end * zero - end, zero + end)), zero, 3)
+        if expect is None:
+            assert got is None
+        else:
+            assert isinstance(got, expect) and got.state["case"] == 3
+
+
+def test_joint_newton_hands_diverging_case_to_nested_search():
+    # slip 0.35 with camber 0.6 on this tire: the joint Newton step halves the
+    # deflection toward 0 while the load residual grows; it used to run all
+    # tol.max_iter (60) steps before the bracketed search named the limit
+    from tiremesh.solver import load as ld
+
+    calls = []
+    orig = ld._newton_step
+
+    def counting(cs, *a):
+        calls.append(cs.m)
+        return orig(cs, *a)
+
+    ld._newton_step = counting
+    try:
+        out = tm.solve_many(
+            tire_radius=[20.7],
+            rim_width=[15.0],
+            pressure=[1.003],
+            load=[460.0],
+            camber=[0.6],
+            slip=[0.35],
+            errors="flag",
+        )
+    finally:
+        ld._newton_step = orig
+    assert not out["ok"][0] and out["error"][0].split(":")[0] in {"PatchEndLimit", "SlipLimit"}
+    assert len(calls) <= ld.STALL_STEPS + 10 < 60
+
+
+def test_solve_many_resolve_after_failure_takes_no_step_for_solved_cases():
+    # a mid-search failure raises with the others' converged solution (partial); the
+    # group is solved again from it, marked solved: no Newton step for those cases
+    # (it used to cost one more step over the whole batch) and bit-identical rows
+    from tiremesh.solver import load as ld
+
+    rng = np.random.default_rng(4)
+    m = 40
+    cols = dict(
+        tire_radius=rng.uniform(10, 23, m),
+        rim_width=rng.uniform(13.4, 18.7, m),
+        pressure=rng.uniform(0.2, 1.1, m),
+        load=rng.uniform(304, 731, m),
+        camber=rng.uniform(-0.5, 0.5, m),
+        slip=np.zeros(m),
+    )
+    rows = []
+    orig = ld._newton_step
+
+    def counting(cs, *a):
+        rows.append(cs.m)
+        return orig(cs, *a)
+
+    ld._newton_step = counting
+    try:
+        clean = tm.solve_many(errors="flag", **cols)
+        n_clean, rows[:] = sum(rows), []
+        cols["slip"][7] = 0.5
+        mixed = tm.solve_many(errors="flag", **cols)
+        n_mixed = sum(rows)
+    finally:
+        ld._newton_step = orig
+    assert mixed["error"][7].split(":")[0] in {"SlipLimit", "BulgeLimit"}
+    assert mixed["ok"].sum() == m - 1
+    keep = np.arange(m) != 7
+    np.testing.assert_array_equal(mixed["deflection"][keep], clean["deflection"][keep])
+    np.testing.assert_array_equal(mixed["lateral_force"][keep], clean["lateral_force"][keep])
+    assert n_mixed <= n_clean + 6  # the failing case's own (at most 6) halved steps

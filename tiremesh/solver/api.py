@@ -463,7 +463,13 @@ def _solve_isolating(table: CaseTable, n: int, out: dict, rows, errors: dict, st
             keep = np.setdiff1d(np.arange(len(table)), list(named))
             partial = getattr(exc, "partial", None)
             warm = (
-                None if partial is None else (partial[0][keep], tuple(e[keep] for e in partial[1]))
+                None
+                if partial is None
+                else (
+                    partial[0][keep],
+                    tuple(e[keep] for e in partial[1]),
+                    *(p[keep] for p in partial[2:]),
+                )
             )
             if keep.size:
                 _solve_isolating(table.take(keep), n, out, rows[keep], errors, warm)

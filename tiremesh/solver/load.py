@@ -22,6 +22,7 @@ from ..errors import (
     NoContact,
     NotConverged,
     PatchEndLimit,
+    SlipLimit,
     SurfaceTooCurved,
     TireModelError,
 )
@@ -169,7 +170,8 @@ def surface_limit(cs: CaseArrays, i: int, dw: float, ends) -> SurfaceTooCurved |
 
 def _search_failure(cs: CaseArrays, st, i: int, offset) -> TireModelError:
     """The error of a load search that cannot step from its last valid iterate:
-    the surface limit, no contact of the central section, or NotConverged."""
+    the surface limit, the slip limit, no contact of the central section, or
+    NotConverged."""
     dw, ends = float(st.dw[i, 0]), (float(st.rear[i, 0]), float(st.front[i, 0]))
     curved = surface_limit(cs, i, dw, ends)
     if curved is not None:
@@ -180,6 +182,9 @@ def _search_failure(cs: CaseArrays, st, i: int, offset) -> TireModelError:
         sol, _, _ = section_arrays(
             one.r0, one.w, d.dv, d.dh, camber=one.gamma, delta=one.r0 * one.gamma
         )
+    slipped = slip_limit(one, (st.dw[i : i + 1], ends), offset[i : i + 1], i)
+    if slipped is not None:
+        return slipped
     if not float(sol.width[0, 0]) > 0:
         return NoContact(
             f"no contact: the central section does not touch at deflection {dw:.6g} mm "
@@ -188,6 +193,55 @@ def _search_failure(cs: CaseArrays, st, i: int, offset) -> TireModelError:
     return NotConverged(
         "load search (section 5.2): no valid step from the last iterate",
         {"case": i, "deflection_mm": dw, "end_angles_rad": ends},
+    )
+
+
+def slip_limit(one: CaseArrays, reached, offset, i: int) -> SlipLimit | None:
+    """The slip limit of a case whose load search cannot step: with slip, sections
+    inside the patch reached (the central one included: the slip anchor shifts it)
+    are displaced sideways (``x tan(slip)``, equation 5-17) until their edges cross.
+
+    Parameters
+    ----------
+    one : CaseArrays
+        The case alone (m = 1).
+    reached : (dw, (rear, front))
+        Deflection (1, 1) [mm] and end angles [rad] the search reached.
+    offset : (1, 1) float [mm]
+        Track offset.
+    i : int
+        The case's index in its batch (for the state).
+
+    Returns
+    -------
+    SlipLimit or None
+        None without slip or when every section inside the patch keeps contact.
+    """
+    slip = float(one.slip[0, 0])
+    if slip == 0:
+        return None
+    dw, (rear, front) = reached
+    phi = rear + (front - rear) * np.linspace(0.0, 1.0, 33)[1:-1][None, :]
+    with np.errstate(all="ignore"):
+        d = displacements(phi, dw, one, offset)
+        sol, bad_h, bad_c = section_arrays(
+            one.r0, one.w, d.dv, d.dh, camber=one.gamma, delta=one.r0 * one.gamma
+        )
+    off = ~(sol.width[0] > 0) & ~bad_h[0] & ~bad_c[0]
+    if not np.any(off):
+        return None
+    k = int(np.argmax(np.where(off, np.abs(d.dh[0]), -1.0)))
+    return SlipLimit(
+        "slip",
+        slip,
+        "a slip angle for which every section inside the patch keeps contact",
+        {
+            "case": i,
+            "deflection_mm": float(dw[0, 0]),
+            "section_x_mm": float(d.x[0, k]),
+            "section_lateral_mm": float(d.dh[0, k]),
+            "sections_off_ground": int(off.sum()),
+        },
     )
 
 
@@ -212,17 +266,16 @@ def _contact_ends(cs: CaseArrays, dw, offset, steps: int = 40):
     rear, front : (m, 1) float [rad]
     """
     hi = np.arccos(np.clip((cs.R - dw) / cs.R, -1.0, 1.0))
-    out = []
-    for sign in (-1.0, 1.0):
-        lo_, hi_ = np.zeros_like(hi), hi.copy()
-        for _ in range(steps):
-            mid = 0.5 * (lo_ + hi_)
-            with np.errstate(all="ignore"):
-                dv = displacements(sign * mid, dw, cs, offset).dv
-            touch = dv > 0
-            lo_, hi_ = np.where(touch, mid, lo_), np.where(touch, hi_, mid)
-        out.append(sign * np.maximum(lo_, 1e-9))
-    return out[0], out[1]
+    sign = np.array([[-1.0, 1.0]])  # both sides in one (m, 2) evaluation per step
+    lo_, hi_ = np.zeros((hi.shape[0], 2)), hi * np.ones_like(sign)
+    for _ in range(steps):
+        mid = 0.5 * (lo_ + hi_)
+        with np.errstate(all="ignore"):
+            dv = displacements(sign * mid, dw, cs, offset).dv
+        touch = dv > 0
+        lo_, hi_ = np.where(touch, mid, lo_), np.where(touch, hi_, mid)
+    out = sign * np.maximum(lo_, 1e-9)
+    return out[:, :1], out[:, 1:]
 
 
 def _start(cs: CaseArrays, load, dmax, start, offset) -> _NewtonState:
@@ -232,8 +285,14 @@ def _start(cs: CaseArrays, load, dmax, start, offset) -> _NewtonState:
         )
         rear, front = _contact_ends(cs, dw, np.broadcast_to(offset, dw.shape))
         return _NewtonState(dw, rear, front, np.ones_like(dw))
-    dw, (rear, front) = start
+    dw, (rear, front) = start[:2]
     return _NewtonState(dw.copy(), rear.copy(), front.copy(), np.ones_like(dw))
+
+
+STALL_STEPS = 8
+"""Joint Newton steps without a new smallest load residual after which a case is
+handed to the bracketed :func:`nested_search` (it diverged: the search would only
+run on to ``tol.max_iter``)."""
 
 
 def joint_newton(cs: CaseArrays, load, n: int, offset=0.0, start=None):
@@ -252,8 +311,9 @@ def joint_newton(cs: CaseArrays, load, n: int, offset=0.0, start=None):
         Clenshaw-Curtis sections per patch.
     offset : (m, 1) float [mm], optional
         Fixed track offset (section 5.3.2; default 0).
-    start : (dw, (rear, front)) of (m, 1) float [mm, rad], optional
-        Warm start.
+    start : (dw, (rear, front)[, solved]) of (m, 1) float [mm, rad] (bool), optional
+        Warm start; ``solved`` marks cases whose start is this search's own converged
+        solution (the ``partial`` of a failed batch): they take no step again.
 
     Returns
     -------
@@ -270,8 +330,8 @@ def joint_newton(cs: CaseArrays, load, n: int, offset=0.0, start=None):
     good = st.copy()
     failed: dict[int, TireModelError] = {}
     dead = np.zeros(cs.m, bool)
-    done = np.zeros(cs.m, bool)
-    over = np.zeros(cs.m, int)
+    done = np.zeros(cs.m, bool) if start is None or len(start) < 3 else start[2][:, 0].copy()
+    over, stall, best = np.zeros(cs.m, int), np.zeros(cs.m, int), np.full(cs.m, np.inf)
     for _ in range(tol.max_iter):
         act = np.nonzero(~done & ~dead)[0]  # only the cases still iterating cost a step
         if act.size == 0:
@@ -311,6 +371,10 @@ def joint_newton(cs: CaseArrays, load, n: int, offset=0.0, start=None):
             dead[i] = True
         over[act] = np.where(((s_a.dw >= dmax[act]) & (step.f3 < 0))[:, 0], over[act] + 1, 0)
         dead[act] |= over[act] >= 3  # the load is beyond what the tire carries
+        r3 = np.abs(step.f3[:, 0])  # diverging: the load residual stopped decreasing
+        stall[act] = np.where(r3 < best[act], 0, stall[act] + 1)
+        best[act] = np.minimum(best[act], r3)
+        dead[act] |= stall[act] >= STALL_STEPS  # left to the bracketed search
         done[act] = step.done[:, 0]
         live = act[~step.done[:, 0] & step.finite[:, 0] & ~dead[act]]
         dead[act[~step.done[:, 0] & ~step.finite[:, 0]]] = True
@@ -366,12 +430,6 @@ def _newton_step(cs: CaseArrays, st: _NewtonState, offset, target, quad) -> _Ste
     width = sol.width
     area = half * (wts * width * jac).sum(-1, keepdims=True)
     bad = np.any(bad_h | bad_c, -1, keepdims=True) | ~(area > 0)
-    outer = np.minimum(1.05 * np.arccos(np.clip((cs.R - st.dw) / cs.R, -1, 1)) + 1e-9, 1.2)
-    d_o = displacements(np.concatenate([-outer, outer], 1), st.dw, cs, offset)
-    sol_o, bh_o, bc_o = section_arrays(
-        cs.r0, cs.w, d_o.dv, d_o.dh, camber=cs.gamma, delta=cs.r0 * cs.gamma
-    )
-    reach = np.any((sol_o.width > 0) & ~bh_o & ~bc_o, -1, keepdims=True)
     dv_dw, dh_dw = dw_sensitivities(phi, cs)
     dwid_dw = sol.dwidth_ddv * dv_dw + sol.dwidth_ddh * dh_dw
     dwid_dphi = sol.dwidth_ddv * d.ddv + sol.dwidth_ddh * d.ddh
@@ -395,6 +453,7 @@ def _newton_step(cs: CaseArrays, st: _NewtonState, offset, target, quad) -> _Ste
         & (np.abs(step_dw) <= tol.load_rtol * st.dw)
     )
     finite = np.isfinite(step_dw) & np.isfinite(step_r) & np.isfinite(step_f)
+    reach = _reach(cs, st.dw, offset, done & ~bad)
     return _Step(
         bad if np.any(bad) else None,
         bad_h & bad,
@@ -409,6 +468,36 @@ def _newton_step(cs: CaseArrays, st: _NewtonState, offset, target, quad) -> _Ste
     )
 
 
+def _reach(cs: CaseArrays, dw, offset, which) -> np.ndarray:
+    """Whether the surface still touches sections just beyond the flat-ground ends,
+    probed only for the cases ``which`` (converged ones: the check costs a section
+    solve).
+
+    Parameters
+    ----------
+    cs : CaseArrays
+    dw, offset : (m, 1) float [mm]
+    which : (m, 1) bool
+
+    Returns
+    -------
+    (m, 1) bool
+        False for the cases not probed.
+    """
+    reach = np.zeros(dw.shape, bool)
+    idx = np.nonzero(which[:, 0])[0]
+    if idx.size == 0:
+        return reach
+    sub, dw_s = cs.take(idx), dw[idx]
+    outer = np.minimum(1.05 * np.arccos(np.clip((sub.R - dw_s) / sub.R, -1, 1)) + 1e-9, 1.2)
+    d_o = displacements(np.concatenate([-outer, outer], 1), dw_s, sub, offset[idx])
+    sol_o, bh_o, bc_o = section_arrays(
+        sub.r0, sub.w, d_o.dv, d_o.dh, camber=sub.gamma, delta=sub.r0 * sub.gamma
+    )
+    reach[idx] = np.any((sol_o.width > 0) & ~bh_o & ~bc_o, -1, keepdims=True)
+    return reach
+
+
 def _joint_with_offset(cs: CaseArrays, load, n: int, start=None):
     """Joint Newton inside a fixed point on the track offset (section 5.3.2): each
     outer step solves deflection and ends for a fixed offset, then moves the offset
@@ -417,6 +506,7 @@ def _joint_with_offset(cs: CaseArrays, load, n: int, start=None):
     if not has_track_shift(cs):
         dw, ends, done, failed = joint_newton(cs, load, n, start=start)
         return dw, ends, done, np.zeros_like(cs.r0), failed
+    start = None if start is None else start[:2]  # solved at its final offset, not at 0
     dw, rear, front = np.zeros_like(cs.r0), np.zeros_like(cs.r0), np.zeros_like(cs.r0)
     offset, done, failed = np.zeros_like(cs.r0), np.zeros(cs.r0.shape, bool), {}
     active = np.arange(cs.m)
@@ -466,8 +556,8 @@ def find_deflection(cs: CaseArrays, load, n: int | None = None, *, start=None):
     load : (m, 1) float [N]
     n : int, optional
         Clenshaw-Curtis sections per patch (default ``tol.search_sections``).
-    start : (dw, (rear, front)) of (m, 1) float [mm, rad], optional
-        Warm start.
+    start : (dw, (rear, front)[, solved]) of (m, 1) float [mm, rad] (bool), optional
+        Warm start (see :func:`joint_newton`).
 
     Returns
     -------
@@ -481,7 +571,7 @@ def find_deflection(cs: CaseArrays, load, n: int | None = None, *, start=None):
     TireModelError
         The first failed case's error, with every failed case's error in its
         ``case_errors`` (``{case index: error}``) and the solution in ``partial``
-        (``(dw, ends)``, valid for the other cases).
+        (``(dw, ends, solved)``, valid for the other cases, ``solved`` (m, 1) bool).
     """
     n = tol.search_sections if n is None else n
     dw, ends, done, offset, failed = _joint_with_offset(cs, load, n, start)
@@ -501,7 +591,8 @@ def find_deflection(cs: CaseArrays, load, n: int | None = None, *, start=None):
             dw[k], rear[k], front[k], offset[k] = dw_ok, rear_s, front_s, off_s
             ends = (rear, front)
     if failed:  # the good cases' solution travels with the error: a re-solve starts there
-        failed[min(failed)].partial = (dw, ends)
+        solved = ~np.isin(np.arange(cs.m), list(failed))[:, None]
+        failed[min(failed)].partial = (dw, ends, solved)
     raise_case_errors(failed)
     return dw, ends, offset
 
