@@ -295,6 +295,19 @@ handed to the bracketed :func:`nested_search` (it diverged: the search would onl
 run on to ``tol.max_iter``)."""
 
 
+def _reach_failures(cs: CaseArrays, st, ids, failed: dict, dead) -> None:
+    """Converged, but the surface still reaches sections beyond the ends: patch_ends
+    would refuse this deflection (equation-free check, same probe). Names the cases
+    ``ids`` in ``failed`` and marks them ``dead`` (in place)."""
+    for i in ids:
+        failed[int(i)] = PatchEndLimit(
+            *driving_input(cs, i),
+            "a value for which the patch ends where the surface leaves the tire",
+            {"case": int(i), "deflection_mm": float(st.dw[i, 0])},
+        )
+        dead[i] = True
+
+
 def joint_newton(cs: CaseArrays, load, n: int, offset=0.0, start=None):
     """Deflection and patch ends together: one section solve per Newton step.
 
@@ -360,15 +373,7 @@ def joint_newton(cs: CaseArrays, load, n: int, offset=0.0, start=None):
             act, s_a = act[keep], s_a.take(keep)
             step = step.take(keep)
         good.assign(act, st)
-        # converged, but the surface still reaches sections beyond the ends: patch_ends
-        # would refuse this deflection (equation-free check, same probe)
-        for i in act[(step.done & step.reach)[:, 0]]:
-            failed[int(i)] = PatchEndLimit(
-                *driving_input(cs, i),
-                "a value for which the patch ends where the surface leaves the tire",
-                {"case": int(i), "deflection_mm": float(st.dw[i, 0])},
-            )
-            dead[i] = True
+        _reach_failures(cs, st, act[(step.done & step.reach)[:, 0]], failed, dead)
         over[act] = np.where(((s_a.dw >= dmax[act]) & (step.f3 < 0))[:, 0], over[act] + 1, 0)
         dead[act] |= over[act] >= 3  # the load is beyond what the tire carries
         r3 = np.abs(step.f3[:, 0])  # diverging: the load residual stopped decreasing
