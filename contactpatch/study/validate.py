@@ -45,6 +45,7 @@ from .validate_fit import (
     error_curve,
     fit_relaxation,
     loto_table,
+    trail_kinematics,
     variants,
 )
 from .validate_model import (
@@ -102,6 +103,7 @@ TABLES = {
     "summary_checks": "summaries",
     "decay_length_variants": "variants",
     "cornering_vs_decay_length": "cornering",
+    "trail_vs_slip_kinematics": "trail",
     "leave_one_tire_out": "loto",
 }
 FIGURES = ("measured_vs_model", "relaxation_fit")
@@ -129,6 +131,9 @@ class Validation:
     cornering : list of dict
         Cornering-stiffness errors under three decay lengths
         (:func:`.validate_fit.cornering_variants`).
+    trail : list of dict
+        Pneumatic-trail errors under each slip kinematics
+        (:func:`.validate_fit.trail_kinematics`).
     loto : list of dict
         Leave-one-tire-out rows per fitted tire (:func:`.validate_fit.loto_table`).
     fit : RelaxationFit
@@ -146,6 +151,7 @@ class Validation:
     summaries: list[dict]
     variants: list[dict]
     cornering: list[dict]
+    trail: list[dict]
     loto: list[dict]
     fit: RelaxationFit
     settings: dict
@@ -159,7 +165,7 @@ class Validation:
         -------
         dict
             Keys ``settings``, ``points`` (list of row dicts), ``statistics``,
-            ``trends``, ``summaries``, ``variants``, ``cornering``, ``loto``,
+            ``trends``, ``summaries``, ``variants``, ``cornering``, ``trail``, ``loto``,
             ``fit_curve`` and ``limits`` (list of str); values are plain JSON types.
         """
         out = {
@@ -170,6 +176,7 @@ class Validation:
             "summaries": self.summaries,
             "variants": self.variants,
             "cornering": self.cornering,
+            "trail": self.trail,
             "loto": self.loto,
             "fit_curve": self.curve,
         }
@@ -290,6 +297,7 @@ def run_validation(measurements: str | os.PathLike | None = None) -> Validation:
         summaries=summary_table(runner, points),
         variants=variants(runner, points, fit),
         cornering=cornering_variants(runner, points),
+        trail=trail_kinematics(runner, points),
         loto=loto_table(points, fit),
         fit=fit,
         settings={},

@@ -288,6 +288,58 @@ def cornering_variants(runner: ModelRunner, points: list[Point]) -> list[dict]:
     return out
 
 
+#: the mean trail over the patch length, all tires and configurations (4.1.8) [%]
+MEASURED_TRAIL_PCT = 12.76
+
+
+def trail_kinematics(runner: ModelRunner, points: list[Point]) -> list[dict]:
+    """The pneumatic trail (4.1.8) under each slip kinematics of the load case: the
+    tread anchored at the leading edge (the default), turned about the centre
+    (Appendix C) and displaced ahead of the patch along the relaxation (Figure 4-15,
+    5.7: the dissertation's measured kinematics). None is fitted; the decay length is
+    the taut beam's.
+
+    Parameters
+    ----------
+    runner : ModelRunner
+        Runner with the fitted decay length.
+    points : list of Point
+        The compared pneumatic-trail points are used.
+
+    Returns
+    -------
+    list of dict
+        Per kinematics: ``variant``, ``quantity`` (``pneumatic_trail``),
+        :func:`.validate_stats.ratio_stats` of model / measured trail,
+        ``trail_pct_of_length`` (median model trail over patch length [%], measured
+        mean 12.76 %) and ``undefined`` (cases where the patch carries too little of
+        the force for a trail, :func:`.validate_model.trail`).
+    """
+    import tiremesh as tm
+    from tiremesh.case import SLIP_KINEMATICS
+
+    from .validate_model import Undefined, trail
+
+    pts = [p for p in points if p.quantity == "pneumatic_trail" and p.status == "compared"]
+    out = []
+    for kin in SLIP_KINEMATICS:
+        ratios, pct, undefined = [], [], 0
+        for p in pts:
+            case = runner.case(p.condition, "slip", runner.rate(p.condition))
+            r = tm.solve_lateral(case.replace(slip_kinematics=kin))
+            try:
+                t = trail(r)
+            except Undefined:
+                undefined += 1
+                continue
+            ratios.append(t / p.measured)
+            pct.append(100.0 * t / r.patch.length)
+        med = float(np.median(pct)) if pct else math.nan
+        row = {"variant": kin, "quantity": "pneumatic_trail", **ratio_stats(ratios)}
+        out.append({**row, "trail_pct_of_length": med, "undefined": undefined})
+    return out
+
+
 def loto_table(points: list[Point], fit: RelaxationFit) -> list[dict]:
     """Per fitted tire: E and decay length fitted without it, and its points' ratios
     under the leave-one-tire-out E (the reported model values).
@@ -366,5 +418,6 @@ __all__ = [
     "fit_points",
     "fit_relaxation",
     "loto_table",
+    "trail_kinematics",
     "variants",
 ]

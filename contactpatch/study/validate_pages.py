@@ -283,6 +283,7 @@ def limits(data: dict) -> list[str]:
             f"stiff at high pressure ({_extremes(data)})."
         )
     out += _cornering_limit(data)
+    out += _trail_limit(data)
     app, beam = _variant(data, "Appendix C"), _variant(data, "taut beam, E fitted (leave")
     if app and beam:
         out.append(
@@ -310,6 +311,22 @@ def _cornering_limit(data: dict) -> list[str]:
         f"measured (median); with Appendix C's 143 mm it is {_x(appx['median_ratio'])} but the "
         f"lateral stiffness {_x(app['median_ratio'])}; with the rolling decay measured in "
         f"4.1.9.1 (about 3 patch lengths) it is {_x(roll['median_ratio'])}."
+    ]
+
+
+def _trail_limit(data: dict) -> list[str]:
+    """One line: the pneumatic trail under each slip kinematics (4.1.8)."""
+    rows = [r for r in data.get("trail", []) if r.get("n")]
+    if not rows:
+        return []
+    parts = [
+        f"{r['variant']} {_x(r['median_ratio'])} the measured, "
+        f"{r['trail_pct_of_length']:.1f} % of the patch length"
+        for r in rows
+    ]
+    return [
+        "Pneumatic trail by slip kinematics (median model / measured; measured mean 12.76 % "
+        "of the patch length, 4.1.8): " + "; ".join(parts) + "."
     ]
 
 

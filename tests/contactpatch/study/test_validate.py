@@ -23,6 +23,7 @@ from contactpatch.study import validate as V
 from contactpatch.study import validate_pages as P
 from contactpatch.study import validate_relax as vr
 from contactpatch.study.validate_data import MEASURED_CSV, read_measurements
+from contactpatch.study.validate_fit import MEASURED_TRAIL_PCT
 from contactpatch.study.validate_points import classify_all, parse_load, parse_surface
 from tiremesh.beam import solve_beam
 from tiremesh.io import read_table
@@ -385,3 +386,21 @@ def test_cli_keeps_the_other_commands():
     assert p.parse_args(["validate"]).output == "validation"
     assert p.parse_args(["compare", "x.csv", "-o", "y.csv"]).func.__name__ == "compare_command"
     assert p.parse_args(["report", "x.csv", "-o", "d"]).func.__name__ == "report_command"
+
+
+def test_trail_kinematics_compares_every_kinematics_with_section_4_1_8(run):
+    """Issue 10 item 5: the trail under each slip kinematics. The tread displaced ahead
+    of the patch along the relaxation (Figure 4-15) moves the force forward, so its
+    trail is shorter than the leading-edge anchor's and its share of the patch length
+    lies nearer the measured mean (12.76 %, 4.1.8); the table is written and named in
+    the limits."""
+    v, out = run
+    rows = {r["variant"]: r for r in v.trail}
+    assert set(rows) == {"leading", "centre", "relaxation"}
+    lead, relax = rows["leading"], rows["relaxation"]
+    assert lead["n"] == relax["n"] == 6
+    assert relax["median_ratio"] < lead["median_ratio"]
+    gap = lambda r: abs(r["trail_pct_of_length"] - MEASURED_TRAIL_PCT)
+    assert gap(relax) < gap(lead)
+    assert (out / "trail_vs_slip_kinematics.csv").exists()
+    assert any("slip kinematics" in s for s in v.to_dict()["limits"])
