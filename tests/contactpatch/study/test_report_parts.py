@@ -174,6 +174,23 @@ def test_viewer_case_arrays(print_table):
     assert json.loads(re.search(r'id="viewer-data">(.*?)</script>', html).group(1))["cases"]
 
 
+def test_viewer_case_same_mesh_as_build_mesh(print_table):
+    """The viewer meshes without trimesh: the same arrays as build_mesh's."""
+    import tiremesh as tm
+    from contactpatch.study.viewer import VIEWER_MESH
+    from tiremesh.mesh import build_mesh
+
+    patch = tm.solve(R.representative_cases(print_table[0])[-1].case)
+    data = viewer_case(patch, "x")
+    m = build_mesh(patch, **VIEWER_MESH)
+    pos = np.frombuffer(base64.b64decode(data["positions"]), "<f4").reshape(-1, 3)
+    idx = np.frombuffer(base64.b64decode(data["indices"]), "<u2").reshape(-1, 3)
+    val = np.frombuffer(base64.b64decode(data["values"]), "<f4")
+    assert_allclose(pos, np.asarray(m.mesh.vertices, "<f4"), rtol=0, atol=0)
+    np.testing.assert_array_equal(idx, m.mesh.faces)
+    assert_allclose(val, np.asarray(m.point_data["radial_deformation"], "<f4"), rtol=0, atol=0)
+
+
 # --- the worker process ----------------------------------------------------------------
 
 
@@ -197,3 +214,15 @@ def test_a_report_of_200_prints_aggregates_and_folds(tmp_path):
     assert text.count("<details>") == 4 and "<details open>" not in text
     assert text.count('<figure class="outline-card">') == 200
     assert len(text) < 2_500_000
+
+
+def test_t975_table_is_scipys_quantile():
+    """The tabulated t quantiles are scipy's, bit for bit (no number of the report
+    changes), and larger degrees of freedom still ask scipy."""
+    from scipy.special import stdtrit
+
+    from contactpatch.study.uncertainty import T975, t975
+
+    for dof in range(1, len(T975) + 2):
+        assert t975(dof) == float(stdtrit(dof, 0.975))
+    assert_allclose(t975(2), 4.302653, rtol=1e-6)
