@@ -245,7 +245,7 @@ class Panel:
 
 
 def marker_svg(x, y, marker: str, *, colour: str, filled: bool, size: float, alpha=1.0) -> str:
-    """One marker: ``o`` circle, ``s`` square, ``D`` diamond, ``^`` triangle.
+    """One marker: ``o`` circle, ``s`` square, ``D`` diamond, ``^`` / ``v`` triangle.
 
     Parameters
     ----------
@@ -277,11 +277,16 @@ def _shape(x: float, y: float, marker: str, r: float) -> str:
     if marker == "s":
         r *= 0.88
         return f'<rect x="{_num(x - r)}" y="{_num(y - r)}" width="{_num(2 * r)}" height="{_num(2 * r)}"/>'
-    if marker in ("D", "^"):
+    if marker in ("D", "^", "v"):
         if marker == "D":
             pts = [(x, y - 1.25 * r), (x + r, y), (x, y + 1.25 * r), (x - r, y)]
         else:
-            pts = [(x, y - 1.2 * r), (x + 1.1 * r, y + 0.8 * r), (x - 1.1 * r, y + 0.8 * r)]
+            k = 1 if marker == "^" else -1  # apex up or down
+            pts = [
+                (x, y - k * 1.2 * r),
+                (x + 1.1 * r, y + k * 0.8 * r),
+                (x - 1.1 * r, y + k * 0.8 * r),
+            ]
         return '<polygon points="' + " ".join(f"{_num(a)},{_num(b)}" for a, b in pts) + '"/>'
     return f'<circle cx="{_num(x)}" cy="{_num(y)}" r="{_num(r)}"/>'
 
