@@ -166,14 +166,34 @@ class Panel:
     items: list = field(default_factory=list)
 
     def sx(self, v: float) -> float:
-        """Data x -> pixel x."""
+        """Data x -> pixel x.
+
+        Parameters
+        ----------
+        v : float
+            In data units (> 0 on a log axis).
+
+        Returns
+        -------
+        float [px]
+        """
         a, b = self.xlim
         if self.xlog:
             v, a, b = math.log(v), math.log(a), math.log(b)
         return self.x + (v - a) / (b - a) * self.w
 
     def sy(self, v: float) -> float:
-        """Data y -> pixel y."""
+        """Data y -> pixel y (down).
+
+        Parameters
+        ----------
+        v : float
+            In data units (> 0 on a log axis).
+
+        Returns
+        -------
+        float [px]
+        """
         a, b = self.ylim
         if self.ylog:
             v, a, b = math.log(v), math.log(a), math.log(b)
@@ -184,7 +204,25 @@ class Panel:
         return good and (not self.xlog or x > 0) and (not self.ylog or y > 0)
 
     def scatter(self, xs, ys, *, colour: str, marker: str = "o", filled=True, size=4.5, alpha=1.0):
-        """Markers at the points (non-finite points are left out), in one group."""
+        """Markers at the points (non-finite points are left out), in one group.
+
+        Parameters
+        ----------
+        xs, ys : sequence of float
+            Data coordinates, equal lengths.
+        colour : str
+        marker : {'o', 's', 'D', '^', 'v'}
+        filled : bool
+            Filled, or white with a coloured edge.
+        size : float [px]
+            Half-width of a marker.
+        alpha : float
+            Opacity in [0, 1].
+
+        Returns
+        -------
+        None
+        """
         shapes = [
             _shape(self.sx(x), self.sy(y), marker, size)
             for x, y in zip(xs, ys, strict=True)
@@ -194,7 +232,21 @@ class Panel:
             self.items.append(f"<g {_style(colour, filled, alpha)}>{''.join(shapes)}</g>")
 
     def line(self, xs, ys, *, colour: str, dashed: bool = False, width: float = 1.6):
-        """A polyline through the points (broken at non-finite ones)."""
+        """A polyline through the points (non-finite points are left out).
+
+        Parameters
+        ----------
+        xs, ys : sequence of float
+            Data coordinates, equal lengths.
+        colour : str
+        dashed : bool
+        width : float [px]
+            Stroke width.
+
+        Returns
+        -------
+        None
+        """
         pts = [
             f"{_num(self.sx(x))},{_num(self.sy(y))}"
             for x, y in zip(xs, ys, strict=True)
@@ -208,7 +260,22 @@ class Panel:
             )
 
     def rule(self, value: float, *, axis: str = "y", colour="#555", dashed=True, width=1.0):
-        """A horizontal (``axis='y'``) or vertical line across the panel at ``value``."""
+        """A horizontal (``axis='y'``) or vertical line across the panel at ``value``.
+
+        Parameters
+        ----------
+        value : float
+            Data coordinate (> 0 on a log axis).
+        axis : {'y', 'x'}
+            ``'y'``: a horizontal line at y = value; ``'x'``: a vertical one.
+        colour : str
+        dashed : bool
+        width : float [px]
+
+        Returns
+        -------
+        None
+        """
         dash = ' stroke-dasharray="2 3"' if dashed else ""
         if axis == "y":
             y = _num(self.sy(value))
@@ -219,14 +286,44 @@ class Panel:
         self.items.append(f'<path d="{d}" stroke="{colour}" stroke-width="{width}"{dash}/>')
 
     def segment(self, x0, y0, x1, y1, *, colour="#000", width=1.6):
-        """A line segment in data coordinates."""
+        """A line segment in data coordinates.
+
+        Parameters
+        ----------
+        x0, y0, x1, y1 : float
+            End points (data units).
+        colour : str
+        width : float [px]
+
+        Returns
+        -------
+        None
+        """
         self.items.append(
             f'<path d="M{_num(self.sx(x0))},{_num(self.sy(y0))}L{_num(self.sx(x1))},'
             f'{_num(self.sy(y1))}" stroke="{colour}" stroke-width="{width}"/>'
         )
 
     def bar(self, x: float, width: float, height: float, *, fill: str, stroke="#222", hatch=False):
-        """A bar from 0 (or the lower limit) to ``height`` centred at ``x`` (data units)."""
+        """A bar from 0 (or the lower limit) to ``height`` centred at ``x``.
+
+        Parameters
+        ----------
+        x : float
+            Centre (data units).
+        width : float
+            Bar width (data units).
+        height : float
+            Top of the bar (data units).
+        fill : str
+        stroke : str
+        hatch : bool
+            Fill with the figure's hatch pattern instead of ``fill``.
+
+        Returns
+        -------
+        None
+        """
         base = max(self.ylim[0], 0.0)
         x0, x1 = self.sx(x - width / 2), self.sx(x + width / 2)
         y0, y1 = self.sy(height), self.sy(base)
@@ -237,7 +334,24 @@ class Panel:
         )
 
     def text(self, x: float, y: float, s: str, *, size=11, anchor="middle", dy=0.0, colour="#222"):
-        """Text at a data point, shifted ``dy`` px."""
+        """Text at a data point, shifted ``dy`` px.
+
+        Parameters
+        ----------
+        x, y : float
+            Data coordinates.
+        s : str
+            Shown literally (escaped).
+        size : float [px]
+        anchor : {'start', 'middle', 'end'}
+        dy : float [px]
+            Downward shift.
+        colour : str
+
+        Returns
+        -------
+        None
+        """
         self.items.append(
             f'<text x="{_num(self.sx(x))}" y="{_num(self.sy(y) + dy)}" font-size="{size}" '
             f'text-anchor="{anchor}" fill="{colour}">{_esc(s)}</text>'
@@ -330,7 +444,21 @@ class Plot:
         self.items: list[str] = []
 
     def panel(self, x, y, w, h, *, xlim, ylim, xlog=False, ylog=False) -> Panel:
-        """Add a plotting area (pixels) with its data limits."""
+        """Add a plotting area with its data limits.
+
+        Parameters
+        ----------
+        x, y, w, h : float [px]
+            The area in the figure (y down).
+        xlim, ylim : (float, float)
+            Data limits (positive on a log axis).
+        xlog, ylog : bool
+            Logarithmic axes.
+
+        Returns
+        -------
+        Panel
+        """
         p = Panel(x, y, w, h, tuple(xlim), tuple(ylim), xlog, ylog)
         self.panels.append(p)
         return p
@@ -350,8 +478,23 @@ class Plot:
     ):
         """Frame, grid, ticks and labels of a panel.
 
-        ``xticks``/``yticks``: tick values (default: round ones); ``ycats``: category
-        names at y = 0, 1, ... instead of numbers.
+        Parameters
+        ----------
+        p : Panel
+        xlabel, ylabel : str
+            Axis labels (empty: none).
+        xticks, yticks : sequence of float, optional
+            Tick values (default: round ones, :func:`linear_ticks` / :func:`log_ticks`).
+        ycats : sequence of str, optional
+            Category names at y = 0, 1, ... instead of numbers.
+        xgrid, ygrid : bool
+            Grid lines at the ticks.
+        ylabels : bool
+            Label the y ticks.
+
+        Returns
+        -------
+        None
         """
         xt = xticks if xticks is not None else self._auto(p.xlim, p.xlog)
         if ycats is not None:
@@ -401,8 +544,23 @@ class Plot:
         return 20 + max([text_width(str(t), 12) for t in labels] + [10])
 
     def legend(self, items, x: float, y: float, *, width: float, size: float = 12) -> float:
-        """Legend entries laid out in rows from (x, y) within ``width`` px; returns
-        the height used."""
+        """Legend entries laid out in rows from (x, y), wrapping within ``width``.
+
+        Parameters
+        ----------
+        items : sequence of LegendItem
+        x, y : float [px]
+            Top left corner.
+        width : float [px]
+            Width available; an entry that does not fit starts a new row.
+        size : float [px]
+            Font size.
+
+        Returns
+        -------
+        float [px]
+            The height used.
+        """
         cx, cy, row_h = x, y, size * 1.6
         for it in items:
             w = 34 + text_width(it.label, size)
@@ -427,7 +585,22 @@ class Plot:
         return cy + row_h - y
 
     def text(self, x, y, s, *, anchor="start", cls="", size=None):
-        """Free text at (x, y) px."""
+        """Free text at (x, y).
+
+        Parameters
+        ----------
+        x, y : float [px]
+        s : str
+            Shown literally (escaped).
+        anchor : {'start', 'middle', 'end'}
+        cls : str
+            CSS class (``title``, ``label``).
+        size : float [px], optional
+
+        Returns
+        -------
+        None
+        """
         c = f' class="{cls}"' if cls else ""
         fs = f' font-size="{size}"' if size else ""
         self.items.append(

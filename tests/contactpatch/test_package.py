@@ -105,7 +105,6 @@ METHOD_DOCS_PENDING = (
     "tiremesh.case",
     "tiremesh.solver.api",
     "tiremesh.solver.arrays",
-    "contactpatch.study.svgplot",
     "contactpatch.study.validate",
 )
 
