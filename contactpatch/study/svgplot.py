@@ -15,11 +15,14 @@ from __future__ import annotations
 
 import html
 import math
+import re
 from dataclasses import dataclass, field
 
 FONT = 'system-ui, -apple-system, "Segoe UI", Roboto, "DejaVu Sans", Arial, sans-serif'
 #: text width estimate per character, in font sizes
 CHAR_WIDTH = 0.56
+#: width of the legend column of the narrow (stacked) view [px]
+NARROW_WIDTH = 360.0
 
 
 def text_width(text: str, size: float) -> float:
@@ -153,6 +156,8 @@ class Panel:
     xlog, ylog : bool
     items : list of str
         SVG elements drawn in this panel (clipped to it).
+    pad_left : float [px]
+        Room its tick and axis labels take to its left (set by :meth:`Plot.axes`).
     """
 
     x: float
@@ -164,6 +169,7 @@ class Panel:
     xlog: bool = False
     ylog: bool = False
     items: list = field(default_factory=list)
+    pad_left: float = 82.0
 
     def sx(self, v: float) -> float:
         """Data x -> pixel x.
@@ -442,6 +448,7 @@ class Plot:
         self.width, self.height = width, height
         self.panels: list[Panel] = []
         self.items: list[str] = []
+        self.legend_items: list[LegendItem] = []  # every entry, for the narrow layout
 
     def panel(self, x, y, w, h, *, xlim, ylim, xlog=False, ylog=False) -> Panel:
         """Add a plotting area with its data limits.
@@ -532,6 +539,9 @@ class Plot:
             out.append(
                 f'<text transform="translate({_num(cx)},{_num(cy)}) rotate(-90)" text-anchor="middle" class="label">{_esc(ylabel)}</text>'
             )
+        labels = [str(c) for c in ycats] if ycats is not None else [tick_label(v) for v in yt]
+        ticks_w = max([text_width(t, 12) for t in labels] if ylabels else [0.0])
+        p.pad_left = (self._ylabel_offset(yt, ycats) + 14) if ylabel else ticks_w + 16
         self.items.extend(out)
 
     @staticmethod
@@ -561,6 +571,10 @@ class Plot:
         float [px]
             The height used.
         """
+        self.legend_items += [it for it in items if it not in self.legend_items]
+        return self._legend_rows(items, x, y, width=width, size=size)
+
+    def _legend_rows(self, items, x, y, *, width, size=12.0) -> float:
         cx, cy, row_h = x, y, size * 1.6
         for it in items:
             w = 34 + text_width(it.label, size)
@@ -607,6 +621,40 @@ class Plot:
             f'<text x="{_num(x)}" y="{_num(y)}" text-anchor="{anchor}"{c}{fs}>{_esc(s)}</text>'
         )
 
+    def _crop(self, p: Panel) -> tuple[float, float, float, float]:
+        """A panel's box with room for its ticks, labels and title, stopping short
+        of the neighbours' (panels sharing an axis sit close together)."""
+        row = [q for q in self.panels if q is not p and _overlap(p.y, p.h, q.y, q.h)]
+        col = [q for q in self.panels if q is not p and _overlap(p.x, p.w, q.x, q.w)]
+        x0 = max([p.x - p.pad_left, 0.0, *(q.x + q.w + 18 for q in row if q.x + q.w <= p.x)])
+        x1 = min(
+            [p.x + p.w + 18, self.width, *(q.x - q.pad_left for q in row if q.x >= p.x + p.w)]
+        )
+        y0 = max([p.y - 46, 0.0, *(q.y + q.h + 44 for q in col if q.y + q.h <= p.y)])
+        y1 = min([p.y + p.h + 48, self.height, *(q.y - 12 for q in col if q.y >= p.y + p.h)])
+        return x0, y0, max(x1, p.x + p.w + 4), max(y1, p.y + p.h + 24)
+
+    def _narrow_layout(self) -> tuple[str, str]:
+        """The crops of the narrow (stacked) view and its legend.
+
+        Each panel with its tick labels, axis labels and title is one crop; every
+        legend entry of the figure is laid out again, one column of
+        :data:`NARROW_WIDTH` px, below the figure's ``viewBox`` (so the wide view
+        does not show it), and is the last crop.
+        """
+        crops = []
+        for p in self.panels:
+            x0, y0, x1, y1 = self._crop(p)
+            crops.append((x0, y0, x1 - x0, y1 - y0))
+        narrow = ""
+        if self.legend_items:
+            kept, self.items = self.items, []
+            y0 = self.height + 20
+            h = self._legend_rows(self.legend_items, 8, y0, width=NARROW_WIDTH - 16)
+            narrow, self.items = "".join(self.items), kept
+            crops.append((0.0, y0 - 6, NARROW_WIDTH, h + 12))
+        return ";".join(" ".join(_num(v) for v in c) for c in crops), narrow
+
     def svg(self, name: str, title: str = "") -> str:
         """The figure as an SVG document.
 
@@ -631,6 +679,7 @@ class Plot:
             'patternTransform="rotate(45)"><rect width="6" height="6" fill="#ddd"/>'
             '<path d="M0,0V6" stroke="#777" stroke-width="1.5"/></pattern>'
         )
+        crops, narrow = self._narrow_layout()
         body = [
             f'<g clip-path="url(#{name}-c{k})">'
             + "".join(p.items).replace("url(#hatch)", f"url(#{name}-hatch)")
@@ -645,18 +694,60 @@ class Plot:
         return (
             '<?xml version="1.0" encoding="utf-8"?>\n'
             f'<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 {_num(self.width)} {_num(self.height)}" '
-            f'width="{_num(self.width)}" height="{_num(self.height)}" font-family=\'{FONT}\'>'
+            f'width="{_num(self.width)}" height="{_num(self.height)}" font-family=\'{FONT}\' '
+            f'data-crops="{crops}">'
             + (f"<title>{_esc(title)}</title>" if title else "")
             + style
             + f"<defs>{''.join(defs)}</defs>"
+            + f'<g id="{name}-all">'
             + f'<rect width="{_num(self.width)}" height="{_num(self.height)}" fill="#fff"/>'
             + "".join(self.items)
             + "".join(body)
-            + "</svg>\n"
+            + narrow
+            + "</g></svg>\n"
         )
 
 
+def _overlap(a: float, la: float, b: float, lb: float) -> bool:
+    """Whether the intervals [a, a + la] and [b, b + lb] overlap."""
+    return a < b + lb and b < a + la
+
+
+def stack_html(svg: str) -> str:
+    """The narrow view of a figure: each panel, then the legend, as a small SVG of
+    its own that shows a crop of the figure (``<use>`` of its group, no copy).
+
+    A page shows it instead of the wide figure on small screens (the figure stays in
+    the page, so the crops can refer to it).
+
+    Parameters
+    ----------
+    svg : str
+        A figure of :meth:`Plot.svg` (inlined in the same page).
+
+    Returns
+    -------
+    str
+        ``<div class="stack">`` with one ``<svg>`` per crop; empty when the figure
+        has fewer than two crops (a single panel scales well enough).
+    """
+    crops = re.search(r'data-crops="([^"]*)"', svg)
+    group = re.search(r'<g id="([^"]+)-all">', svg)
+    boxes = [c for c in (crops.group(1).split(";") if crops else []) if c]
+    if group is None or len(boxes) < 2:
+        return ""
+    ref = _esc(group.group(1) + "-all")
+    parts = [
+        f"<svg viewBox=\"{_esc(b)}\" font-family='{FONT}' "
+        f'style="aspect-ratio:{float(b.split()[2]):.1f}/{float(b.split()[3]):.1f}">'
+        f'<use href="#{ref}"/></svg>'
+        for b in boxes
+    ]
+    return f'<div class="stack" aria-hidden="true">{"".join(parts)}</div>'
+
+
 __all__ = [
+    "NARROW_WIDTH",
     "LegendItem",
     "Panel",
     "Plot",
@@ -664,6 +755,7 @@ __all__ = [
     "log_ticks",
     "marker_svg",
     "nice_limits",
+    "stack_html",
     "text_width",
     "tick_label",
 ]

@@ -97,7 +97,12 @@ section#validation .num{text-align:right;font-variant-numeric:tabular-nums;white
 section#validation th{background:#eee}
 section#validation .vscroll,section#validation .figscroll{overflow-x:auto;max-width:100%}
 section#validation .figscroll svg{display:block;max-width:none;width:100%;min-width:720px;height:auto}
-section#validation figcaption{font-size:13px;color:#555}"""
+section#validation figcaption{font-size:13px;color:#555}
+section#validation .stack{display:none}
+@media (max-width:600px){section#validation .stacked{position:relative;overflow:visible}
+section#validation .stacked>svg{position:absolute;width:1px;height:1px;min-width:0;overflow:hidden;clip-path:inset(50%)}
+section#validation .stacked>.stack{display:block}
+section#validation .stack svg{display:block;width:100%;max-width:30rem;min-width:0;height:auto;margin:0 auto .6rem}}"""
 #: why the model misses a quantity, with the dissertation's section
 WHY = {
     "cornering_stiffness": (
@@ -569,10 +574,13 @@ def summary_markdown(data: dict) -> str:
 
 def _img(name: str, svg: str, caption: str) -> str:
     from .pages import inline_svg
+    from .svgplot import stack_html
 
+    stack = stack_html(svg)  # small screens: the panels one below the other
+    box = "figscroll stacked" if stack else "figscroll"
     return (
-        f'<figure id="vfig-{name}" class="chart"><div class="figscroll">'
-        f"{inline_svg(svg, caption)}</div>"
+        f'<figure id="vfig-{name}" class="chart"><div class="{box}">'
+        f"{inline_svg(svg, caption)}{stack}</div>"
         f"<figcaption>{html.escape(caption)} <span class='files'>(vector file: "
         f"<code>figures/{name}.svg</code> of the validation)</span></figcaption></figure>"
     )

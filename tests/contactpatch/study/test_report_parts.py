@@ -226,3 +226,26 @@ def test_t975_table_is_scipys_quantile():
     for dof in range(1, len(T975) + 2):
         assert t975(dof) == float(stdtrit(dof, 0.975))
     assert_allclose(t975(2), 4.302653, rtol=1e-6)
+
+
+def test_stack_html_crops_each_panel_and_the_legend():
+    from contactpatch.study.svgplot import LegendItem, Plot, stack_html
+
+    plot = Plot(900, 400)
+    for k in range(3):
+        p = plot.panel(80 + 280 * k, 40, 200, 250, xlim=(0, 1), ylim=(0, 1))
+        plot.axes(p, xlabel="x", ylabel="y" if k == 0 else "")
+    plot.legend(
+        [LegendItem("tire A", "#D55E00"), LegendItem("tire B", "#0072B2")], 80, 340, width=800
+    )
+    svg = plot.svg("demo")
+    stack = stack_html(svg)
+    boxes = re.findall(r'viewBox="([^"]+)"><use href="#demo-all"/>', stack)
+    assert len(boxes) == 4  # three panels, then the legend laid out again
+    x0, _, w, _ = map(float, boxes[1].split())
+    assert x0 >= 80 + 200 and x0 + w <= 80 + 2 * 280  # panel 2 alone, not its neighbours
+    assert float(boxes[3].split()[1]) > 400  # the narrow legend lies below the wide view
+    assert svg.count(">tire A</text>") == 2
+    single = Plot(400, 300)
+    single.panel(60, 20, 300, 240, xlim=(0, 1), ylim=(0, 1))
+    assert stack_html(single.svg("one")) == ""  # one panel: scales, no stack
