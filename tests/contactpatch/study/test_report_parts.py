@@ -240,7 +240,7 @@ def test_stack_html_crops_each_panel_and_the_legend():
     )
     svg = plot.svg("demo")
     stack = stack_html(svg)
-    boxes = re.findall(r'viewBox="([^"]+)"><use href="#demo-all"/>', stack)
+    boxes = re.findall(r'viewBox="([^"]+)"[^>]*><use href="#demo-all"/>', stack)
     assert len(boxes) == 4  # three panels, then the legend laid out again
     x0, _, w, _ = map(float, boxes[1].split())
     assert x0 >= 80 + 200 and x0 + w <= 80 + 2 * 280  # panel 2 alone, not its neighbours
