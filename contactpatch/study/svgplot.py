@@ -540,7 +540,7 @@ class Plot:
                 f'<text transform="translate({_num(cx)},{_num(cy)}) rotate(-90)" text-anchor="middle" class="label">{_esc(ylabel)}</text>'
             )
         labels = [str(c) for c in ycats] if ycats is not None else [tick_label(v) for v in yt]
-        ticks_w = max([text_width(t, 12) for t in labels] if ylabels else [0.0])
+        ticks_w = max([0.0, *(text_width(t, 12) for t in labels)]) if ylabels else 0.0
         p.pad_left = (self._ylabel_offset(yt, ycats) + 14) if ylabel else ticks_w + 16
         self.items.extend(out)
 

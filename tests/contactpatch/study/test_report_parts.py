@@ -249,3 +249,6 @@ def test_stack_html_crops_each_panel_and_the_legend():
     single = Plot(400, 300)
     single.panel(60, 20, 300, 240, xlim=(0, 1), ylim=(0, 1))
     assert stack_html(single.svg("one")) == ""  # one panel: scales, no stack
+    empty = Plot(400, 300)
+    empty.axes(empty.panel(60, 20, 300, 240, xlim=(0, 1), ylim=(0, 1)), xticks=[], yticks=[])
+    assert "<svg" in empty.svg("empty")  # a panel without ticks (no points) draws

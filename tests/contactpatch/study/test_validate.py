@@ -291,7 +291,7 @@ def test_report_section_escapes_and_caches(run, monkeypatch):
     _, out = run
     html, md = V.report_section(out)
     assert html.startswith('<section id="validation">') and html.rstrip().endswith("</section>")
-    assert html.count("<svg") == 2 and "data:image/png" not in html  # inline SVG
+    assert html.count("<svg xmlns") == 2 and "data:image/png" not in html  # inline SVG
     assert "&lt;0.15 to &gt;0.35" in html  # the stated range of 8.1.2, escaped
     assert "<0.15" not in html
     assert f"]({out.name}/figures/measured_vs_model.svg)" in md
@@ -318,7 +318,7 @@ def test_report_section_numbers_follow_the_report(run):
     assert "casing modulus E without it [N/mm^2]" in html
     assert "| bar |" in md and "---:|" in md
     # the figures sit in a scroll box rather than shrinking
-    assert html.count('<div class="figscroll">') == 2
+    assert html.count('<div class="figscroll') == 2
 
 
 def test_validation_fmt_by_quantity():
