@@ -30,6 +30,7 @@ import dataclasses
 import hashlib
 import importlib.util
 import json
+import math
 import os
 import time
 from dataclasses import dataclass, field
@@ -624,6 +625,27 @@ def _analyze_jobs(
     return rows
 
 
+def idle_cores() -> int:
+    """Cores not busy with other work: the CPU count less the 1-minute load average,
+    at least 1 (then the batch runs in this process).
+
+    On a machine whose cores other programs already keep busy, more worker processes
+    only add their start-up (a fresh interpreter importing OpenCV, scikit-image and
+    shapely, ~1 s each) and contend for the same cores; on an idle machine every
+    core works.
+
+    Returns
+    -------
+    int
+    """
+    cores = os.cpu_count() or 1
+    try:
+        load = os.getloadavg()[0]
+    except (AttributeError, OSError):  # pragma: no cover - no load average (Windows)
+        return cores
+    return max(1, min(cores, math.floor(cores - load + 0.5)))  # a core half idle counts
+
+
 def run_batch(
     src=None,
     out="results.csv",
@@ -654,7 +676,8 @@ def run_batch(
     options : Options or AnalysisOptions, optional
         Batch options; they reach every worker process or Dask worker.
     workers : int, optional
-        Local worker processes (default: all cores; 1 = in this process).
+        Local worker processes (default: the idle cores, :func:`idle_cores`; 1 = in
+        this process).
     scheduler : str, optional
         Address of a dask.distributed scheduler; the work is sent there.
     scheduler_timeout : float [s]
@@ -694,6 +717,8 @@ def run_batch(
     out = _check_out(out)
     if workers is not None and workers < 1:
         raise InvalidInput("workers", workers, ">= 1")
+    if workers is None and not scheduler:
+        workers = idle_cores()
     if isinstance(scheduler, str) and scheduler.strip():
         check_scheduler(scheduler, timeout=scheduler_timeout)  # before any work
     jobs = collect_jobs(src, manifest, allow_outside=allow_outside)
@@ -732,6 +757,7 @@ __all__ = [
     "ResumePlan",
     "collect_jobs",
     "file_hash",
+    "idle_cores",
     "overlay_name",
     "plan_resume",
     "process_file",

@@ -454,7 +454,9 @@ def _batch_parser(sub, common) -> None:
     p.add_argument(
         "--allow-outside", action="store_true", help="read manifest files outside its folder"
     )
-    p.add_argument("--workers", type=int, help="local worker processes (default: all cores)")
+    p.add_argument(
+        "--workers", type=int, help="local worker processes (default: the idle cores, at least 1)"
+    )
     p.add_argument("--scheduler", help="dask.distributed scheduler address, e.g. tcp://host:8786")
     p.add_argument(
         "--scheduler-timeout",

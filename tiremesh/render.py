@@ -205,6 +205,94 @@ def view_camera(view: str, tire_mesh: TireMesh) -> ViewCamera:
     return ViewCamera((0.0, 0.0, 0.0), 0.0, -90.0, 0.55 * p.length + 1.6 * r0)
 
 
+#: views framed on the bounds of what they draw (:func:`fit_camera`); the side and
+#: bottom views frame the patch's neighbourhood on purpose (the wheel runs out of them)
+FITTED_VIEWS = ("iso", "front")
+#: free border around the fitted model, a fraction of the half-height
+FIT_MARGIN = 0.08
+#: height of the front view's framed part of the tire [tire radii r0]: its section
+#: with the rim's (the iso view frames the lower half of the wheel)
+FRONT_FRAME_HEIGHT = 3.6
+#: height of the iso view's framed part of the wheel [wheel radii]: up to 0.6 the
+#: arc is within 8 % (the margin) of its widest, so it leaves the frame at the top
+ISO_FRAME_HEIGHT = 0.6
+
+
+def image_axes(c: ViewCamera) -> tuple[np.ndarray, np.ndarray]:
+    """Unit vectors of the image's right and up directions in the world.
+
+    Parameters
+    ----------
+    c : ViewCamera
+
+    Returns
+    -------
+    right, up : (3,) float
+    """
+    position, focal, up = c.position(1.0)
+    look = np.asarray(focal, float) - np.asarray(position, float)
+    right = np.cross(look, up)
+    right /= np.linalg.norm(right)
+    return right, np.cross(right, look) / np.linalg.norm(np.cross(right, look))
+
+
+def fit_camera(c: ViewCamera, points, *, aspect: float, margin: float = FIT_MARGIN):
+    """The camera looking the same way, framed on the bounds of ``points``.
+
+    Parameters
+    ----------
+    c : ViewCamera
+        Direction (azimuth, elevation) to keep.
+    points : (n, 3) float [mm]
+        What is drawn (tire, rim, patch outline, ruler).
+    aspect : float
+        Width / height of the model's part of the image [-].
+    margin : float
+        Free border, a fraction of the fitted half-height (or half-width).
+
+    Returns
+    -------
+    ViewCamera
+        Focal point at the centre of the projected bounds; parallel scale (half the
+        image height [mm]) such that they fit both ways.
+    """
+    pts = np.asarray(points, float).reshape(-1, 3)
+    right, up = image_axes(c)
+    u, v = pts @ right, pts @ up
+    uc, vc = 0.5 * (u.min() + u.max()), 0.5 * (v.min() + v.max())
+    look = np.cross(up, right)  # toward the camera
+    depth = float(np.mean(pts @ look))
+    focal = uc * right + vc * up + depth * look
+    half = max(0.5 * (v.max() - v.min()), 0.5 * (u.max() - u.min()) / aspect)
+    return ViewCamera(tuple(float(x) for x in focal), c.azimuth, c.elevation, half * (1 + margin))
+
+
+def frame_points(tire_mesh: TireMesh, view: str) -> np.ndarray:
+    """What a view frames, as points: the patch outline on the surface and the tire
+    up to a height (the front view: its half before the cut, up to the rim's
+    section; the iso view: the lower part of the wheel, so the patch stays large).
+
+    Parameters
+    ----------
+    tire_mesh : TireMesh
+    view : {'iso', 'side', 'front', 'bottom'}
+
+    Returns
+    -------
+    (n, 3) float [mm]
+    """
+    v = np.asarray(tire_mesh.mesh.vertices, float)
+    p = tire_mesh.patch
+    r0 = p.tire.tire_radius
+    if view == "front":
+        v = v[(v[:, 0] <= 0.0) & (v[:, 2] <= FRONT_FRAME_HEIGHT * r0)]
+    elif view == "iso":  # the arc's widest part (within the margin); it leaves at the top
+        v = v[v[:, 2] <= ISO_FRAME_HEIGHT * p.tire.wheel_radius]
+    x = p.surface.roll(p.outline[:, 0])
+    outline = np.column_stack([x, p.outline[:, 1], p.surface.height(x)])
+    return np.concatenate([v, outline])
+
+
 def render(
     tire_mesh: TireMesh | ContactPatch | LoadCase,
     path=None,
@@ -359,9 +447,11 @@ def _scene(tire_mesh: TireMesh, o: _Options, bg, title: bool, cmap, parts: dict)
         if parts["rim"]:
             rim = _cut(_trimesh_vtk(rim_mesh(tire_mesh)), cut)
             ren.AddActor(vs.actor(rim, colour=RIM_COLOR))
+        aspect = (1.0 - right) * w / ((1.0 - top) * h)
+        cam = None if isinstance(o.camera, list) else _camera(o.camera, o.view, tire_mesh, aspect)
         if parts["ruler"]:
-            _add_ruler(ren, tire_mesh, o.view, ink, max(8, round(h / 50)))
-        _set_camera(ren, o.camera, o.view, tire_mesh)
+            _add_ruler(ren, tire_mesh, o.view, ink, max(8, round(h / 50)), cam)
+        _set_camera(ren, o.camera, cam, tire_mesh)
         if title:
             _overlay_title(win, title_lines(tire_mesh), (0.0, 1.0 - top, 1.0, 1.0), ink, h)
         if parts["bar"]:
@@ -578,15 +668,11 @@ def _add_patch_outline(ren, tire_mesh: TireMesh, *, lifted: float) -> None:
         ren.AddActor(vs.actor(vs.lines([pts]), colour=colour, line_width=3))
 
 
-def _set_camera(ren, camera, view: str, tire_mesh: TireMesh) -> None:
+def _set_camera(ren, camera, c: ViewCamera | None, tire_mesh: TireMesh) -> None:
     cam = ren.GetActiveCamera()
     if isinstance(camera, list):
         position, focal, up = camera
     else:
-        c = view_camera(view, tire_mesh)
-        if camera is not None:
-            az, el, zoom = camera
-            c = ViewCamera(c.focal, az, el, c.scale / zoom)
         position, focal, up = c.position(8.0 * tire_mesh.patch.tire.wheel_radius)
         cam.ParallelProjectionOn()
         cam.SetParallelScale(c.scale)
@@ -596,6 +682,53 @@ def _set_camera(ren, camera, view: str, tire_mesh: TireMesh) -> None:
     if isinstance(camera, list):
         ren.ResetCamera()
     ren.ResetCameraClippingRange()
+
+
+def _camera(camera, view: str, tire_mesh: TireMesh, aspect: float) -> ViewCamera:
+    """The view's camera (fitted to what it draws, :data:`FITTED_VIEWS`, with room
+    for the front view's ruler below), turned to ``camera``'s azimuth and elevation
+    and magnified by its zoom."""
+    c = view_camera(view, tire_mesh)
+    zoom = 1.0
+    if camera is not None:
+        az, el, zoom = camera
+        c = ViewCamera(c.focal, az, el, c.scale)
+    if view in FITTED_VIEWS:
+        pts = frame_points(tire_mesh, view)
+        c = fit_camera(c, pts, aspect=aspect)
+        if view == "front":  # the ruler below the tire, its labels under it
+            a, b = front_ruler(c, pts, _front_ruler_length(tire_mesh))
+            below = np.stack([a, b]) - 0.12 * c.scale * image_axes(c)[1]
+            c = fit_camera(c, np.concatenate([pts, below]), aspect=aspect)
+    return ViewCamera(c.focal, c.azimuth, c.elevation, c.scale / zoom)
+
+
+def _front_ruler_length(tire_mesh: TireMesh) -> float:
+    return 20.0 * max(1, int(2.4 * tire_mesh.patch.tire.tire_radius // 20))
+
+
+def front_ruler(c: ViewCamera, points, length: float) -> tuple[np.ndarray, np.ndarray]:
+    """Ends of the front view's ruler: in the image plane through the focal point,
+    centred under the framed points and just below them (clear of the tire).
+
+    Parameters
+    ----------
+    c : ViewCamera
+    points : (n, 3) float [mm]
+        What the view frames (:func:`frame_points`).
+    length : float [mm]
+
+    Returns
+    -------
+    a, b : (3,) float [mm]
+    """
+    right, up = image_axes(c)
+    pts = np.asarray(points, float)
+    u, v = pts @ right, pts @ up
+    f = np.asarray(c.focal, float)
+    f_u, f_v = f @ right, f @ up
+    mid = f + (0.5 * (u.min() + u.max()) - f_u) * right + (v.min() - 0.06 * c.scale - f_v) * up
+    return mid - 0.5 * length * right, mid + 0.5 * length * right
 
 
 def _text(ren, text: str, x: float, y: float, size: int, ink, *, bold=False, align="left"):
@@ -707,16 +840,19 @@ def _overlay_triad(win, main, viewport, ink, font_size: int) -> None:
     ren.ResetCameraClippingRange()
 
 
-def _add_ruler(ren, tire_mesh: TireMesh, view: str, ink, font_size: int) -> None:
-    """A mm ruler with three round labels (0, half, full length)."""
+def _add_ruler(ren, tire_mesh: TireMesh, view: str, ink, font_size: int, cam=None) -> None:
+    """A mm ruler with three round labels (0, half, full length); the front view's
+    under the tire in the image (``cam``: its fitted camera)."""
     from vtkmodules.vtkRenderingAnnotation import vtkAxisActor2D
 
     p = tire_mesh.patch
     r0 = p.tire.tire_radius
     side = -1.0 if p.camber >= 0 else 1.0
     if view == "front":
-        length = 20.0 * max(1, int(2.4 * r0 // 20))
+        length = _front_ruler_length(tire_mesh)
         a, b = (0.0, -length / 2, -0.25 * r0), (0.0, length / 2, -0.25 * r0)
+        if cam is not None:
+            a, b = (tuple(x) for x in front_ruler(cam, frame_points(tire_mesh, view), length))
     else:
         step = 20.0 if p.length < 150 else 100.0
         length = step * max(1, int(p.length // step))

@@ -27,6 +27,7 @@ from typing import TYPE_CHECKING
 from .footprints import footprint_rows
 from .numbers import as_number, column_kind, estimate, fmt, interval, pressure_note
 from .sheets import outline_svg
+from .svgplot import stack_html
 from .trends import describe_agreement
 from .viewer import viewer_html
 
@@ -297,6 +298,9 @@ def inline_svg(svg: str, label: str) -> str:
     return head + body[head_end:]
 
 
+_SCROLL_HINT = "<span class='scrollhint'>Scroll sideways for the whole figure. </span>"
+
+
 def figure_html(fig: Figure) -> str:
     """A report figure, inline, with its caption and the name of its SVG file.
 
@@ -308,10 +312,12 @@ def figure_html(fig: Figure) -> str:
     -------
     str
     """
+    stack = stack_html(fig.svg)  # small screens: the panels one below the other
+    box, hint = ("chartbox stacked", "") if stack else ("chartbox", _SCROLL_HINT)
     return (
-        f'<figure id="fig-{fig.name}" class="chart"><div class="chartbox" tabindex="0">'
-        f"{inline_svg(fig.svg, fig.caption)}</div>"
-        f"<figcaption><span class='scrollhint'>Scroll sideways for the whole figure. </span>"
+        f'<figure id="fig-{fig.name}" class="chart"><div class="{box}" tabindex="0">'
+        f"{inline_svg(fig.svg, fig.caption)}{stack}</div>"
+        f"<figcaption>{hint}"
         f"{html.escape(fig.caption)} <span class='files'>(vector file: "
         f"<code>figures/{fig.path.name}</code>)</span></figcaption></figure>"
     )

@@ -15,11 +15,14 @@ from __future__ import annotations
 
 import html
 import math
+import re
 from dataclasses import dataclass, field
 
 FONT = 'system-ui, -apple-system, "Segoe UI", Roboto, "DejaVu Sans", Arial, sans-serif'
 #: text width estimate per character, in font sizes
 CHAR_WIDTH = 0.56
+#: width of the legend column of the narrow (stacked) view [px]
+NARROW_WIDTH = 360.0
 
 
 def text_width(text: str, size: float) -> float:
@@ -153,6 +156,8 @@ class Panel:
     xlog, ylog : bool
     items : list of str
         SVG elements drawn in this panel (clipped to it).
+    pad_left : float [px]
+        Room its tick and axis labels take to its left (set by :meth:`Plot.axes`).
     """
 
     x: float
@@ -164,16 +169,37 @@ class Panel:
     xlog: bool = False
     ylog: bool = False
     items: list = field(default_factory=list)
+    pad_left: float = 82.0
 
     def sx(self, v: float) -> float:
-        """Data x -> pixel x."""
+        """Data x -> pixel x.
+
+        Parameters
+        ----------
+        v : float
+            In data units (> 0 on a log axis).
+
+        Returns
+        -------
+        float [px]
+        """
         a, b = self.xlim
         if self.xlog:
             v, a, b = math.log(v), math.log(a), math.log(b)
         return self.x + (v - a) / (b - a) * self.w
 
     def sy(self, v: float) -> float:
-        """Data y -> pixel y."""
+        """Data y -> pixel y (down).
+
+        Parameters
+        ----------
+        v : float
+            In data units (> 0 on a log axis).
+
+        Returns
+        -------
+        float [px]
+        """
         a, b = self.ylim
         if self.ylog:
             v, a, b = math.log(v), math.log(a), math.log(b)
@@ -184,7 +210,25 @@ class Panel:
         return good and (not self.xlog or x > 0) and (not self.ylog or y > 0)
 
     def scatter(self, xs, ys, *, colour: str, marker: str = "o", filled=True, size=4.5, alpha=1.0):
-        """Markers at the points (non-finite points are left out), in one group."""
+        """Markers at the points (non-finite points are left out), in one group.
+
+        Parameters
+        ----------
+        xs, ys : sequence of float
+            Data coordinates, equal lengths.
+        colour : str
+        marker : {'o', 's', 'D', '^', 'v'}
+        filled : bool
+            Filled, or white with a coloured edge.
+        size : float [px]
+            Half-width of a marker.
+        alpha : float
+            Opacity in [0, 1].
+
+        Returns
+        -------
+        None
+        """
         shapes = [
             _shape(self.sx(x), self.sy(y), marker, size)
             for x, y in zip(xs, ys, strict=True)
@@ -194,7 +238,21 @@ class Panel:
             self.items.append(f"<g {_style(colour, filled, alpha)}>{''.join(shapes)}</g>")
 
     def line(self, xs, ys, *, colour: str, dashed: bool = False, width: float = 1.6):
-        """A polyline through the points (broken at non-finite ones)."""
+        """A polyline through the points (non-finite points are left out).
+
+        Parameters
+        ----------
+        xs, ys : sequence of float
+            Data coordinates, equal lengths.
+        colour : str
+        dashed : bool
+        width : float [px]
+            Stroke width.
+
+        Returns
+        -------
+        None
+        """
         pts = [
             f"{_num(self.sx(x))},{_num(self.sy(y))}"
             for x, y in zip(xs, ys, strict=True)
@@ -208,7 +266,22 @@ class Panel:
             )
 
     def rule(self, value: float, *, axis: str = "y", colour="#555", dashed=True, width=1.0):
-        """A horizontal (``axis='y'``) or vertical line across the panel at ``value``."""
+        """A horizontal (``axis='y'``) or vertical line across the panel at ``value``.
+
+        Parameters
+        ----------
+        value : float
+            Data coordinate (> 0 on a log axis).
+        axis : {'y', 'x'}
+            ``'y'``: a horizontal line at y = value; ``'x'``: a vertical one.
+        colour : str
+        dashed : bool
+        width : float [px]
+
+        Returns
+        -------
+        None
+        """
         dash = ' stroke-dasharray="2 3"' if dashed else ""
         if axis == "y":
             y = _num(self.sy(value))
@@ -219,14 +292,44 @@ class Panel:
         self.items.append(f'<path d="{d}" stroke="{colour}" stroke-width="{width}"{dash}/>')
 
     def segment(self, x0, y0, x1, y1, *, colour="#000", width=1.6):
-        """A line segment in data coordinates."""
+        """A line segment in data coordinates.
+
+        Parameters
+        ----------
+        x0, y0, x1, y1 : float
+            End points (data units).
+        colour : str
+        width : float [px]
+
+        Returns
+        -------
+        None
+        """
         self.items.append(
             f'<path d="M{_num(self.sx(x0))},{_num(self.sy(y0))}L{_num(self.sx(x1))},'
             f'{_num(self.sy(y1))}" stroke="{colour}" stroke-width="{width}"/>'
         )
 
     def bar(self, x: float, width: float, height: float, *, fill: str, stroke="#222", hatch=False):
-        """A bar from 0 (or the lower limit) to ``height`` centred at ``x`` (data units)."""
+        """A bar from 0 (or the lower limit) to ``height`` centred at ``x``.
+
+        Parameters
+        ----------
+        x : float
+            Centre (data units).
+        width : float
+            Bar width (data units).
+        height : float
+            Top of the bar (data units).
+        fill : str
+        stroke : str
+        hatch : bool
+            Fill with the figure's hatch pattern instead of ``fill``.
+
+        Returns
+        -------
+        None
+        """
         base = max(self.ylim[0], 0.0)
         x0, x1 = self.sx(x - width / 2), self.sx(x + width / 2)
         y0, y1 = self.sy(height), self.sy(base)
@@ -237,7 +340,24 @@ class Panel:
         )
 
     def text(self, x: float, y: float, s: str, *, size=11, anchor="middle", dy=0.0, colour="#222"):
-        """Text at a data point, shifted ``dy`` px."""
+        """Text at a data point, shifted ``dy`` px.
+
+        Parameters
+        ----------
+        x, y : float
+            Data coordinates.
+        s : str
+            Shown literally (escaped).
+        size : float [px]
+        anchor : {'start', 'middle', 'end'}
+        dy : float [px]
+            Downward shift.
+        colour : str
+
+        Returns
+        -------
+        None
+        """
         self.items.append(
             f'<text x="{_num(self.sx(x))}" y="{_num(self.sy(y) + dy)}" font-size="{size}" '
             f'text-anchor="{anchor}" fill="{colour}">{_esc(s)}</text>'
@@ -245,7 +365,7 @@ class Panel:
 
 
 def marker_svg(x, y, marker: str, *, colour: str, filled: bool, size: float, alpha=1.0) -> str:
-    """One marker: ``o`` circle, ``s`` square, ``D`` diamond, ``^`` triangle.
+    """One marker: ``o`` circle, ``s`` square, ``D`` diamond, ``^`` / ``v`` triangle.
 
     Parameters
     ----------
@@ -277,11 +397,16 @@ def _shape(x: float, y: float, marker: str, r: float) -> str:
     if marker == "s":
         r *= 0.88
         return f'<rect x="{_num(x - r)}" y="{_num(y - r)}" width="{_num(2 * r)}" height="{_num(2 * r)}"/>'
-    if marker in ("D", "^"):
+    if marker in ("D", "^", "v"):
         if marker == "D":
             pts = [(x, y - 1.25 * r), (x + r, y), (x, y + 1.25 * r), (x - r, y)]
         else:
-            pts = [(x, y - 1.2 * r), (x + 1.1 * r, y + 0.8 * r), (x - 1.1 * r, y + 0.8 * r)]
+            k = 1 if marker == "^" else -1  # apex up or down
+            pts = [
+                (x, y - k * 1.2 * r),
+                (x + 1.1 * r, y + k * 0.8 * r),
+                (x - 1.1 * r, y + k * 0.8 * r),
+            ]
         return '<polygon points="' + " ".join(f"{_num(a)},{_num(b)}" for a, b in pts) + '"/>'
     return f'<circle cx="{_num(x)}" cy="{_num(y)}" r="{_num(r)}"/>'
 
@@ -323,9 +448,24 @@ class Plot:
         self.width, self.height = width, height
         self.panels: list[Panel] = []
         self.items: list[str] = []
+        self.legend_items: list[LegendItem] = []  # every entry, for the narrow layout
 
     def panel(self, x, y, w, h, *, xlim, ylim, xlog=False, ylog=False) -> Panel:
-        """Add a plotting area (pixels) with its data limits."""
+        """Add a plotting area with its data limits.
+
+        Parameters
+        ----------
+        x, y, w, h : float [px]
+            The area in the figure (y down).
+        xlim, ylim : (float, float)
+            Data limits (positive on a log axis).
+        xlog, ylog : bool
+            Logarithmic axes.
+
+        Returns
+        -------
+        Panel
+        """
         p = Panel(x, y, w, h, tuple(xlim), tuple(ylim), xlog, ylog)
         self.panels.append(p)
         return p
@@ -345,8 +485,23 @@ class Plot:
     ):
         """Frame, grid, ticks and labels of a panel.
 
-        ``xticks``/``yticks``: tick values (default: round ones); ``ycats``: category
-        names at y = 0, 1, ... instead of numbers.
+        Parameters
+        ----------
+        p : Panel
+        xlabel, ylabel : str
+            Axis labels (empty: none).
+        xticks, yticks : sequence of float, optional
+            Tick values (default: round ones, :func:`linear_ticks` / :func:`log_ticks`).
+        ycats : sequence of str, optional
+            Category names at y = 0, 1, ... instead of numbers.
+        xgrid, ygrid : bool
+            Grid lines at the ticks.
+        ylabels : bool
+            Label the y ticks.
+
+        Returns
+        -------
+        None
         """
         xt = xticks if xticks is not None else self._auto(p.xlim, p.xlog)
         if ycats is not None:
@@ -384,6 +539,9 @@ class Plot:
             out.append(
                 f'<text transform="translate({_num(cx)},{_num(cy)}) rotate(-90)" text-anchor="middle" class="label">{_esc(ylabel)}</text>'
             )
+        labels = [str(c) for c in ycats] if ycats is not None else [tick_label(v) for v in yt]
+        ticks_w = max([0.0, *(text_width(t, 12) for t in labels)]) if ylabels else 0.0
+        p.pad_left = (self._ylabel_offset(yt, ycats) + 14) if ylabel else ticks_w + 16
         self.items.extend(out)
 
     @staticmethod
@@ -396,8 +554,27 @@ class Plot:
         return 20 + max([text_width(str(t), 12) for t in labels] + [10])
 
     def legend(self, items, x: float, y: float, *, width: float, size: float = 12) -> float:
-        """Legend entries laid out in rows from (x, y) within ``width`` px; returns
-        the height used."""
+        """Legend entries laid out in rows from (x, y), wrapping within ``width``.
+
+        Parameters
+        ----------
+        items : sequence of LegendItem
+        x, y : float [px]
+            Top left corner.
+        width : float [px]
+            Width available; an entry that does not fit starts a new row.
+        size : float [px]
+            Font size.
+
+        Returns
+        -------
+        float [px]
+            The height used.
+        """
+        self.legend_items += [it for it in items if it not in self.legend_items]
+        return self._legend_rows(items, x, y, width=width, size=size)
+
+    def _legend_rows(self, items, x, y, *, width, size=12.0) -> float:
         cx, cy, row_h = x, y, size * 1.6
         for it in items:
             w = 34 + text_width(it.label, size)
@@ -422,12 +599,61 @@ class Plot:
         return cy + row_h - y
 
     def text(self, x, y, s, *, anchor="start", cls="", size=None):
-        """Free text at (x, y) px."""
+        """Free text at (x, y).
+
+        Parameters
+        ----------
+        x, y : float [px]
+        s : str
+            Shown literally (escaped).
+        anchor : {'start', 'middle', 'end'}
+        cls : str
+            CSS class (``title``, ``label``).
+        size : float [px], optional
+
+        Returns
+        -------
+        None
+        """
         c = f' class="{cls}"' if cls else ""
         fs = f' font-size="{size}"' if size else ""
         self.items.append(
             f'<text x="{_num(x)}" y="{_num(y)}" text-anchor="{anchor}"{c}{fs}>{_esc(s)}</text>'
         )
+
+    def _crop(self, p: Panel) -> tuple[float, float, float, float]:
+        """A panel's box with room for its ticks, labels and title, stopping short
+        of the neighbours' (panels sharing an axis sit close together)."""
+        row = [q for q in self.panels if q is not p and _overlap(p.y, p.h, q.y, q.h)]
+        col = [q for q in self.panels if q is not p and _overlap(p.x, p.w, q.x, q.w)]
+        x0 = max([p.x - p.pad_left, 0.0, *(q.x + q.w + 18 for q in row if q.x + q.w <= p.x)])
+        x1 = min(
+            [p.x + p.w + 18, self.width, *(q.x - q.pad_left for q in row if q.x >= p.x + p.w)]
+        )
+        y0 = max([p.y - 46, 0.0, *(q.y + q.h + 44 for q in col if q.y + q.h <= p.y)])
+        y1 = min([p.y + p.h + 48, self.height, *(q.y - 12 for q in col if q.y >= p.y + p.h)])
+        return x0, y0, max(x1, p.x + p.w + 4), max(y1, p.y + p.h + 24)
+
+    def _narrow_layout(self) -> tuple[str, str]:
+        """The crops of the narrow (stacked) view and its legend.
+
+        Each panel with its tick labels, axis labels and title is one crop; every
+        legend entry of the figure is laid out again, one column of
+        :data:`NARROW_WIDTH` px, below the figure's ``viewBox`` (so the wide view
+        does not show it), and is the last crop.
+        """
+        crops = []
+        for p in self.panels:
+            x0, y0, x1, y1 = self._crop(p)
+            crops.append((x0, y0, x1 - x0, y1 - y0))
+        narrow = ""
+        if self.legend_items:
+            kept, self.items = self.items, []
+            y0 = self.height + 20
+            h = self._legend_rows(self.legend_items, 8, y0, width=NARROW_WIDTH - 16)
+            narrow, self.items = "".join(self.items), kept
+            crops.append((0.0, y0 - 6, NARROW_WIDTH, h + 12))
+        return ";".join(" ".join(_num(v) for v in c) for c in crops), narrow
 
     def svg(self, name: str, title: str = "") -> str:
         """The figure as an SVG document.
@@ -453,6 +679,7 @@ class Plot:
             'patternTransform="rotate(45)"><rect width="6" height="6" fill="#ddd"/>'
             '<path d="M0,0V6" stroke="#777" stroke-width="1.5"/></pattern>'
         )
+        crops, narrow = self._narrow_layout()
         body = [
             f'<g clip-path="url(#{name}-c{k})">'
             + "".join(p.items).replace("url(#hatch)", f"url(#{name}-hatch)")
@@ -467,18 +694,60 @@ class Plot:
         return (
             '<?xml version="1.0" encoding="utf-8"?>\n'
             f'<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 {_num(self.width)} {_num(self.height)}" '
-            f'width="{_num(self.width)}" height="{_num(self.height)}" font-family=\'{FONT}\'>'
+            f'width="{_num(self.width)}" height="{_num(self.height)}" font-family=\'{FONT}\' '
+            f'data-crops="{crops}">'
             + (f"<title>{_esc(title)}</title>" if title else "")
             + style
             + f"<defs>{''.join(defs)}</defs>"
+            + f'<g id="{name}-all">'
             + f'<rect width="{_num(self.width)}" height="{_num(self.height)}" fill="#fff"/>'
             + "".join(self.items)
             + "".join(body)
-            + "</svg>\n"
+            + narrow
+            + "</g></svg>\n"
         )
 
 
+def _overlap(a: float, la: float, b: float, lb: float) -> bool:
+    """Whether the intervals [a, a + la] and [b, b + lb] overlap."""
+    return a < b + lb and b < a + la
+
+
+def stack_html(svg: str) -> str:
+    """The narrow view of a figure: each panel, then the legend, as a small SVG of
+    its own that shows a crop of the figure (``<use>`` of its group, no copy).
+
+    A page shows it instead of the wide figure on small screens (the figure stays in
+    the page, so the crops can refer to it).
+
+    Parameters
+    ----------
+    svg : str
+        A figure of :meth:`Plot.svg` (inlined in the same page).
+
+    Returns
+    -------
+    str
+        ``<div class="stack">`` with one ``<svg>`` per crop; empty when the figure
+        has fewer than two crops (a single panel scales well enough).
+    """
+    crops = re.search(r'data-crops="([^"]*)"', svg)
+    group = re.search(r'<g id="([^"]+)-all">', svg)
+    boxes = [c for c in (crops.group(1).split(";") if crops else []) if c]
+    if group is None or len(boxes) < 2:
+        return ""
+    ref = _esc(group.group(1) + "-all")
+    parts = [
+        f"<svg viewBox=\"{_esc(b)}\" font-family='{FONT}' "
+        f'style="aspect-ratio:{float(b.split()[2]):.1f}/{float(b.split()[3]):.1f}">'
+        f'<use href="#{ref}"/></svg>'
+        for b in boxes
+    ]
+    return f'<div class="stack" aria-hidden="true">{"".join(parts)}</div>'
+
+
 __all__ = [
+    "NARROW_WIDTH",
     "LegendItem",
     "Panel",
     "Plot",
@@ -486,6 +755,7 @@ __all__ = [
     "log_ticks",
     "marker_svg",
     "nice_limits",
+    "stack_html",
     "text_width",
     "tick_label",
 ]

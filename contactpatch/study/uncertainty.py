@@ -20,6 +20,61 @@ from tiremesh.io import cell_number_or_nan as _f
 
 from .trends import QUANTITIES, log_design, trend_table
 
+#: Student t 97.5 % quantiles for 1..30 degrees of freedom, exactly
+#: ``scipy.special.stdtrit(dof, 0.975)`` (importing scipy.special takes ~1 s of the
+#: report; more degrees of freedom ask scipy)
+T975 = (
+    12.706204736174694,
+    4.302652729749462,
+    3.1824463052837078,
+    2.7764451051977934,
+    2.5705818356363146,
+    2.4469118511449786,
+    2.364624251592784,
+    2.306004135204166,
+    2.262157162798205,
+    2.228138851986274,
+    2.200985160091639,
+    2.1788128296672284,
+    2.1603686564627913,
+    2.144786687917804,
+    2.131449545559776,
+    2.1199052992212546,
+    2.1098155778333156,
+    2.1009220402410382,
+    2.0930240544083087,
+    2.085963447265864,
+    2.0796138447276795,
+    2.0738730679040254,
+    2.0686576104190486,
+    2.0638985616280245,
+    2.0595385527532972,
+    2.0555294386428735,
+    2.0518305164802846,
+    2.0484071417952454,
+    2.045229642132703,
+    2.0422724563012378,
+)
+
+
+def t975(dof: int) -> float:
+    """The Student t distribution's 97.5 % quantile (95 % two-sided interval).
+
+    Parameters
+    ----------
+    dof : int
+        Degrees of freedom, >= 1.
+
+    Returns
+    -------
+    float
+    """
+    if 1 <= dof <= len(T975):
+        return T975[dof - 1]
+    from scipy.special import stdtrit
+
+    return float(stdtrit(dof, 0.975))
+
 
 def fit_with_errors(x_pressure, x_load, y) -> dict:
     """Exponents of ``y ~ p^b F^c`` with their standard errors.
@@ -52,12 +107,10 @@ def fit_with_errors(x_pressure, x_load, y) -> dict:
         out[name] = float(value)
     if dof <= 0 or rank < A.shape[1]:
         return out
-    from scipy.special import stdtrit  # Student t quantile (scipy.stats is slow to import)
-
     resid = yy - A @ coef
     s2 = float(resid @ resid) / dof
     cov = s2 * np.linalg.inv(A.T @ A)
-    t = float(stdtrit(dof, 0.975))
+    t = t975(dof)
     for k, name in enumerate(names, start=1):
         se = math.sqrt(max(cov[k, k], 0.0))
         out[f"{name}_se"], out[f"{name}_ci95"] = se, t * se
@@ -101,4 +154,4 @@ def trend_table_with_errors(paired: list[dict], *, group_keys=("tire", "surface"
     return out
 
 
-__all__ = ["fit_with_errors", "trend_table_with_errors"]
+__all__ = ["T975", "fit_with_errors", "t975", "trend_table_with_errors"]

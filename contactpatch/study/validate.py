@@ -33,12 +33,12 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 import tiremesh as tm
-from tiremesh.io import save_figure, write_table, write_text_atomic
+from tiremesh.io import write_table, write_text_atomic
 
 from ..errors import ContactPatchError
 from . import validate_pages as pages
 from .validate_data import read_measurements
-from .validate_figures import figure_style, measured_vs_model, relaxation_figure
+from .validate_figures import measured_vs_model, relaxation_figure
 from .validate_fit import (
     RelaxationFit,
     cornering_variants,
@@ -386,7 +386,7 @@ def cache_key(measurements_sha: str) -> str:
 
 
 def write_validation(v: Validation, out_dir: str | os.PathLike) -> dict:
-    """Write tables (CSV and JSON), figures (PNG and SVG), ``validation.json``,
+    """Write tables (CSV and JSON), figures (SVG), ``validation.json``,
     ``summary.md`` and ``index.html`` into ``out_dir``, each atomically.
 
     Parameters
@@ -408,14 +408,14 @@ def write_validation(v: Validation, out_dir: str | os.PathLike) -> dict:
         for ext in (".csv", ".json"):
             write_table(data[key], out / f"{name}{ext}", columns=cols)
     figs = out / "figures"
-    with figure_style():
-        fig = measured_vs_model(data["points"], data["statistics"])
-        save_figure(fig, figs / FIGURES[0], dpi=100)
-        save_figure(
-            relaxation_figure(data["fit_curve"], data["variants"]), figs / FIGURES[1], dpi=100
-        )
+    svgs = {
+        FIGURES[0]: measured_vs_model(data["points"], data["statistics"]),
+        FIGURES[1]: relaxation_figure(data["fit_curve"], data["variants"]),
+    }
+    for name, svg in svgs.items():
+        write_text_atomic(figs / f"{name}.svg", svg)
     write_text_atomic(out / "summary.md", pages.summary_markdown(data))
-    write_text_atomic(out / "index.html", pages.standalone_html(data, _figure_bytes(out)))
+    write_text_atomic(out / "index.html", pages.standalone_html(data, svgs))
     write_text_atomic(out / "validation.json", json.dumps(_jsonable(data), indent=1))
     return data
 
@@ -441,8 +441,10 @@ def validate(
     return v
 
 
-def _figure_bytes(out: Path) -> dict[str, bytes]:
-    return {name: (out / "figures" / f"{name}.png").read_bytes() for name in FIGURES}
+def _figure_svgs(out: Path) -> dict[str, str]:
+    return {
+        name: (out / "figures" / f"{name}.svg").read_text(encoding="utf-8") for name in FIGURES
+    }
 
 
 def _jsonable(x):
@@ -472,7 +474,7 @@ def load_cached(out_dir: str | os.PathLike, key: str) -> dict | None:
     -------
     dict or None
         ``validation.json`` as read (JSON nulls in the tables back to NaN), or None
-        if it is missing, unreadable, of another key or a figure PNG is missing.
+        if it is missing, unreadable, of another key or a figure SVG is missing.
     """
     out = Path(out_dir)
     try:
@@ -481,7 +483,7 @@ def load_cached(out_dir: str | os.PathLike, key: str) -> dict | None:
         return None
     if data.get("settings", {}).get("cache_key") != key:
         return None
-    if not all((out / "figures" / f"{n}.png").is_file() for n in FIGURES):
+    if not all((out / "figures" / f"{n}.svg").is_file() for n in FIGURES):
         return None
     return _nan_back(data)
 
@@ -521,7 +523,7 @@ def report_section(
     Returns
     -------
     html : str
-        A self-contained ``<section id="validation">`` (figures as base64 PNG, all
+        A self-contained ``<section id="validation">`` (figures as inline SVG, all
         text escaped).
     markdown : str
         The same content in Markdown, linking the figures under ``link_base``.
@@ -532,7 +534,7 @@ def report_section(
     if data is None:
         data = _nan_back(_jsonable(write_validation(run_validation(measurements), out)))
     base = f"{out.name}/" if link_base is None else link_base
-    return pages.html_fragment(data, _figure_bytes(out)), pages.markdown_fragment(data, base)
+    return pages.html_fragment(data, _figure_svgs(out)), pages.markdown_fragment(data, base)
 
 
 __all__ = [

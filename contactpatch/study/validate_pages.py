@@ -9,7 +9,6 @@ HTML text is escaped with :func:`html.escape`.
 
 from __future__ import annotations
 
-import base64
 import html
 import math
 from collections import Counter
@@ -97,8 +96,13 @@ section#validation td,section#validation th{border:1px solid #ccc;padding:2px 6p
 section#validation .num{text-align:right;font-variant-numeric:tabular-nums;white-space:nowrap}
 section#validation th{background:#eee}
 section#validation .vscroll,section#validation .figscroll{overflow-x:auto;max-width:100%}
-section#validation .figscroll img{max-width:none;width:min(100%,1100px);min-width:640px;height:auto}
-section#validation figcaption{font-size:13px;color:#555}"""
+section#validation .figscroll svg{display:block;max-width:none;width:100%;min-width:720px;height:auto}
+section#validation figcaption{font-size:13px;color:#555}
+section#validation .stack{display:none}
+@media (max-width:600px){section#validation .stacked{position:relative;overflow:visible}
+section#validation .stacked>svg{position:absolute;width:1px;height:1px;min-width:0;overflow:hidden;clip-path:inset(50%)}
+section#validation .stacked>.stack{display:block}
+section#validation .stack svg{display:block;width:100%;max-width:30rem;min-width:0;height:auto;margin:0 auto .6rem}}"""
 #: why the model misses a quantity, with the dissertation's section
 WHY = {
     "cornering_stiffness": (
@@ -544,7 +548,7 @@ def markdown_fragment(data: dict, link_base: str = "", level: int = 2) -> str:
     data : dict
         :meth:`.validate.Validation.to_dict` (or ``validation.json`` read back).
     link_base : str
-        Prefix of the figure links (``{link_base}figures/{name}.png``).
+        Prefix of the figure links (``{link_base}figures/{name}.svg``).
     level : int
         Heading level of the title; sections are one level deeper.
 
@@ -558,7 +562,7 @@ def markdown_fragment(data: dict, link_base: str = "", level: int = 2) -> str:
     parts = [f"{h} {TITLE}", headline(data), f"{h}# What the model cannot follow"]
     parts += [f"- {s}" for s in data["limits"]]
     for name, cap in FIGURE_CAPTIONS.items():
-        parts.append(f"![{cap}]({link_base}figures/{name}.png)\n\n*{cap}*")
+        parts.append(f"![{cap}]({link_base}figures/{name}.svg)\n\n*{cap}*")
     for title, intro, rows, cols in _sections(data):
         parts += [f"{h}# {title}", intro, _md_table(rows, cols)]
     st = data["settings"]
@@ -585,25 +589,30 @@ def summary_markdown(data: dict) -> str:
     return markdown_fragment(data, "", level=1)
 
 
-def _img(name: str, png: bytes, caption: str) -> str:
-    b64 = base64.b64encode(png).decode("ascii")
+def _img(name: str, svg: str, caption: str) -> str:
+    from .pages import inline_svg
+    from .svgplot import stack_html
+
+    stack = stack_html(svg)  # small screens: the panels one below the other
+    box = "figscroll stacked" if stack else "figscroll"
     return (
-        f'<figure><div class="figscroll"><img alt="{html.escape(caption)}" '
-        f'src="data:image/png;base64,{b64}"></div>'
-        f"<figcaption>{html.escape(caption)}</figcaption></figure>"
+        f'<figure id="vfig-{name}" class="chart"><div class="{box}">'
+        f"{inline_svg(svg, caption)}{stack}</div>"
+        f"<figcaption>{html.escape(caption)} <span class='files'>(vector file: "
+        f"<code>figures/{name}.svg</code> of the validation)</span></figcaption></figure>"
     )
 
 
-def html_fragment(data: dict, figures: dict[str, bytes]) -> str:
-    """A self-contained ``<section id="validation">`` (figures inline as base64 PNG).
+def html_fragment(data: dict, figures: dict[str, str]) -> str:
+    """A self-contained ``<section id="validation">`` (figures as inline SVG).
 
     Parameters
     ----------
     data : dict
         :meth:`.validate.Validation.to_dict` (or ``validation.json`` read back).
-    figures : dict of str to bytes
-        Figure name (a key of :data:`FIGURE_CAPTIONS`) -> PNG bytes; missing figures
-        are left out.
+    figures : dict of str to str
+        Figure name (a key of :data:`FIGURE_CAPTIONS`) -> SVG document; missing
+        figures are left out.
 
     Returns
     -------
@@ -629,15 +638,15 @@ def html_fragment(data: dict, figures: dict[str, bytes]) -> str:
     return "\n".join(parts)
 
 
-def standalone_html(data: dict, figures: dict[str, bytes]) -> str:
+def standalone_html(data: dict, figures: dict[str, str]) -> str:
     """``index.html``: the fragment in a page.
 
     Parameters
     ----------
     data : dict
         :meth:`.validate.Validation.to_dict` (or ``validation.json`` read back).
-    figures : dict of str to bytes
-        Figure name -> PNG bytes (:func:`html_fragment`).
+    figures : dict of str to str
+        Figure name -> SVG document (:func:`html_fragment`).
 
     Returns
     -------

@@ -47,6 +47,19 @@ def _grid_segments(patch, spacing: float = 10.0) -> np.ndarray:
     return np.concatenate(segs)
 
 
+def _viewer_mesh(patch) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Vertices (N, 3) [mm], triangles (M, 3) and radial deformation (N,) [mm] of the
+    coarse mesh: the steps of :func:`tiremesh.mesh.build_mesh` without its trimesh
+    object (importing trimesh takes seconds; the browser needs only the arrays)."""
+    from tiremesh import mesh as tmesh
+
+    res = tmesh.mesh_resolution(**VIEWER_MESH)
+    rings = tmesh.section_rings(patch, tmesh.plan_sections(patch, res), res, None)
+    placed = tmesh.place_vertices(patch, rings)
+    faces = tmesh.tire_faces(patch, placed, res)
+    return placed.vertices, faces, np.asarray(placed.radial, float)
+
+
 def _range_text(lo: float, hi: float) -> tuple[str, str]:
     def f(v):
         s = f"{v:.1f}"
@@ -74,21 +87,18 @@ def viewer_case(patch, label: str) -> dict:
         (float32 x 3 line points), ``lo``/``hi`` (colour range [mm]) and their
         texts, ``focus`` (point the camera turns about [mm]) and ``span`` [mm].
     """
-    from tiremesh.mesh import build_mesh
-
-    m = build_mesh(patch, **VIEWER_MESH)
-    values = np.asarray(m.point_data["radial_deformation"], float)
+    vertices, faces, values = _viewer_mesh(patch)
     lo, hi = float(values.min()), float(values.max())
     xy = patch.outline
     x = patch.surface.roll(xy[:, 0])
     outline = np.column_stack([x, xy[:, 1], patch.surface.height(x) - 0.2])
     r0 = patch.tire.tire_radius
     lo_text, hi_text = _range_text(lo, hi)
-    small = len(m.mesh.vertices) < 65536
+    small = len(vertices) < 65536
     return {
         "label": label,
-        "positions": _b64(m.mesh.vertices, "<f4"),
-        "indices": _b64(m.mesh.faces, "<u2" if small else "<u4"),
+        "positions": _b64(vertices, "<f4"),
+        "indices": _b64(faces, "<u2" if small else "<u4"),
         "index_bits": 16 if small else 32,
         "values": _b64(values, "<f4"),
         "outline": _b64(outline, "<f4"),

@@ -94,7 +94,9 @@ def test_colour_bar_column_is_clear_of_the_model(tire_mesh):
     c = view_camera("side", tire_mesh)
     for scalars in ("radial_deformation", "lateral_displacement"):
         # zoomed in, the tire fills the model's part of the image from edge to edge...
-        img = render(tire_mesh, size=GOLDEN_SIZE, scalars=scalars, camera=(c.azimuth, 0.0, 2.5))
+        img = render(
+            tire_mesh, view="side", size=GOLDEN_SIZE, scalars=scalars, camera=(c.azimuth, 0.0, 2.5)
+        )
         x0 = round(w * (1 - BAR_FRACTION))
         body = img[round(h * TITLE_FRACTION) :, x0 - 3]
         assert (np.abs(body.astype(int) - 255).sum(axis=1) > 60).mean() > 0.5
@@ -274,3 +276,40 @@ def test_front_view_looks_through_the_ground_at_the_patch(tire_mesh):
     img = render(tire_mesh, view="front", size=GOLDEN_SIZE, title=False, scalar_bar=False)
     red = (img[..., 0] > 180) & (img[..., 1] < 80) & (img[..., 2] < 80)
     assert red.sum() > 150  # the patch outline, not a thin line at the bottom
+
+
+def test_fit_camera_frames_the_points_both_ways():
+    """The fitted camera looks the same way, centred on the points' projected box;
+    its half-height covers the box (with the margin) in both directions."""
+    from tiremesh.render import FIT_MARGIN, ViewCamera, fit_camera, image_axes
+
+    c = ViewCamera((0.0, 0.0, 0.0), 0.0, 0.0, 1.0)  # from the front: right -y... up +z
+    pts = np.array([[0.0, -10.0, 0.0], [0.0, 30.0, 0.0], [5.0, 0.0, 100.0]])
+    tall = fit_camera(c, pts, aspect=1.0)
+    _, up = image_axes(tall)
+    assert_allclose(np.abs(up), [0, 0, 1], atol=1e-12)
+    assert_allclose(np.asarray(tall.focal) @ up, 50.0, atol=1e-9)  # centre of z 0..100
+    assert_allclose(tall.scale, 50.0 * (1 + FIT_MARGIN), rtol=1e-12)
+    wide = fit_camera(c, pts, aspect=0.2)  # a narrow image: the width decides
+    assert_allclose(wide.scale, 20.0 / 0.2 * (1 + FIT_MARGIN), rtol=1e-12)
+    assert (tall.azimuth, tall.elevation) == (c.azimuth, c.elevation)
+
+
+@pytest.mark.parametrize("view", ["front", "iso"])
+def test_fitted_views_keep_the_framed_tire_inside(tire_mesh, view):
+    """Front and iso: every framed point projects inside the model's part of the
+    image; the front view's ruler lies below the tire (not across it)."""
+    from tiremesh.render import _camera, frame_points, front_ruler, image_axes
+
+    w, h = GOLDEN_SIZE
+    aspect = (1 - BAR_FRACTION) * w / ((1 - TITLE_FRACTION) * h)
+    c = _camera(None, view, tire_mesh, aspect)
+    right, up = image_axes(c)
+    pts = frame_points(tire_mesh, view)
+    f = np.asarray(c.focal)
+    u, v = (pts - f) @ right, (pts - f) @ up
+    assert np.abs(v).max() < c.scale and np.abs(u).max() < c.scale * aspect
+    if view == "front":
+        a, b = front_ruler(c, pts, 40.0)
+        assert max((a - f) @ up, (b - f) @ up) < v.min()
+        assert -c.scale < (a - f) @ up  # and still in the image

@@ -8,6 +8,7 @@ Skipped, with the reason, when Playwright or a Chromium it can drive is missing
 Chromium such as Debian's ``chromium`` package, found on PATH or through
 ``$CHROMIUM``)."""
 
+import itertools
 import os
 import shutil
 
@@ -144,3 +145,24 @@ def test_printed_tables_fit_the_page(browser, report_url):
     assert wide == []
     assert page.evaluate("getComputedStyle(document.querySelector('nav.toc')).display") == "none"
     page.close()
+
+
+def test_multi_panel_figures_stack_on_small_screens(browser, report_url):
+    """Below 600 px each panel of a multi-panel figure is its own crop, one below the
+    other, at a readable scale; at 1400 px the wide figure shows and the stack hides."""
+    page, seen = _open(browser, report_url, 400)
+    trends = page.locator("figure.chart .stacked").first
+    trends.scroll_into_view_if_needed()
+    crops = trends.locator(".stack > svg")
+    assert crops.count() >= 3
+    boxes = [crops.nth(k).bounding_box() for k in range(crops.count())]
+    assert all(b["width"] > 250 for b in boxes), boxes
+    assert all(b["height"] > 120 for b in boxes[:-1]), boxes  # panels (then the legend)
+    assert all(b2["y"] >= b1["y"] + b1["height"] - 1 for b1, b2 in itertools.pairwise(boxes))
+    assert trends.locator(":scope > svg").bounding_box()["width"] <= 2  # wide one hidden
+    page.close()
+    wide, _ = _open(browser, report_url, 1400)
+    assert not wide.locator("figure.chart .stack").first.is_visible()
+    assert wide.locator("figure.chart .stacked > svg").first.bounding_box()["width"] > 600
+    wide.close()
+    assert seen["console"] == [] and seen["errors"] == [], seen

@@ -174,6 +174,23 @@ def test_viewer_case_arrays(print_table):
     assert json.loads(re.search(r'id="viewer-data">(.*?)</script>', html).group(1))["cases"]
 
 
+def test_viewer_case_same_mesh_as_build_mesh(print_table):
+    """The viewer meshes without trimesh: the same arrays as build_mesh's."""
+    import tiremesh as tm
+    from contactpatch.study.viewer import VIEWER_MESH
+    from tiremesh.mesh import build_mesh
+
+    patch = tm.solve(R.representative_cases(print_table[0])[-1].case)
+    data = viewer_case(patch, "x")
+    m = build_mesh(patch, **VIEWER_MESH)
+    pos = np.frombuffer(base64.b64decode(data["positions"]), "<f4").reshape(-1, 3)
+    idx = np.frombuffer(base64.b64decode(data["indices"]), "<u2").reshape(-1, 3)
+    val = np.frombuffer(base64.b64decode(data["values"]), "<f4")
+    assert_allclose(pos, np.asarray(m.mesh.vertices, "<f4"), rtol=0, atol=0)
+    np.testing.assert_array_equal(idx, m.mesh.faces)
+    assert_allclose(val, np.asarray(m.point_data["radial_deformation"], "<f4"), rtol=0, atol=0)
+
+
 # --- the worker process ----------------------------------------------------------------
 
 
@@ -197,3 +214,41 @@ def test_a_report_of_200_prints_aggregates_and_folds(tmp_path):
     assert text.count("<details>") == 4 and "<details open>" not in text
     assert text.count('<figure class="outline-card">') == 200
     assert len(text) < 2_500_000
+
+
+def test_t975_table_is_scipys_quantile():
+    """The tabulated t quantiles are scipy's, bit for bit (no number of the report
+    changes), and larger degrees of freedom still ask scipy."""
+    from scipy.special import stdtrit
+
+    from contactpatch.study.uncertainty import T975, t975
+
+    for dof in range(1, len(T975) + 2):
+        assert t975(dof) == float(stdtrit(dof, 0.975))
+    assert_allclose(t975(2), 4.302653, rtol=1e-6)
+
+
+def test_stack_html_crops_each_panel_and_the_legend():
+    from contactpatch.study.svgplot import LegendItem, Plot, stack_html
+
+    plot = Plot(900, 400)
+    for k in range(3):
+        p = plot.panel(80 + 280 * k, 40, 200, 250, xlim=(0, 1), ylim=(0, 1))
+        plot.axes(p, xlabel="x", ylabel="y" if k == 0 else "")
+    plot.legend(
+        [LegendItem("tire A", "#D55E00"), LegendItem("tire B", "#0072B2")], 80, 340, width=800
+    )
+    svg = plot.svg("demo")
+    stack = stack_html(svg)
+    boxes = re.findall(r'viewBox="([^"]+)"[^>]*><use href="#demo-all"/>', stack)
+    assert len(boxes) == 4  # three panels, then the legend laid out again
+    x0, _, w, _ = map(float, boxes[1].split())
+    assert x0 >= 80 + 200 and x0 + w <= 80 + 2 * 280  # panel 2 alone, not its neighbours
+    assert float(boxes[3].split()[1]) > 400  # the narrow legend lies below the wide view
+    assert svg.count(">tire A</text>") == 2
+    single = Plot(400, 300)
+    single.panel(60, 20, 300, 240, xlim=(0, 1), ylim=(0, 1))
+    assert stack_html(single.svg("one")) == ""  # one panel: scales, no stack
+    empty = Plot(400, 300)
+    empty.axes(empty.panel(60, 20, 300, 240, xlim=(0, 1), ylim=(0, 1)), xticks=[], yticks=[])
+    assert "<svg" in empty.svg("empty")  # a panel without ticks (no points) draws
