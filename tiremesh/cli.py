@@ -659,7 +659,12 @@ def _add_sweep(sub, common) -> None:
         metavar="SECONDS",
         help=f"wait this long for the scheduler to answer (default {DEFAULT_SCHEDULER_TIMEOUT:g})",
     )
-    p.add_argument("--progress", action="store_true", help="show a progress bar (stderr)")
+    p.add_argument(
+        "--progress",
+        action=argparse.BooleanOptionalAction,
+        default=None,
+        help="progress bar on stderr (default: when stderr is a terminal)",
+    )
     p.set_defaults(func=_cmd_sweep)
 
 

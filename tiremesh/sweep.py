@@ -507,7 +507,7 @@ def run_sweep(
     *,
     workers: int | None = None,
     scheduler: str | None = None,
-    progress: bool = False,
+    progress: bool | None = None,
     options=None,
 ) -> list[dict]:
     """Solve every case of a sweep.
@@ -521,8 +521,9 @@ def run_sweep(
         Local processes for the cases solved one by one (default: the CPU count).
     scheduler : str, optional
         Address of a Dask scheduler; overrides ``workers``.
-    progress : bool
-        Show a progress bar (stderr) over the cases solved one by one.
+    progress : bool, optional
+        Show a progress bar (stderr) over all cases, the vectorized ones in chunks of
+        :data:`VECTOR_CHUNK`; default: when stderr is a terminal.
     options : SolverOptions, optional
         Judgement thresholds (:class:`tiremesh.SolverOptions`), the same in this
         process, in local worker processes and on Dask workers (sent with every
@@ -547,9 +548,13 @@ def run_sweep(
     if not isinstance(options, SolverOptions):
         raise InvalidParameter("options", type(options).__name__, "a tiremesh.SolverOptions")
     rows: list = [None] * len(cases)
+    bar = _progress_bar(progress, len(cases))
     plain = [i for i, c in enumerate(cases) if _vectorizable(c)]
-    for i, r in zip(plain, _vector_rows([cases[i] for i in plain], options), strict=True):
-        rows[i] = r
+    for k in range(0, len(plain), VECTOR_CHUNK):  # chunks: bounded memory, a live bar
+        part = plain[k : k + VECTOR_CHUNK]
+        for i, r in zip(part, _vector_rows([cases[i] for i in part], options), strict=True):
+            rows[i] = r
+        bar.update(len(part))
     rest = [i for i in range(len(cases)) if rows[i] is None]
     results = parallel_map(
         solve_case,
@@ -559,13 +564,29 @@ def run_sweep(
         min_items=4,
         kwargs={"options": options},
     )
-    if progress and rest:
-        from tqdm import tqdm
-
-        results = tqdm(results, total=len(rest), desc="sweep", unit="case")
     for j, r in results:
         rows[rest[j]] = r
+        bar.update(1)
+    bar.close()
     return rows
+
+
+#: cases of the vectorized path solved per call (a case's row does not depend on its
+#: batch companions, so chunking changes no number)
+VECTOR_CHUNK = 4096
+
+
+def _progress_bar(progress: bool | None, total: int):
+    """A tqdm bar on stderr (``progress`` None: only when stderr is a terminal), or a
+    do-nothing stand-in."""
+    import sys
+
+    show = sys.stderr.isatty() if progress is None else bool(progress)
+    if not show or total == 0:
+        return SimpleNamespace(update=lambda n: None, close=lambda: None)
+    from tqdm import tqdm
+
+    return tqdm(total=total, desc="sweep", unit="case")
 
 
 def sweep_plots(rows: list[dict], out_dir) -> list[Path]:

@@ -287,3 +287,15 @@ def test_row_from_case_refuses_what_a_row_cannot_hold():
         run_sweep([case])
     with pytest.raises(tm.InvalidParameter, match="cases"):
         row_from_case({"tire": 8})
+
+
+def test_run_sweep_progress_counts_vectorized_and_single_cases(capfd):
+    """Issue 10 item 3: the sweep shows progress; the bar counts every case (the
+    vectorized ones in chunks), and only on a terminal unless asked."""
+    cases = grid(tire=[8], pressure_bar=[3.0, 4.0], load_N=[300.0, 400.0])
+    cases += grid(tire=[8], pressure_bar=[4.0], load_N=[400.0], slip_deg=[1.0])
+    run_sweep(cases, workers=1, progress=True)
+    err = capfd.readouterr().err
+    assert "sweep" in err and "5/5" in err
+    run_sweep(cases, workers=1)  # stderr is not a terminal here: no bar
+    assert "sweep" not in capfd.readouterr().err
