@@ -160,7 +160,7 @@ class MaskMeasurement:
 
 
 def measure_mask(
-    mask, r0: int, c0: int, *, n_rows: int, mm_per_px: float, field=None, axis=None
+    mask, r0: int, c0: int, *, n_rows: int, mm_per_px: float, field=None, axis=None, hull_px=None
 ) -> MaskMeasurement:
     """Shared metrics (:func:`contactpatch.measure`) of an ink mask cropped from a sheet.
 
@@ -179,6 +179,9 @@ def measure_mask(
         Rolling direction: an angle from +x [rad], ``'x'``, ``'y'`` (the sheet's
         axes, snapped to the print's own axis, see :func:`rolling_angle`) or None /
         ``'auto'`` (the hull's principal axis).
+    hull_px : (k, 2) float, optional [px]
+        The outline already found for this mask and field (a previous
+        :class:`MaskMeasurement`'s ``hull_px``): not traced again.
 
     Returns
     -------
@@ -188,9 +191,10 @@ def measure_mask(
 
     import contactpatch as cp
 
-    if field is None:
-        field = np.where(mask, -0.5, 0.5)
-    hull_px = _hull_px(mask, field, r0, c0)
+    if hull_px is None:
+        if field is None:
+            field = np.where(mask, -0.5, 0.5)
+        hull_px = _hull_px(mask, field, r0, c0)
     if axis is None or isinstance(axis, str):
         axis = rolling_angle(hull_px, axis or "auto")
     x, y = px_to_mm(hull_px[:, 0], hull_px[:, 1], n_rows=n_rows, mm_per_px=mm_per_px)
@@ -540,10 +544,12 @@ def measure_print(ctx: _Context, group: Group, *, index: int = 0, sensitivity: b
     spots = edge_spots(g, _darkness(grey, g.mask), mm_per_px=s, options=opts)
     kw = dict(n_rows=n_rows, mm_per_px=s, axis=ctx.rolling_axis)
     fld_all = edge_field(grey, g.mask, mm_per_px=s, options=opts)
-    fld = edge_field(grey, spots.load_bearing, mm_per_px=s, options=opts)
+    same = np.array_equal(spots.load_bearing, g.mask)  # nothing set apart: one outline
+    fld = fld_all if same else edge_field(grey, spots.load_bearing, mm_per_px=s, options=opts)
     fld = _paper_where_set_apart(fld, g.mask & ~spots.load_bearing, spots.load_bearing)
     m = measure_mask(spots.load_bearing, g.rows.start, g.cols.start, field=fld, **kw)
     kw["axis"] = m.metrics.orientation  # all ink measured along the same direction
+    kw["hull_px"] = m.hull_px if same else None
     m_all = measure_mask(g.mask, g.rows.start, g.cols.start, field=fld_all, **kw)
     base = _band_values(m.metrics)
     band = (
