@@ -39,6 +39,7 @@ import numpy as np
 from .binarize import Binarization, binarize, remove_specks
 from .coords import area_mm2_to_px, area_px_to_mm2, mm_to_px_length, px_to_mm, px_to_mm_length
 from .errors import InvalidInput, NoInk
+from .gridlines import Gridlines, find_gridlines
 from .group import Group, PrintCheck, edge_spots, is_print
 from .light import Page, prepare_page
 from .marks import Mark, SortedInk, sort_ink
@@ -313,11 +314,15 @@ class FoundPrints:
         Ink set aside (lines, text, dust, noise) and groups that are not prints.
     sorted : SortedInk
         The sorting (where the marks are, for the sensitivity band).
+    grid : Gridlines or None
+        Chart-paper gridlines taken out of the ink before sorting
+        (:func:`inkprint.gridlines.find_gridlines`).
     """
 
     groups: list
     marks: list
     sorted: SortedInk = field(repr=False)
+    grid: Gridlines | None = field(default=None, repr=False)
 
     @property
     def rejected(self) -> list[str]:
@@ -353,8 +358,13 @@ def find_prints(
     area = sheet_area_mm2 if sheet_area_mm2 is not None else area_px_to_mm2(mask.size, mm_per_px)
     floor = opts.patch_area_floor(area)
     speck_px = area_mm2_to_px(opts.speck_area_mm2, mm_per_px)
-    ink = sort_ink(mask, mm_per_px=mm_per_px, options=opts)
+    grid = find_gridlines(mask, mm_per_px=mm_per_px, options=opts)
+    ink = sort_ink(
+        mask if grid is None else mask & ~grid.removed, mm_per_px=mm_per_px, options=opts
+    )
     marks, kept = list(ink.marks), []
+    if grid is not None:
+        marks.append(_grid_mark(grid.removed, mm_per_px))
     for g0 in ink.groups:
         g = dataclasses.replace(g0, mask=remove_specks(g0.mask, speck_px))
         if not g.mask.any():
@@ -382,7 +392,16 @@ def find_prints(
             marks.append(_group_mark(g, "fragment", why, mm_per_px))
         else:
             groups.append(g)
-    return FoundPrints(groups, marks, ink)
+    return FoundPrints(groups, marks, ink, grid)
+
+
+def _grid_mark(grid: np.ndarray, mm_per_px: float) -> Mark:
+    import cv2
+
+    x, y, w, h = cv2.boundingRect(grid.view(np.uint8))
+    area = area_px_to_mm2(int(np.count_nonzero(grid)), mm_per_px)
+    why = "chart-paper gridlines, taken out of the ink outside the prints' own ink"
+    return Mark("gridlines", (y, x, y + h, x + w), area, why)
 
 
 def _group_mark(g: Group, kind: str, reason: str, mm_per_px: float) -> Mark:
@@ -412,7 +431,11 @@ def _band_window(shape, g: Group, found: FoundPrints, mm_per_px: float, opts) ->
     region[g.rows.start - r0 : g.rows.stop - r0, g.cols.start - c0 : g.cols.stop - c0] = g.mask
     region = cv2.dilate(region, np.ones((2 * pad + 1, 2 * pad + 1), np.uint8)).astype(bool)
     rows, cols = slice(r0, r1), slice(c0, c1)
-    return _BandWindow(rows, cols, region & ~found.sorted.marks_near(rows, cols))
+    region &= ~found.sorted.marks_near(rows, cols)
+    if found.grid is not None:  # at another threshold the lines are wider by a pixel
+        near = cv2.dilate(found.grid.removed[rows, cols].view(np.uint8), np.ones((3, 3), np.uint8))
+        region &= ~near.view(bool)
+    return _BandWindow(rows, cols, region)
 
 
 @dataclass(frozen=True)
@@ -461,13 +484,15 @@ def sensitivity_band(ctx: _Context, group: Group, *, base: dict) -> dict:
         )
         if not spots.load_bearing.any():
             continue
+        fld = edge_field(grey, spots.load_bearing, mm_per_px=s, options=opts)
+        grid = _grid_in(ctx.found.grid, win.rows, win.cols)
         m = measure_mask(
             spots.load_bearing,
             win.rows.start,
             win.cols.start,
             n_rows=ctx.page.work.shape[0],
             mm_per_px=s,
-            field=edge_field(grey, spots.load_bearing, mm_per_px=s, options=opts),
+            field=_paper_where_set_apart(fld, grid, spots.load_bearing),
             axis=ctx.rolling_axis,
         ).metrics
         for k, v in _band_values(m).items():
@@ -546,7 +571,9 @@ def measure_print(ctx: _Context, group: Group, *, index: int = 0, sensitivity: b
     fld_all = edge_field(grey, g.mask, mm_per_px=s, options=opts)
     same = np.array_equal(spots.load_bearing, g.mask)  # nothing set apart: one outline
     fld = fld_all if same else edge_field(grey, spots.load_bearing, mm_per_px=s, options=opts)
-    fld = _paper_where_set_apart(fld, g.mask & ~spots.load_bearing, spots.load_bearing)
+    grid = _grid_in(ctx.found.grid, g.rows, g.cols)
+    fld = _paper_where_set_apart(fld, (g.mask & ~spots.load_bearing) | grid, spots.load_bearing)
+    fld_all = _paper_where_set_apart(fld_all, grid, g.mask)
     m = measure_mask(spots.load_bearing, g.rows.start, g.cols.start, field=fld, **kw)
     kw["axis"] = m.metrics.orientation  # all ink measured along the same direction
     kw["hull_px"] = m.hull_px if same else None
@@ -581,10 +608,15 @@ def _paper_where_set_apart(fld: np.ndarray, apart: np.ndarray, ink: np.ndarray) 
     pixel outside the kept ink and would follow a tick's or a speck's grey there."""
     import cv2
 
-    if not apart.any():
+    if not np.any(apart):
         return fld
     rim = cv2.dilate(apart.view(np.uint8), np.ones((3, 3), np.uint8)).view(bool) & ~ink
     return np.where(rim, np.maximum(fld, np.float32(0.5)), fld)
+
+
+def _grid_in(grid: Gridlines | None, rows: slice, cols: slice) -> np.ndarray | bool:
+    """The gridline ink taken out in a box (False without gridlines)."""
+    return False if grid is None else grid.removed[rows, cols]
 
 
 def _padded(g: Group, shape, pad: int) -> Group:
@@ -620,6 +652,9 @@ def _axis_flags(metrics, hull_px, index: int, flags: list, warnings: list) -> tu
 def _print_flags(ctx: _Context, g: Group, m, index: int, margin: int) -> tuple[tuple, tuple]:
     flags, warnings = [], []
     contact = px_to_mm_length(g.edge_marks, ctx.scan.mm_per_px)
+    if ctx.found.grid is not None:  # a gridline grazing the edge, taken out with it
+        grid = ctx.found.grid
+        contact += grid.along_mm(g.mask, g.rows.start, g.cols.start, mm_per_px=ctx.scan.mm_per_px)
     if contact > EDGE_MARK_MM:
         flags.append("mark_on_edge")
         warnings.append(
