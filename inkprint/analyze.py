@@ -59,6 +59,14 @@ AXIS_MISALIGNED_DEG = 1.0
 AXIS_MISALIGNED_EXCESS = 0.002
 #: a mark set aside covering more than this [mm] of a print's outline flags it
 EDGE_MARK_MM = 2.5
+#: ink of a mark set aside (a label's letter, a ruler) this close [px] to a print's
+#: ink may be the mark's (a stroke's foot merged into the print's edge) ...
+MARK_NEAR_PX = 2
+#: ... and when the print's length or width without it is smaller by more than this,
+#: the print is flagged ``mark_on_edge`` (a third of the 1 % bar: the pixels next to
+#: the mark are a lower bound of its pull; the outline also follows the mark's grey:
+#: a ruler pulling 0.4 % by its ink widened a print by 1.3 %)
+MARK_PULL = 0.003
 #: a group with more pen strokes set aside around it than this share of its own ink
 #: is writing
 WRITING_SHARE = 0.5
@@ -585,7 +593,9 @@ def measure_print(ctx: _Context, group: Group, *, index: int = 0, sensitivity: b
         else {k: (v, v) for k, v in base.items()}
     )
     margin = max(mm_to_px_length(opts.group_distance_mm, s), 1.5 * spots.tread_gap)
-    flags, warnings = _print_flags(ctx, group, m, index, int(np.ceil(margin)))
+    flags, warnings = _print_flags(
+        ctx, group, m, index, int(np.ceil(margin)), padded=g, kept=spots.load_bearing
+    )
     return PrintResult(
         index=index,
         metrics=m.metrics,
@@ -649,7 +659,9 @@ def _axis_flags(metrics, hull_px, index: int, flags: list, warnings: list) -> tu
     return flags, warnings
 
 
-def _print_flags(ctx: _Context, g: Group, m, index: int, margin: int) -> tuple[tuple, tuple]:
+def _print_flags(
+    ctx: _Context, g: Group, m, index: int, margin: int, *, padded: Group, kept: np.ndarray
+) -> tuple[tuple, tuple]:
     flags, warnings = [], []
     contact = px_to_mm_length(g.edge_marks, ctx.scan.mm_per_px)
     if ctx.found.grid is not None:  # a gridline grazing the edge, taken out with it
@@ -661,6 +673,16 @@ def _print_flags(ctx: _Context, g: Group, m, index: int, margin: int) -> tuple[t
             f"print #{index}: a mark set aside covers {contact:.1f} mm of its outline (a "
             f"line along its edge, a label's strokes): the outline there is uncertain by up "
             f"to the mark's width; see the overlay, remove the mark or rescan"
+        )
+    pull = 0.0
+    if "mark_on_edge" not in flags:
+        pull = _mark_pull(ctx, padded, kept, m.metrics.orientation)
+    if pull > MARK_PULL:
+        flags.append("mark_on_edge")
+        warnings.append(
+            f"print #{index}: a mark set aside (a label, a line) touches its edge: without "
+            f"the ink next to the mark it is up to {100 * pull:.1f} % shorter or narrower; "
+            f"see the overlay, remove the mark or rescan"
         )
     spread = _spread_marks_over(ctx.found.marks, g)
     if spread and "mark_on_edge" not in flags:
@@ -683,6 +705,43 @@ def _print_flags(ctx: _Context, g: Group, m, index: int, margin: int) -> tuple[t
             f"rolling direction was taken as its longer axis (auto); give --rolling-axis x|y"
         )
     return tuple(flags), tuple(warnings)
+
+
+def _mark_pull(ctx: _Context, g: Group, kept: np.ndarray, angle: float) -> float:
+    """How much ink set aside (larger than a speck, not a gridline taken out) touching
+    the print may have pulled it out: the largest relative excess of its length or
+    width (along ``angle`` [rad] and across) over those of its ink without the
+    pixels within :data:`MARK_NEAR_PX` of that mark (a stroke's foot on the print's
+    edge; a line crossing the edge only notches it, the hull spans the notch).
+    ``g`` is the print's padded box, ``kept`` its ink measured (over ``g.mask``'s
+    box): what the edge-spot rule took out of the group (a letter's strokes) counts
+    as set aside."""
+    import cv2
+
+    from .group import outline_points
+
+    h, w = ctx.page.work.shape
+    pad = MARK_NEAR_PX + 2
+    r0, c0 = max(g.rows.start - pad, 0), max(g.cols.start - pad, 0)
+    r1, c1 = min(g.rows.stop + pad, h), min(g.cols.stop + pad, w)
+    ink = ctx.binarization.mask[r0:r1, c0:c1].copy()
+    if ctx.found.grid is not None:
+        ink &= ~ctx.found.grid.removed[r0:r1, c0:c1]
+    own = np.zeros(ink.shape, bool)
+    own[g.rows.start - r0 : g.rows.stop - r0, g.cols.start - c0 : g.cols.stop - c0] = kept
+    aside = remove_specks(ink & ~own, area_mm2_to_px(ctx.opts.speck_area_mm2, ctx.scan.mm_per_px))
+    if not aside.any():
+        return 0.0
+    k = 2 * MARK_NEAR_PX + 1
+    near = cv2.dilate(aside.view(np.uint8), cv2.getStructuringElement(cv2.MORPH_ELLIPSE, (k, k)))
+    core = own & ~near.view(bool)
+    if not (own & near.view(bool)).any() or not core.any():
+        return 0.0
+    ext = [
+        _extents(pts.reshape(-1, 2) * np.array([1.0, -1.0]), angle) + 1.0
+        for pts in (outline_points(own), outline_points(core))
+    ]
+    return float(np.max(ext[0] / ext[1]) - 1.0)
 
 
 def _spread_marks_over(marks: list, g: Group) -> str:

@@ -158,6 +158,21 @@ def test_sort_ink_ruler_across_a_print_is_set_aside(tmp_path, seed):
     assert "line" in rows[0]["set_aside"]
 
 
+@pytest.mark.parametrize(
+    ("kind", "k"),
+    [("label", 96), ("ruler", 84)],  # files of the seed-4242 mixed set
+)
+def test_analyze_scan_mark_pulling_a_print_edge_is_flagged(tmp_path, kind, k):
+    # a label's letter feet merged into the print's edge (+3.7 % width) and a ruler
+    # crossing it (+1.3 %) passed unflagged: without the ink next to the mark the
+    # print is narrower by more than MARK_PULL, so it is flagged, never silent
+    results, rows = outcomes(tmp_path, kind, 4242 * 100_003 + k, dpi=None)
+    assert not [r for r in results if r["outcome"] in SILENT], results
+    (row,) = rows
+    assert row["status"] == "flagged" and row["flags"] == "mark_on_edge"
+    assert "touches its edge" in row["warnings"]
+
+
 def test_sort_ink_gridlines_never_merge_into_a_print(tmp_path):
     results, rows = outcomes(tmp_path, "grid", 1)
     assert not [r for r in results if r["outcome"] in SILENT], results
