@@ -54,15 +54,19 @@ from .ruler import (
     patch_polygon,
     surface_coordinates,
 )
-from .study import (
-    build_report,
-    case_of,
-    drum_plate_ratios,
-    pair_prints,
-    sign_agreement,
-    trend_table,
-)
-from .study.validate import report_section, validate
+
+# The study (figures, report, validation: ~0.1 s of imports) loads on first use
+# (PEP 562): measuring a print (inkprint) needs only the ruler.
+_LAZY = {
+    "build_report": ".study",
+    "case_of": ".study",
+    "drum_plate_ratios": ".study",
+    "pair_prints": ".study",
+    "sign_agreement": ".study",
+    "trend_table": ".study",
+    "report_section": ".study.validate",
+    "validate": ".study.validate",
+}
 
 __all__ = [
     "ContactPatchError",
@@ -93,3 +97,27 @@ __all__ = [
     "trend_table",
     "validate",
 ]
+
+
+def __getattr__(name: str):
+    """A study name, imported from its module on first use (PEP 562)."""
+    import importlib
+
+    if name.startswith("__"):
+        raise AttributeError(name)
+    module = _LAZY.get(name)
+    if module is None:  # a submodule, as the eager imports bound them (``contactpatch.study``)
+        try:
+            value = importlib.import_module(f".{name}", __name__)
+        except ModuleNotFoundError as e:
+            if e.name != f"{__name__}.{name}":
+                raise
+            raise AttributeError(f"module 'contactpatch' has no attribute {name!r}") from None
+    else:
+        value = getattr(importlib.import_module(module, __name__), name)
+    globals()[name] = value
+    return value
+
+
+def __dir__() -> list[str]:
+    return sorted(set(globals()) | set(__all__))

@@ -26,8 +26,6 @@ Errors    : InkPrintError, InvalidInput, ScanReadError, ImageTooLarge, ScaleMiss
 __version__ = "0.2.0"
 
 from .analyze import analyze_scan
-from .batch import BatchResult, run_batch
-from .batch import Options as BatchOptions
 from .binarize import binarize
 from .errors import (
     AllInk,
@@ -76,3 +74,22 @@ __all__ = [
     "run_batch",
     "sort_ink",
 ]
+
+# The batch (scheduler, tables, progress bar) loads on first use (PEP 562): one
+# ``inkprint analyze`` does not need it.
+_LAZY = {"BatchResult": "BatchResult", "run_batch": "run_batch", "BatchOptions": "Options"}
+
+
+def __getattr__(name: str):
+    """A batch name, imported on first use (PEP 562)."""
+    if name not in _LAZY:
+        raise AttributeError(f"module 'inkprint' has no attribute {name!r}")
+    from . import batch
+
+    value = getattr(batch, _LAZY[name])
+    globals()[name] = value
+    return value
+
+
+def __dir__() -> list[str]:
+    return sorted(set(globals()) | set(__all__))

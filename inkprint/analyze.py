@@ -39,6 +39,7 @@ import numpy as np
 from .binarize import Binarization, binarize, remove_specks
 from .coords import area_mm2_to_px, area_px_to_mm2, mm_to_px_length, px_to_mm, px_to_mm_length
 from .errors import InvalidInput, NoInk
+from .gridlines import Gridlines, find_gridlines
 from .group import Group, PrintCheck, edge_spots, is_print
 from .light import Page, prepare_page
 from .marks import Mark, SortedInk, sort_ink
@@ -58,6 +59,14 @@ AXIS_MISALIGNED_DEG = 1.0
 AXIS_MISALIGNED_EXCESS = 0.002
 #: a mark set aside covering more than this [mm] of a print's outline flags it
 EDGE_MARK_MM = 2.5
+#: ink of a mark set aside (a label's letter, a ruler) this close [px] to a print's
+#: ink may be the mark's (a stroke's foot merged into the print's edge) ...
+MARK_NEAR_PX = 2
+#: ... and when the print's length or width without it is smaller by more than this,
+#: the print is flagged ``mark_on_edge`` (a third of the 1 % bar: the pixels next to
+#: the mark are a lower bound of its pull; the outline also follows the mark's grey:
+#: a ruler pulling 0.4 % by its ink widened a print by 1.3 %)
+MARK_PULL = 0.003
 #: a group with more pen strokes set aside around it than this share of its own ink
 #: is writing
 WRITING_SHARE = 0.5
@@ -160,7 +169,7 @@ class MaskMeasurement:
 
 
 def measure_mask(
-    mask, r0: int, c0: int, *, n_rows: int, mm_per_px: float, field=None, axis=None
+    mask, r0: int, c0: int, *, n_rows: int, mm_per_px: float, field=None, axis=None, hull_px=None
 ) -> MaskMeasurement:
     """Shared metrics (:func:`contactpatch.measure`) of an ink mask cropped from a sheet.
 
@@ -179,6 +188,9 @@ def measure_mask(
         Rolling direction: an angle from +x [rad], ``'x'``, ``'y'`` (the sheet's
         axes, snapped to the print's own axis, see :func:`rolling_angle`) or None /
         ``'auto'`` (the hull's principal axis).
+    hull_px : (k, 2) float, optional [px]
+        The outline already found for this mask and field (a previous
+        :class:`MaskMeasurement`'s ``hull_px``): not traced again.
 
     Returns
     -------
@@ -188,9 +200,10 @@ def measure_mask(
 
     import contactpatch as cp
 
-    if field is None:
-        field = np.where(mask, -0.5, 0.5)
-    hull_px = _hull_px(mask, field, r0, c0)
+    if hull_px is None:
+        if field is None:
+            field = np.where(mask, -0.5, 0.5)
+        hull_px = _hull_px(mask, field, r0, c0)
     if axis is None or isinstance(axis, str):
         axis = rolling_angle(hull_px, axis or "auto")
     x, y = px_to_mm(hull_px[:, 0], hull_px[:, 1], n_rows=n_rows, mm_per_px=mm_per_px)
@@ -309,11 +322,15 @@ class FoundPrints:
         Ink set aside (lines, text, dust, noise) and groups that are not prints.
     sorted : SortedInk
         The sorting (where the marks are, for the sensitivity band).
+    grid : Gridlines or None
+        Chart-paper gridlines taken out of the ink before sorting
+        (:func:`inkprint.gridlines.find_gridlines`).
     """
 
     groups: list
     marks: list
     sorted: SortedInk = field(repr=False)
+    grid: Gridlines | None = field(default=None, repr=False)
 
     @property
     def rejected(self) -> list[str]:
@@ -349,8 +366,13 @@ def find_prints(
     area = sheet_area_mm2 if sheet_area_mm2 is not None else area_px_to_mm2(mask.size, mm_per_px)
     floor = opts.patch_area_floor(area)
     speck_px = area_mm2_to_px(opts.speck_area_mm2, mm_per_px)
-    ink = sort_ink(mask, mm_per_px=mm_per_px, options=opts)
+    grid = find_gridlines(mask, mm_per_px=mm_per_px, options=opts)
+    ink = sort_ink(
+        mask if grid is None else mask & ~grid.removed, mm_per_px=mm_per_px, options=opts
+    )
     marks, kept = list(ink.marks), []
+    if grid is not None:
+        marks.append(_grid_mark(grid.removed, mm_per_px))
     for g0 in ink.groups:
         g = dataclasses.replace(g0, mask=remove_specks(g0.mask, speck_px))
         if not g.mask.any():
@@ -378,7 +400,16 @@ def find_prints(
             marks.append(_group_mark(g, "fragment", why, mm_per_px))
         else:
             groups.append(g)
-    return FoundPrints(groups, marks, ink)
+    return FoundPrints(groups, marks, ink, grid)
+
+
+def _grid_mark(grid: np.ndarray, mm_per_px: float) -> Mark:
+    import cv2
+
+    x, y, w, h = cv2.boundingRect(grid.view(np.uint8))
+    area = area_px_to_mm2(int(np.count_nonzero(grid)), mm_per_px)
+    why = "chart-paper gridlines, taken out of the ink outside the prints' own ink"
+    return Mark("gridlines", (y, x, y + h, x + w), area, why)
 
 
 def _group_mark(g: Group, kind: str, reason: str, mm_per_px: float) -> Mark:
@@ -408,7 +439,11 @@ def _band_window(shape, g: Group, found: FoundPrints, mm_per_px: float, opts) ->
     region[g.rows.start - r0 : g.rows.stop - r0, g.cols.start - c0 : g.cols.stop - c0] = g.mask
     region = cv2.dilate(region, np.ones((2 * pad + 1, 2 * pad + 1), np.uint8)).astype(bool)
     rows, cols = slice(r0, r1), slice(c0, c1)
-    return _BandWindow(rows, cols, region & ~found.sorted.marks_near(rows, cols))
+    region &= ~found.sorted.marks_near(rows, cols)
+    if found.grid is not None:  # at another threshold the lines are wider by a pixel
+        near = cv2.dilate(found.grid.removed[rows, cols].view(np.uint8), np.ones((3, 3), np.uint8))
+        region &= ~near.view(bool)
+    return _BandWindow(rows, cols, region)
 
 
 @dataclass(frozen=True)
@@ -457,13 +492,15 @@ def sensitivity_band(ctx: _Context, group: Group, *, base: dict) -> dict:
         )
         if not spots.load_bearing.any():
             continue
+        fld = edge_field(grey, spots.load_bearing, mm_per_px=s, options=opts)
+        grid = _grid_in(ctx.found.grid, win.rows, win.cols)
         m = measure_mask(
             spots.load_bearing,
             win.rows.start,
             win.cols.start,
             n_rows=ctx.page.work.shape[0],
             mm_per_px=s,
-            field=edge_field(grey, spots.load_bearing, mm_per_px=s, options=opts),
+            field=_paper_where_set_apart(fld, grid, spots.load_bearing),
             axis=ctx.rolling_axis,
         ).metrics
         for k, v in _band_values(m).items():
@@ -540,10 +577,14 @@ def measure_print(ctx: _Context, group: Group, *, index: int = 0, sensitivity: b
     spots = edge_spots(g, _darkness(grey, g.mask), mm_per_px=s, options=opts)
     kw = dict(n_rows=n_rows, mm_per_px=s, axis=ctx.rolling_axis)
     fld_all = edge_field(grey, g.mask, mm_per_px=s, options=opts)
-    fld = edge_field(grey, spots.load_bearing, mm_per_px=s, options=opts)
-    fld = _paper_where_set_apart(fld, g.mask & ~spots.load_bearing, spots.load_bearing)
+    same = np.array_equal(spots.load_bearing, g.mask)  # nothing set apart: one outline
+    fld = fld_all if same else edge_field(grey, spots.load_bearing, mm_per_px=s, options=opts)
+    grid = _grid_in(ctx.found.grid, g.rows, g.cols)
+    fld = _paper_where_set_apart(fld, (g.mask & ~spots.load_bearing) | grid, spots.load_bearing)
+    fld_all = _paper_where_set_apart(fld_all, grid, g.mask)
     m = measure_mask(spots.load_bearing, g.rows.start, g.cols.start, field=fld, **kw)
     kw["axis"] = m.metrics.orientation  # all ink measured along the same direction
+    kw["hull_px"] = m.hull_px if same else None
     m_all = measure_mask(g.mask, g.rows.start, g.cols.start, field=fld_all, **kw)
     base = _band_values(m.metrics)
     band = (
@@ -552,7 +593,9 @@ def measure_print(ctx: _Context, group: Group, *, index: int = 0, sensitivity: b
         else {k: (v, v) for k, v in base.items()}
     )
     margin = max(mm_to_px_length(opts.group_distance_mm, s), 1.5 * spots.tread_gap)
-    flags, warnings = _print_flags(ctx, group, m, index, int(np.ceil(margin)))
+    flags, warnings = _print_flags(
+        ctx, group, m, index, int(np.ceil(margin)), padded=g, kept=spots.load_bearing
+    )
     return PrintResult(
         index=index,
         metrics=m.metrics,
@@ -575,10 +618,15 @@ def _paper_where_set_apart(fld: np.ndarray, apart: np.ndarray, ink: np.ndarray) 
     pixel outside the kept ink and would follow a tick's or a speck's grey there."""
     import cv2
 
-    if not apart.any():
+    if not np.any(apart):
         return fld
     rim = cv2.dilate(apart.view(np.uint8), np.ones((3, 3), np.uint8)).view(bool) & ~ink
     return np.where(rim, np.maximum(fld, np.float32(0.5)), fld)
+
+
+def _grid_in(grid: Gridlines | None, rows: slice, cols: slice) -> np.ndarray | bool:
+    """The gridline ink taken out in a box (False without gridlines)."""
+    return False if grid is None else grid.removed[rows, cols]
 
 
 def _padded(g: Group, shape, pad: int) -> Group:
@@ -611,15 +659,30 @@ def _axis_flags(metrics, hull_px, index: int, flags: list, warnings: list) -> tu
     return flags, warnings
 
 
-def _print_flags(ctx: _Context, g: Group, m, index: int, margin: int) -> tuple[tuple, tuple]:
+def _print_flags(
+    ctx: _Context, g: Group, m, index: int, margin: int, *, padded: Group, kept: np.ndarray
+) -> tuple[tuple, tuple]:
     flags, warnings = [], []
     contact = px_to_mm_length(g.edge_marks, ctx.scan.mm_per_px)
+    if ctx.found.grid is not None:  # a gridline grazing the edge, taken out with it
+        grid = ctx.found.grid
+        contact += grid.along_mm(g.mask, g.rows.start, g.cols.start, mm_per_px=ctx.scan.mm_per_px)
     if contact > EDGE_MARK_MM:
         flags.append("mark_on_edge")
         warnings.append(
             f"print #{index}: a mark set aside covers {contact:.1f} mm of its outline (a "
             f"line along its edge, a label's strokes): the outline there is uncertain by up "
             f"to the mark's width; see the overlay, remove the mark or rescan"
+        )
+    pull = 0.0
+    if "mark_on_edge" not in flags:
+        pull = _mark_pull(ctx, padded, kept, m.metrics.orientation)
+    if pull > MARK_PULL:
+        flags.append("mark_on_edge")
+        warnings.append(
+            f"print #{index}: a mark set aside (a label, a line) touches its edge: without "
+            f"the ink next to the mark it is up to {100 * pull:.1f} % shorter or narrower; "
+            f"see the overlay, remove the mark or rescan"
         )
     spread = _spread_marks_over(ctx.found.marks, g)
     if spread and "mark_on_edge" not in flags:
@@ -642,6 +705,43 @@ def _print_flags(ctx: _Context, g: Group, m, index: int, margin: int) -> tuple[t
             f"rolling direction was taken as its longer axis (auto); give --rolling-axis x|y"
         )
     return tuple(flags), tuple(warnings)
+
+
+def _mark_pull(ctx: _Context, g: Group, kept: np.ndarray, angle: float) -> float:
+    """How much ink set aside (larger than a speck, not a gridline taken out) touching
+    the print may have pulled it out: the largest relative excess of its length or
+    width (along ``angle`` [rad] and across) over those of its ink without the
+    pixels within :data:`MARK_NEAR_PX` of that mark (a stroke's foot on the print's
+    edge; a line crossing the edge only notches it, the hull spans the notch).
+    ``g`` is the print's padded box, ``kept`` its ink measured (over ``g.mask``'s
+    box): what the edge-spot rule took out of the group (a letter's strokes) counts
+    as set aside."""
+    import cv2
+
+    from .group import outline_points
+
+    h, w = ctx.page.work.shape
+    pad = MARK_NEAR_PX + 2
+    r0, c0 = max(g.rows.start - pad, 0), max(g.cols.start - pad, 0)
+    r1, c1 = min(g.rows.stop + pad, h), min(g.cols.stop + pad, w)
+    ink = ctx.binarization.mask[r0:r1, c0:c1].copy()
+    if ctx.found.grid is not None:
+        ink &= ~ctx.found.grid.removed[r0:r1, c0:c1]
+    own = np.zeros(ink.shape, bool)
+    own[g.rows.start - r0 : g.rows.stop - r0, g.cols.start - c0 : g.cols.stop - c0] = kept
+    aside = remove_specks(ink & ~own, area_mm2_to_px(ctx.opts.speck_area_mm2, ctx.scan.mm_per_px))
+    if not aside.any():
+        return 0.0
+    k = 2 * MARK_NEAR_PX + 1
+    near = cv2.dilate(aside.view(np.uint8), cv2.getStructuringElement(cv2.MORPH_ELLIPSE, (k, k)))
+    core = own & ~near.view(bool)
+    if not (own & near.view(bool)).any() or not core.any():
+        return 0.0
+    ext = [
+        _extents(pts.reshape(-1, 2) * np.array([1.0, -1.0]), angle) + 1.0
+        for pts in (outline_points(own), outline_points(core))
+    ]
+    return float(np.max(ext[0] / ext[1]) - 1.0)
 
 
 def _spread_marks_over(marks: list, g: Group) -> str:

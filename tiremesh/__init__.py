@@ -27,30 +27,55 @@ A. E. Dressel, "Measuring and Modeling the Mechanical Properties of Bicycle Tire
 PhD dissertation, University of Wisconsin-Milwaukee, 2013.
 """
 
-from ._tol import tol
-from .case import CaseTable, LoadCase, Relaxation
-from .catalog import find_tire, get_tire, load_catalog
-from .errors import (
-    BulgeLimit,
-    InvalidParameter,
-    LoadTooHigh,
-    ModelLimit,
-    NoContact,
-    NotConverged,
-    PatchEndLimit,
-    RimBottoms,
-    SlipLimit,
-    SurfaceTooCurved,
-    TireModelError,
-)
-from .footprint import Footprint
-from .geometry import TireGeometry
-from .lateral import LateralResult, solve_lateral, stiffnesses
-from .options import SolverOptions
-from .relations import Relation, evaluate_relation, fit_relations, read_relations, write_relations
-from .section import SectionSolution, solve_sections
-from .solver import ContactPatch, find_sinkage, max_load, solve, solve_many, solve_patch
-from .surface import Disk, Drum, Flat, Surface, SurfaceBase, parse_surface, register_surface
+# Public names load on first use (PEP 562): ``import tiremesh.units`` (as inkprint
+# does) must not pull in the solver, the relations and the lateral model (~0.4 s).
+_LAZY = {
+    "BulgeLimit": ".errors",
+    "CaseTable": ".case",
+    "ContactPatch": ".solver",
+    "Disk": ".surface",
+    "Drum": ".surface",
+    "Flat": ".surface",
+    "Footprint": ".footprint",
+    "InvalidParameter": ".errors",
+    "LateralResult": ".lateral",
+    "LoadCase": ".case",
+    "LoadTooHigh": ".errors",
+    "ModelLimit": ".errors",
+    "NoContact": ".errors",
+    "NotConverged": ".errors",
+    "PatchEndLimit": ".errors",
+    "Relation": ".relations",
+    "Relaxation": ".case",
+    "RimBottoms": ".errors",
+    "SectionSolution": ".section",
+    "SlipLimit": ".errors",
+    "SolverOptions": ".options",
+    "Surface": ".surface",
+    "SurfaceBase": ".surface",
+    "SurfaceTooCurved": ".errors",
+    "TireGeometry": ".geometry",
+    "TireModelError": ".errors",
+    "evaluate_relation": ".relations",
+    "find_sinkage": ".solver",
+    "find_tire": ".catalog",
+    "fit_relations": ".relations",
+    "get_tire": ".catalog",
+    "load_catalog": ".catalog",
+    "max_load": ".solver",
+    "parse_surface": ".surface",
+    "read_relations": ".relations",
+    "register_surface": ".surface",
+    "solve": ".solver",
+    "solve_lateral": ".lateral",
+    "solve_many": ".solver",
+    "solve_patch": ".solver",
+    "solve_sections": ".section",
+    "stiffnesses": ".lateral",
+    "tol": "._tol",
+    "write_relations": ".relations",
+}
+
 
 __version__ = "0.2.0"
 
@@ -100,3 +125,27 @@ __all__ = [
     "tol",
     "write_relations",
 ]
+
+
+def __getattr__(name: str):
+    """A public name, imported from its module on first use (PEP 562)."""
+    import importlib
+
+    if name.startswith("__"):
+        raise AttributeError(name)
+    module = _LAZY.get(name)
+    if module is None:  # a submodule, as the eager imports bound them (``tiremesh.case``)
+        try:
+            value = importlib.import_module(f".{name}", __name__)
+        except ModuleNotFoundError as e:
+            if e.name != f"{__name__}.{name}":
+                raise
+            raise AttributeError(f"module 'tiremesh' has no attribute {name!r}") from None
+    else:
+        value = getattr(importlib.import_module(module, __name__), name)
+    globals()[name] = value
+    return value
+
+
+def __dir__() -> list[str]:
+    return sorted(set(globals()) | set(__all__))

@@ -1,0 +1,50 @@
+"""Chart-paper gridlines taken out before grouping (inkprint.gridlines, issue 11)."""
+
+import numpy as np
+from numpy.testing import assert_array_equal
+
+from inkprint.gridlines import find_gridlines
+
+MM_PER_PX = 0.1  # 254 dpi
+
+
+def _grid(shape, *, step=100, width=3, offset=20):
+    m = np.zeros(shape, bool)
+    for r in range(offset, shape[0], step):
+        m[r : r + width, :] = True
+    for c in range(offset, shape[1], step):
+        m[:, c : c + width] = True
+    return m
+
+
+def test_find_gridlines_takes_out_the_lines_and_keeps_the_print_whole():
+    printed = np.zeros((600, 800), bool)
+    printed[150:330, 200:650] = True  # 45 x 18 mm, crossed by lines both ways
+    sheet = printed | _grid(printed.shape)
+    g = find_gridlines(sheet, mm_per_px=MM_PER_PX)
+    assert g is not None
+    assert_array_equal(sheet & ~g.removed, printed)
+
+
+def test_find_gridlines_none_for_ribbed_prints_without_a_grid():
+    # two ribbed prints side by side: their ribs are long thin rows of ink, but no
+    # row runs unbroken over most of the sheet
+    m = np.zeros((600, 800), bool)
+    for c0 in (40, 420):
+        for r in range(100, 300, 12):
+            m[r : r + 5, c0 : c0 + 340] = True
+    assert find_gridlines(m, mm_per_px=MM_PER_PX) is None
+
+
+def test_gridlines_along_mm_only_where_a_line_grazes_the_edge():
+    printed = np.zeros((600, 800), bool)
+    printed[150:330, 200:650] = True
+    crossed = find_gridlines(printed | _grid(printed.shape), mm_per_px=MM_PER_PX)
+    box = printed[150:330, 200:650]
+    assert crossed.along_mm(box, 150, 200, mm_per_px=MM_PER_PX) == 0.0
+    # a line on the print's top edge: its ink cannot be told from the print's
+    grazed = np.zeros_like(printed)
+    grazed[121:330, 200:650] = True
+    g = find_gridlines(grazed | _grid(printed.shape), mm_per_px=MM_PER_PX)
+    kept = (grazed & ~g.removed)[100:330, 200:650]
+    assert g.along_mm(kept, 100, 200, mm_per_px=MM_PER_PX) > 40.0
