@@ -1,0 +1,54 @@
+"""The report's manifest-only parts started early (issue 13 item 6): the same files
+as the report built in one go, whatever the prework got, and never a hang."""
+
+import pytest
+
+from contactpatch import build_report
+from contactpatch.study.compare import case_of
+from contactpatch.study.prework import Prework
+from contactpatch.study.samples import synthetic_print_rows
+from contactpatch.study.worker import WorkerError
+
+
+def _files(folder):
+    return {p.relative_to(folder): p.read_bytes() for p in folder.rglob("*") if p.is_file()}
+
+
+def test_build_report_precomputed_writes_the_same_files(tmp_path):
+    rows = synthetic_print_rows(8)
+    ref = tmp_path / "ref"
+    build_report(rows, ref, renders=True, validation=False)
+    pre = Prework(rows, renders=True, validation=False)
+    model = pre.result("model")
+    assert case_of(rows[0]) in model["cache"]  # solved in the worker
+    assert len(model["renders"]) == len(model["cases"]) >= 2
+    new = tmp_path / "new"
+    build_report(rows, new, renders=True, validation=False, precomputed=pre)
+    ref_files, new_files = _files(ref), _files(new)
+    assert sorted(new_files) == sorted(ref_files)
+    assert any(p.name.startswith("render_") for p in ref_files)
+    for name, data in ref_files.items():
+        assert new_files[name] == data, name
+
+
+def test_build_report_precomputed_for_other_cases_changes_nothing(tmp_path):
+    rows = synthetic_print_rows(8)
+    ref = tmp_path / "ref"
+    build_report(rows, ref, renders=False, validation=False)
+    other = [dict(r, load_N=float(r["load_N"]) * 1.1) for r in synthetic_print_rows(6, seed=5)]
+    new = tmp_path / "new"
+    pre = Prework(other, renders=False, validation=False)
+    build_report(rows, new, renders=False, validation=False, precomputed=pre)
+    assert _files(new) == _files(ref)
+
+
+def test_prework_result_stops_a_worker_past_its_timeout():
+    pre = Prework(synthetic_print_rows(8), renders=False, validation=False, timeout=0.01)
+    with pytest.raises(WorkerError, match=r"model_parts\) did not finish within 0.01 s"):
+        pre.result("model")
+    pre.cancel()  # twice is fine
+
+
+def test_prework_result_of_a_part_not_started_is_none():
+    with Prework(synthetic_print_rows(4), renders=False, validation=False) as pre:
+        assert pre.result("validation") is None
