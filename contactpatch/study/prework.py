@@ -27,9 +27,96 @@ from pathlib import Path
 PREWORK_TIMEOUT_S = 900.0
 
 
+#: bump when what :func:`model_parts` returns changes without a source change
+PREWORK_VERSION = 1
+#: model parts kept in the cache (the most recently used)
+CACHE_ENTRIES = 16
+
+
+def parts_key(rows: list[dict], renders: bool) -> str:
+    """Hash of what :func:`model_parts` depends on: the rows, the render flag, the
+    source of :mod:`tiremesh` and :mod:`contactpatch`, and the versions of Python,
+    NumPy and VTK (any change computes the parts again).
+
+    Parameters
+    ----------
+    rows : list of dict
+    renders : bool
+
+    Returns
+    -------
+    str
+        SHA-256 hex digest (64 characters).
+    """
+    import hashlib
+    import json
+    import platform
+
+    import numpy as np
+
+    import tiremesh as tm
+
+    try:
+        from vtkmodules.vtkCommonCore import vtkVersion
+
+        vtk = vtkVersion.GetVTKVersion()
+    except ImportError:
+        vtk = ""
+    head = [PREWORK_VERSION, renders, platform.python_version(), np.__version__, vtk, rows]
+    h = hashlib.sha256(json.dumps(head, sort_keys=True, default=repr).encode())
+    for root in (Path(tm.__file__).parent, Path(__file__).resolve().parents[1]):
+        for f in sorted(root.rglob("*.py")):
+            h.update(str(f.relative_to(root)).encode())
+            h.update(f.read_bytes())
+    return h.hexdigest()
+
+
+def _cache_dir() -> Path:
+    import os
+
+    root = os.environ.get("ROTTA_CACHE_DIR", Path.home() / ".cache" / "rotta-tire")
+    return Path(root) / "report-model"
+
+
+def _read_cached(path: Path, fig_dir) -> dict | None:
+    """The cached parts, their renders written to ``fig_dir``; None if unreadable."""
+    import pickle
+
+    try:
+        parts = pickle.loads(path.read_bytes())
+        path.touch()  # recently used
+    except Exception:  # a damaged or foreign entry: computed again
+        return None
+    if parts["renders"] is not None:
+        out = []
+        for name, png in parts["renders"]:
+            (Path(fig_dir) / name).write_bytes(png)
+            out.append(Path(fig_dir) / name)
+        parts = {**parts, "renders": out}
+    return parts
+
+
+def _write_cached(path: Path, parts: dict) -> None:
+    import os
+    import pickle
+
+    stored = dict(parts)
+    if parts["renders"] is not None:
+        stored["renders"] = [(p.name, p.read_bytes()) for p in parts["renders"]]
+    path.parent.mkdir(parents=True, exist_ok=True)
+    tmp = path.with_name(f".{path.name}.{os.getpid()}.tmp")
+    tmp.write_bytes(pickle.dumps(stored))
+    os.replace(tmp, path)
+    old = sorted(path.parent.glob("*.pkl"), key=lambda f: f.stat().st_mtime, reverse=True)
+    for f in old[CACHE_ENTRIES:]:
+        f.unlink(missing_ok=True)
+
+
 def model_parts(rows: list[dict], fig_dir, *, renders: bool = True) -> dict:
     """The model's columns of every load case of ``rows`` and the renders and 3D-view
-    meshes of their representative cases (run in a worker).
+    meshes of their representative cases (run in a worker), read from the cache
+    (``$ROTTA_CACHE_DIR/report-model`` or ``~/.cache/rotta-tire/report-model``) when
+    the same rows were worked out by the same code before (:func:`parts_key`).
 
     Parameters
     ----------
@@ -49,6 +136,20 @@ def model_parts(rows: list[dict], fig_dir, *, renders: bool = True) -> dict:
         :class:`contactpatch.study.report.ModelCase`), ``renders`` (list of Path or
         None), ``viewer`` (list of dict).
     """
+    path = _cache_dir() / f"{parts_key(rows, renders)}.pkl"
+    if path.is_file():
+        parts = _read_cached(path, fig_dir)
+        if parts is not None:
+            return parts
+    parts = _compute_parts(rows, fig_dir, renders)
+    try:
+        _write_cached(path, parts)
+    except OSError:
+        pass  # a read-only cache: computed again next time
+    return parts
+
+
+def _compute_parts(rows: list[dict], fig_dir, renders: bool) -> dict:
     from tiremesh.render import render_many
 
     from . import report as R
@@ -160,4 +261,11 @@ class Prework:
         self.cancel()
 
 
-__all__ = ["PREWORK_TIMEOUT_S", "Prework", "model_parts"]
+__all__ = [
+    "CACHE_ENTRIES",
+    "PREWORK_TIMEOUT_S",
+    "PREWORK_VERSION",
+    "Prework",
+    "model_parts",
+    "parts_key",
+]

@@ -10,6 +10,12 @@ from contactpatch.study.samples import synthetic_print_rows
 from contactpatch.study.worker import WorkerError
 
 
+@pytest.fixture(autouse=True)
+def _private_cache(tmp_path, monkeypatch):
+    """Workers inherit the environment: no test reads or fills the user's cache."""
+    monkeypatch.setenv("ROTTA_CACHE_DIR", str(tmp_path / "cache"))
+
+
 def _files(folder):
     return {p.relative_to(folder): p.read_bytes() for p in folder.rglob("*") if p.is_file()}
 
@@ -52,3 +58,33 @@ def test_prework_result_stops_a_worker_past_its_timeout():
 def test_prework_result_of_a_part_not_started_is_none():
     with Prework(synthetic_print_rows(4), renders=False, validation=False) as pre:
         assert pre.result("validation") is None
+
+
+def test_model_parts_reads_its_cache_and_recomputes_a_damaged_entry(tmp_path, monkeypatch):
+    from contactpatch.study import prework
+
+    monkeypatch.setenv("ROTTA_CACHE_DIR", str(tmp_path / "cache"))
+    rows = synthetic_print_rows(4)
+    first = prework.model_parts(rows, tmp_path, renders=False)
+    (entry,) = (tmp_path / "cache" / "report-model").glob("*.pkl")
+    assert entry.stem == prework.parts_key(rows, False)
+
+    def no_solving(*args):
+        raise AssertionError("solved again")
+
+    monkeypatch.setattr(prework, "_compute_parts", no_solving)
+    again = prework.model_parts(rows, tmp_path, renders=False)
+    assert again["cache"] == first["cache"] and again["cases"] == first["cases"]
+    entry.write_bytes(b"not a pickle")
+    with pytest.raises(AssertionError, match="solved again"):
+        prework.model_parts(rows, tmp_path, renders=False)
+
+
+def test_parts_key_changes_with_the_rows_and_the_render_flag():
+    from contactpatch.study.prework import parts_key
+
+    rows = synthetic_print_rows(4)
+    key = parts_key(rows, True)
+    assert len(key) == 64 and key == parts_key([dict(r) for r in rows], True)
+    assert parts_key(rows, False) != key
+    assert parts_key([dict(rows[0], load_N=1.0), *rows[1:]], True) != key
