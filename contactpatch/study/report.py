@@ -11,7 +11,9 @@ figures (Dressel 2013, sections 4.1.1, 6.2).
 4. in worker processes, while the rest goes on: the 1200 px renders of
    :func:`representative_cases` (low and high load on the plate, cambered on the
    drum; :func:`tiremesh.render.render_many`) and the validation section, when
-   :mod:`contactpatch.study.validate` provides ``report_section``;
+   :mod:`contactpatch.study.validate` provides ``report_section``; ``inkprint batch
+   ... --report`` starts these, the model's columns and the 3D-view meshes before
+   it analyses the scans (:mod:`contactpatch.study.prework`, ``precomputed=``);
 5. :func:`draw_figures` -> :class:`ReportFigures`: every figure drawn once and
    saved once, as SVG (written to ``figures/`` and inlined in the page);
 6. :func:`collect_sheets`: each scan's QA overlay and what was set aside on it;
