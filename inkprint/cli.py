@@ -329,7 +329,22 @@ def _reportable(rows: list[dict]) -> tuple[list[dict], list[str]]:
     return ok, missing
 
 
-def _report(res, a) -> int:
+def _prework(a):
+    """The report's manifest-only parts (model, renders, 3D view, validation), started
+    in worker processes before the scans are analysed; None when the manifest cannot
+    be read here (the batch then says why)."""
+    from contactpatch.study.prework import Prework
+
+    from .csvsafe import read_csv
+
+    try:
+        rows = read_csv(a.manifest)
+    except Exception:  # run_batch reports the manifest's problem
+        return None
+    return Prework(rows, renders=not a.no_renders) if rows else None
+
+
+def _report(res, a, pre=None) -> int:
     from contactpatch import build_report
 
     rows, missing = _reportable(res.rows)
@@ -345,7 +360,13 @@ def _report(res, a) -> int:
             "error: --report: no print has a manifest row to pair with the model", file=sys.stderr
         )
         return 1
-    index = build_report(rows, a.report, renders=not a.no_renders, source=str(res.outputs[0]))
+    index = build_report(
+        rows,
+        a.report,
+        renders=not a.no_renders,
+        source=str(res.outputs[0]),
+        precomputed=pre,
+    )
     if not a.quiet:
         print(f"wrote the report: {index}")
     from contactpatch.study.cli import report_errors
@@ -360,7 +381,6 @@ def _report(res, a) -> int:
 
 
 def _cmd_batch(a) -> int:
-    from .batch import run_batch
     from .errors import InvalidInput
 
     if a.report and not a.manifest:
@@ -370,6 +390,18 @@ def _cmd_batch(a) -> int:
             "with --manifest: the report pairs each print with the model, which needs the "
             "tire, pressure_bar, load_N and surface of every print",
         )
+    pre = _prework(a) if a.report else None
+    try:
+        status = _batch_and_report(a, pre)
+    finally:
+        if pre is not None:
+            pre.cancel()  # a failed batch or report: no worker left running
+    return status
+
+
+def _batch_and_report(a, pre) -> int:
+    from .batch import run_batch
+
     res = run_batch(
         a.src,
         a.output,
@@ -397,7 +429,7 @@ def _cmd_batch(a) -> int:
         print(f"{res.n_errors} error row(s) in {res.outputs[0]}", file=sys.stderr)
         status = 1
     if a.report:
-        status = max(status, _report(res, a))
+        status = max(status, _report(res, a, pre))
     return status
 
 

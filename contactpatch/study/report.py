@@ -11,7 +11,9 @@ figures (Dressel 2013, sections 4.1.1, 6.2).
 4. in worker processes, while the rest goes on: the 1200 px renders of
    :func:`representative_cases` (low and high load on the plate, cambered on the
    drum; :func:`tiremesh.render.render_many`) and the validation section, when
-   :mod:`contactpatch.study.validate` provides ``report_section``;
+   :mod:`contactpatch.study.validate` provides ``report_section``; ``inkprint batch
+   ... --report`` starts these, the model's columns and the 3D-view meshes before
+   it analyses the scans (:mod:`contactpatch.study.prework`, ``precomputed=``);
 5. :func:`draw_figures` -> :class:`ReportFigures`: every figure drawn once and
    saved once, as SVG (written to ``figures/`` and inlined in the page);
 6. :func:`collect_sheets`: each scan's QA overlay and what was set aside on it;
@@ -253,19 +255,22 @@ def _model_as_prints(paired: list[dict]) -> list[dict]:
     ]
 
 
-def compute_tables(rows: list[dict]) -> ReportTables:
+def compute_tables(rows: list[dict], *, model_cache: dict | None = None) -> ReportTables:
     """Pair the prints with the model and derive every table of the report.
 
     Parameters
     ----------
     rows : list of dict
         An ``inkprint batch`` table.
+    model_cache : dict, optional
+        Model columns already computed, by load case (``cache`` of
+        :func:`contactpatch.pair_prints`; filled further here).
 
     Returns
     -------
     ReportTables
     """
-    paired = pair_prints(rows)
+    paired = pair_prints(rows, cache=model_cache)
     trends = trend_table_with_errors(paired)
     dp_pairs, dp_summary = drum_plate_ratios(paired)
     mp_pairs, mp_summary = drum_plate_ratios(_model_as_prints(paired))
@@ -574,14 +579,48 @@ def validation_fragments(out_dir):
     -------
     (str, str) or None
     """
+    frags = validation_section()
+    if frags is not None:
+        copy_validation(out_dir)
+    return frags
+
+
+def _validation_cache() -> Path:
+    root = os.environ.get("ROTTA_CACHE_DIR", Path.home() / ".cache" / "rotta-tire")
+    return Path(root) / "validation"
+
+
+def validation_section():
+    """The validation section (HTML, Markdown) from the shared cache (computed and
+    cached there when it is missing or stale), or None when the validation module is
+    not installed.
+
+    Returns
+    -------
+    (str, str) or None
+    """
     try:
         from .validate import report_section
     except ImportError:
         return None
-    cache = Path(os.environ.get("ROTTA_CACHE_DIR", Path.home() / ".cache" / "rotta-tire"))
-    frags = report_section(cache / "validation", link_base="validation/")
-    shutil.copytree(cache / "validation", Path(out_dir) / "validation", dirs_exist_ok=True)
-    return frags
+    return report_section(_validation_cache(), link_base="validation/")
+
+
+def copy_validation(out_dir) -> Path:
+    """Copy the cached validation outputs to ``out_dir/validation`` (the Markdown's
+    figure links).
+
+    Parameters
+    ----------
+    out_dir : str or PathLike
+        The report folder.
+
+    Returns
+    -------
+    Path
+        ``out_dir/validation``.
+    """
+    return shutil.copytree(_validation_cache(), Path(out_dir) / "validation", dirs_exist_ok=True)
 
 
 # --- figures and sheets --------------------------------------------------------------
@@ -753,6 +792,7 @@ def build_report(
     scan_dirs=(),
     validation: bool = True,
     progress: bool | None = None,
+    precomputed=None,
 ) -> Path:
     """Write the model vs print report for a print table.
 
@@ -774,6 +814,10 @@ def build_report(
         Include the validation section when the validation module is installed.
     progress : bool, optional
         Show a progress bar (default: when stderr is a terminal).
+    precomputed : contactpatch.study.prework.Prework, optional
+        The manifest-only parts started earlier (model columns, renders, 3D view,
+        validation); the report is the same as without them. Its workers are
+        stopped when the report is done or fails.
 
     Returns
     -------
@@ -799,10 +843,14 @@ def build_report(
     part = Path(tempfile.mkdtemp(prefix=f".{out.name}.", suffix=".part", dir=out.parent))
     try:
         steps = {"renders": renders, "validation": validation}
-        _build_into(rows, part, progress=progress, steps=steps, where=(source, scan_dirs))
+        _build_into(
+            rows, part, progress=progress, steps=steps, where=(source, scan_dirs), pre=precomputed
+        )
         _install(part, out)
     finally:
         shutil.rmtree(part, ignore_errors=True)
+        if precomputed is not None:
+            precomputed.cancel()
     return out / "index.html"
 
 
@@ -828,22 +876,74 @@ def _install(part: Path, out: Path) -> None:
         shutil.rmtree(old, ignore_errors=True)
 
 
-def _build_into(rows, out: Path, *, progress, steps, where) -> None:
-    """Every file of the report, written into ``out`` (a fresh folder)."""
+class _Done:
+    """A worker's result already at hand (the :class:`.worker.Job` interface)."""
+
+    def __init__(self, value) -> None:
+        self.value = value
+
+    def result(self):
+        return self.value
+
+    def cancel(self) -> None:
+        pass
+
+
+class _Validation:
+    """The prework's validation section, waited for when the page needs it; computed
+    here if the prework's worker failed (its error then reads as without prework)."""
+
+    def __init__(self, pre, out: Path) -> None:
+        self.pre, self.out = pre, out
+
+    def result(self):
+        frags = self.pre.result("validation")
+        if frags is None:
+            return validation_fragments(self.out)
+        copy_validation(self.out)
+        return frags
+
+    def cancel(self) -> None:
+        pass
+
+
+def _from_prework(pre, cases, fig_dir: Path, out: Path, steps) -> tuple[dict, dict]:
+    """The jobs the prework already did (as :class:`_Done`), and its model cache."""
+    jobs: dict = {}
+    model = pre.result("model") if pre is not None else None
+    if model is not None and model["cases"] == cases:
+        if steps["renders"] and cases and pre.renders and model["renders"] is not None:
+            jobs["renders"] = _Done([pre.copy_render(p, fig_dir) for p in model["renders"]])
+        jobs["viewer"] = _Done(model["viewer"])
+    if steps["validation"] and pre is not None and pre.validation:
+        jobs["validation"] = _Validation(pre, out)
+    return jobs, (model["cache"] if model is not None else None)
+
+
+def _start_jobs(rows, out: Path, steps, pre) -> tuple[list, dict, dict | None]:
+    """The representative cases, the worker jobs (renders, validation: started here
+    unless the prework did them) and the prework's model cache."""
     from tiremesh.render import render_many
 
     from .worker import Job
 
     fig_dir = out / "figures"
-    fig_dir.mkdir(parents=True, exist_ok=True)
     cases = representative_cases(rows)
-    jobs = {}
-    if steps["renders"] and cases:
+    jobs, cache = _from_prework(pre, cases, fig_dir, out, steps)
+    if steps["renders"] and cases and "renders" not in jobs:
         jobs["renders"] = Job(render_many, render_items(cases, fig_dir), size=RENDER_SIZE)
-    if steps["validation"]:
+    if steps["validation"] and "validation" not in jobs:
         jobs["validation"] = Job(validation_fragments, out)
+    return cases, jobs, cache
+
+
+def _build_into(rows, out: Path, *, progress, steps, where, pre=None) -> None:
+    """Every file of the report, written into ``out`` (a fresh folder)."""
+    (out / "figures").mkdir(parents=True, exist_ok=True)
+    jobs: dict = {}
     try:
-        tables = compute_tables(rows)
+        cases, jobs, cache = _start_jobs(rows, out, steps, pre)
+        tables = compute_tables(rows, model_cache=cache)
         ok = [r for r in tables.paired if r.get("model_status") == "ok"]
         colours = tire_colours(r.get("tire", "") for r in ok)
         n_files = len({r.get("file") for r in tables.paired})
@@ -874,7 +974,7 @@ def _assemble(rows, tables, colours, out, cases, jobs, bar, where) -> ReportCont
     dirs = [*scan_dirs, *([Path(source).parent] if source else [])]
     sheets = collect_sheets(tables.paired, dirs, tick=lambda: bar.update(1))
     bar.set_postfix_str("3D view")
-    viewer = viewer_cases(cases)
+    viewer = jobs["viewer"].result() if "viewer" in jobs else viewer_cases(cases)
     bar.update(1)
     paths = _wait(jobs, "renders", bar)
     rendered = (
@@ -915,6 +1015,7 @@ __all__ = [
     "build_report",
     "collect_sheets",
     "compute_tables",
+    "copy_validation",
     "draw_figures",
     "key_facts",
     "outline_scale",
@@ -924,6 +1025,7 @@ __all__ = [
     "report_config",
     "representative_cases",
     "validation_fragments",
+    "validation_section",
     "viewer_cases",
     "write_tables",
 ]

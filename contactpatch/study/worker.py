@@ -63,6 +63,7 @@ class Job:
         self._dir = tempfile.TemporaryDirectory(prefix="report-job-")
         d = Path(self._dir.name)
         self._out = d / "out.pkl"
+        self.name = func.__qualname__
         job = (func.__module__, func.__qualname__, args, kwargs)
         (d / "in.pkl").write_bytes(pickle.dumps(job))
         root = str(Path(__file__).resolve().parents[2])  # the folder holding contactpatch
@@ -73,8 +74,14 @@ class Job:
             stderr=subprocess.PIPE,
         )
 
-    def result(self):
+    def result(self, timeout: float | None = None):
         """Wait for the function and return its value.
+
+        Parameters
+        ----------
+        timeout : float, optional [s]
+            Wait at most this long; then the process is stopped and
+            :class:`WorkerError` raised (default: no limit).
 
         Returns
         -------
@@ -85,10 +92,18 @@ class Job:
         Exception
             The function's own exception, its worker traceback chained.
         WorkerError
-            When the process failed before returning anything.
+            When the process failed before returning anything, or did not finish
+            within ``timeout``.
         """
         try:
-            _, err = self._proc.communicate()
+            try:
+                _, err = self._proc.communicate(timeout=timeout)
+            except subprocess.TimeoutExpired:
+                self._proc.kill()
+                self._proc.communicate()
+                raise WorkerError(
+                    f"report worker ({self.name}) did not finish within {timeout:g} s; stopped"
+                ) from None
             if not self._out.is_file():
                 tail = err.decode("utf-8", "replace")[-3000:]
                 raise WorkerError(f"report worker exited with {self._proc.returncode}: {tail}")
