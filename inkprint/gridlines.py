@@ -22,7 +22,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .coords import mm_to_px_length
+from .coords import mm_to_px_length, px_to_mm_length
 from .options import AnalysisOptions, resolve_options
 
 #: a gridline runs unbroken over at least this share of the sheet's width (height)
@@ -128,7 +128,7 @@ class Gridlines:
         for along in (self.along_rows[a:e, b:f] & near, (self.along_cols[a:e, b:f] & near).T):
             runs = _runs(along)
             total += int(runs[runs >= least].sum())
-        return float(total) * mm_per_px
+        return float(px_to_mm_length(total, mm_per_px))
 
 
 def _closing(ink: np.ndarray, radius_px: float) -> np.ndarray:

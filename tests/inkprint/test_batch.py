@@ -102,8 +102,27 @@ def test_batch_manifest_columns_carried_through(tmp_path):
         m = next(m for m in manifest if m["file"] == r["file"] and m["print"] == r["print"])
         for k in ("tire", "pressure_bar", "load_N", "surface"):
             assert r[k] == m[k]
-        assert r["status"] == "ok"
+        # a label next to a print may flag it (a judgement, section 7.1.1)
+        assert r["status"] == "ok" or (r["status"] == "flagged" and r["flags"] == "mark_on_edge")
         assert 90 < float(r["load_per_hull_area_pct"]) < 120  # Figure 4-3: close to 100 %
+
+
+@pytest.mark.xfail(
+    strict=True,
+    reason="issue 11 (open): on the bundled 150 dpi samples one print reads 2.4 % short "
+    "(tire08_4bar_500N #0) and one 1.2 % wide (tire06_6.9bar_304N #0) without a flag",
+)
+def test_bundled_samples_measure_within_the_bar_or_are_flagged(tmp_path):
+    out = tmp_path / "res.csv"
+    opts = Options(sensitivity=False)
+    run_batch(None, out, manifest=SAMPLES / "manifest.csv", options=opts, progress=False)
+    truth = read_rows(SAMPLES / "truth.csv")
+    for r in read_rows(out):
+        if r["status"] != "ok":
+            continue
+        t = next(t for t in truth if t["file"] == r["file"] and t["print"] == r["print"])
+        for k in ("length_mm", "width_mm"):
+            assert abs(float(r[k]) / float(t[k]) - 1) < 0.01, (r["file"], r["print"], k)
 
 
 def test_batch_killed_midway_leaves_complete_outputs(tmp_path):
@@ -127,7 +146,7 @@ def test_batch_killed_midway_leaves_complete_outputs(tmp_path):
     rows = read_rows(out)  # parses: never half-written
     assert 0 < len(rows) < 28
     assert json.loads(out.with_suffix(".json").read_text()) is not None
-    assert all(r["status"] == "ok" for r in rows)
+    assert all(r["status"] in ("ok", "flagged") for r in rows)  # complete rows, no errors
     # the lock died with the process: a new batch with the same options resumes
     res = run_batch(src, out, options=Options(), workers=2, progress=False)
     assert res.n_skipped == len({r["sha256"] for r in rows}) and len(read_rows(out)) == 28
