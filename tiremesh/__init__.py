@@ -127,25 +127,6 @@ __all__ = [
 ]
 
 
-def __getattr__(name: str):
-    """A public name, imported from its module on first use (PEP 562)."""
-    import importlib
+from .lazy import lazy_attributes  # noqa: E402
 
-    if name.startswith("__"):
-        raise AttributeError(name)
-    module = _LAZY.get(name)
-    if module is None:  # a submodule, as the eager imports bound them (``tiremesh.case``)
-        try:
-            value = importlib.import_module(f".{name}", __name__)
-        except ModuleNotFoundError as e:
-            if e.name != f"{__name__}.{name}":
-                raise
-            raise AttributeError(f"module 'tiremesh' has no attribute {name!r}") from None
-    else:
-        value = getattr(importlib.import_module(module, __name__), name)
-    globals()[name] = value
-    return value
-
-
-def __dir__() -> list[str]:
-    return sorted(set(globals()) | set(__all__))
+__getattr__, __dir__ = lazy_attributes(__name__, globals(), _LAZY)
