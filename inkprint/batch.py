@@ -92,6 +92,10 @@ class Options:
         Write a QA overlay PNG per sheet to this folder.
     analysis : AnalysisOptions
         Judgement thresholds (a manifest ``group_mm`` wins for its file).
+    threads : int, optional
+        Threads measuring the prints of one sheet (:func:`inkprint.analyze_scan`):
+        1 in a batch, which runs files in parallel; None: the cores (``inkprint
+        analyze``).
     """
 
     dpi: float | None = None
@@ -105,8 +109,15 @@ class Options:
     pages: tuple | None = None
     overlay_dir: str | None = None
     analysis: AnalysisOptions = field(default_factory=AnalysisOptions)
+    threads: int | None = 1
 
     def __post_init__(self) -> None:
+        if self.threads is not None and not (
+            isinstance(self.threads, int)
+            and not isinstance(self.threads, bool)
+            and self.threads >= 1
+        ):
+            raise InvalidInput("threads", self.threads, "an integer >= 1, or None (the cores)")
         if self.rolling_axis not in AXES:
             raise InvalidInput("rolling_axis", self.rolling_axis, " | ".join(AXES))
         if self.pages is not None:
@@ -330,6 +341,7 @@ def _analyze_job(job: Job, data: bytes, digest: str, key: str, options: Options)
                 sensitivity=options.sensitivity,
                 rolling_axis=axis,
                 options=analysis,
+                threads=options.threads,
             )
         except NoInk as exc:  # one page without a print: the other pages go on
             rows.append(_error_row(job, exc, digest=digest, key=key, page=scan.page))

@@ -15,6 +15,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .components import remove_small
 from .coords import mm_to_px_length
 from .errors import AllInk, InvalidInput, NoInk
 from .light import to_uint8
@@ -136,14 +137,9 @@ def remove_specks(mask, min_pixels: int) -> np.ndarray:
     -------
     (h, w) bool
     """
-    import cv2
-
     if min_pixels <= 1:
         return mask
-    _, labels, stats, _ = cv2.connectedComponentsWithStats(mask.astype(np.uint8), connectivity=8)
-    keep = stats[:, cv2.CC_STAT_AREA] >= min_pixels
-    keep[0] = False
-    return keep[labels]
+    return remove_small(np.asarray(mask, bool), min_pixels)
 
 
 def binarize(

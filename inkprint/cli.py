@@ -17,6 +17,7 @@ written, a locked output, an unreachable scheduler), 3 an internal error (a bug)
 from __future__ import annotations
 
 import argparse
+import dataclasses
 import re
 import sys
 from collections.abc import Sequence
@@ -293,7 +294,8 @@ def _cmd_analyze(a) -> int:
         meta["pressure_bar"] = (
             quantity(a.pressure, kind="pressure", flag="--pressure") / MPA_PER_BAR
         )
-    opts = _options(a)
+    # one file after the other: each uses the cores for its prints
+    opts = dataclasses.replace(_options(a), threads=None)
     if opts.overlay_dir:
         Path(opts.overlay_dir).mkdir(parents=True, exist_ok=True)
     rows = []

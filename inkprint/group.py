@@ -48,6 +48,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
+from .components import components_with_stats
 from .coords import area_px_to_mm2, binned_mm_per_px, mm_to_px_length, px_to_mm_length
 from .options import AnalysisOptions, resolve_options
 
@@ -138,6 +139,22 @@ def element_graph(labels: np.ndarray, n: int, *, px_mm: float, step: int = 1) ->
     dist, nearest = cv2.distanceTransformWithLabels(
         (~ink).astype(np.uint8), cv2.DIST_L2, 3, labelType=cv2.DIST_LABEL_PIXEL
     )
+    a, b, g = _voronoi_pairs(lab, ink, dist, nearest)
+    g = px_to_mm_length(g, binned_mm_per_px(px_mm, step))
+    lo, hi = np.minimum(a, b), np.maximum(a, b)
+    key = lo * (n + 1) + hi
+    order = np.argsort(key, kind="stable")
+    key, g = key[order], g[order]
+    first = np.flatnonzero(np.r_[True, key[1:] != key[:-1]]) if len(key) else np.zeros(0, int)
+    gmin = np.minimum.reduceat(g, first) if len(first) else np.zeros(0)
+    uk = key[first]
+    return ElementGraph(widths, uk // (n + 1) - 1, uk % (n + 1) - 1, gmin)
+
+
+def _voronoi_pairs(lab, ink, dist, nearest) -> tuple:
+    """Element pairs whose Voronoi cells touch, with the gap [px] across each touch:
+    ``(a, b, gap)`` (labels 1..n, repeated per touching pixel pair), from a distance
+    transform of the paper with the nearest ink pixel's label."""
     lut = np.zeros(int(nearest.max()) + 1, np.int32)
     lut[nearest[ink]] = lab[ink]
     owner = lut[nearest]
@@ -151,17 +168,7 @@ def element_graph(labels: np.ndarray, n: int, *, px_mm: float, step: int = 1) ->
         pairs.append((o0[cut], o1[cut], dist[sl0][cut] + dist[sl1][cut]))
     a = np.concatenate([p[0] for p in pairs]).astype(np.int64)
     b = np.concatenate([p[1] for p in pairs]).astype(np.int64)
-    g = px_to_mm_length(
-        np.concatenate([p[2] for p in pairs]).astype(float), binned_mm_per_px(px_mm, step)
-    )
-    lo, hi = np.minimum(a, b), np.maximum(a, b)
-    key = lo * (n + 1) + hi
-    order = np.argsort(key, kind="stable")
-    key, g = key[order], g[order]
-    first = np.flatnonzero(np.r_[True, key[1:] != key[:-1]]) if len(key) else np.zeros(0, int)
-    gmin = np.minimum.reduceat(g, first) if len(first) else np.zeros(0)
-    uk = key[first]
-    return ElementGraph(widths, uk // (n + 1) - 1, uk % (n + 1) - 1, gmin)
+    return a, b, np.concatenate([p[2] for p in pairs]).astype(float)
 
 
 def _element_widths(labels: np.ndarray, n: int, px_mm: float) -> np.ndarray:
@@ -379,7 +386,7 @@ def _main_blob_fill(mask: np.ndarray) -> float:
     the ink (a solid tiny print with halo specks around it), else 0."""
     import cv2
 
-    n, lab, stats, _ = cv2.connectedComponentsWithStats(mask.view(np.uint8), connectivity=8)
+    n, lab, stats, _ = components_with_stats(mask.view(np.uint8), connectivity=8)
     if n < 3:
         return 0.0
     k = 1 + int(np.argmax(stats[1:, cv2.CC_STAT_AREA]))
@@ -461,16 +468,16 @@ class _Blobs:
     peak: np.ndarray
 
 
-def _blobs(group: Group, darkness, mm_per_px: float) -> _Blobs:
+def _blobs(group: Group, darkness, mm_per_px: float, comps=None) -> _Blobs:
+    """The blobs of ``group``; ``comps``: its :func:`components_with_stats` if known."""
     import cv2
 
-    n, lab, stats, cent = cv2.connectedComponentsWithStats(
-        group.mask.astype(np.uint8), connectivity=8
-    )
-    peak = np.zeros(n)
-    np.maximum.at(peak, lab[group.mask], np.asarray(darkness, float)[group.mask])
+    n, lab, stats, cent = comps or components_with_stats(group.mask, connectivity=8)
+    on = np.flatnonzero(group.mask)
+    peak = np.zeros(n, np.float32)
+    np.maximum.at(peak, lab.ravel()[on], np.asarray(darkness, np.float32).ravel()[on])
     areas = area_px_to_mm2(stats[1:, cv2.CC_STAT_AREA], mm_per_px)
-    return _Blobs(lab, areas, cent[1:], peak[1:])
+    return _Blobs(lab, areas, cent[1:], peak[1:].astype(float))
 
 
 def outline_points(mask: np.ndarray) -> np.ndarray | None:
@@ -513,24 +520,36 @@ def _outside_core(blobs: _Blobs, core_mask: np.ndarray) -> np.ndarray:
     )
 
 
-def _core_gaps(blobs: _Blobs, core_mask: np.ndarray) -> tuple:
+def _core_gaps(blobs: _Blobs, core: np.ndarray) -> tuple:
     """Gap [px] from every blob to the nearest core blob, and the core's own tread
     gap [px]: the median over core blobs of the gap to their nearest core neighbour
-    (0 for a one-blob core)."""
+    (0 for a one-blob core). ``core`` : (n,) bool, which blobs are the core.
+
+    One distance transform serves both: its distances give each blob's gap to the
+    core, its nearest-pixel labels the core's Voronoi neighbours
+    (:func:`element_graph`'s partition; the core blobs are 8-connected pieces of the
+    group's ink, so they are the core's own pieces)."""
     import cv2
 
-    dt = cv2.distanceTransform((~core_mask).astype(np.uint8), cv2.DIST_L2, 3)
-    ink = blobs.labels > 0
-    gaps = np.full(len(blobs.areas) + 1, np.inf)
-    np.minimum.at(gaps, blobs.labels[ink], dt[ink])
-    n_core, lab = cv2.connectedComponents(core_mask.astype(np.uint8), connectivity=8)
-    if n_core <= 2:
+    lut = np.zeros(len(core) + 1, np.int32)
+    lut[1:][core] = np.arange(1, int(core.sum()) + 1)
+    lab = lut[blobs.labels]  # core blobs 1..k, the rest 0
+    ink = lab > 0
+    dt, nearest = cv2.distanceTransformWithLabels(
+        (~ink).view(np.uint8), cv2.DIST_L2, 3, labelType=cv2.DIST_LABEL_PIXEL
+    )
+    on = np.flatnonzero(blobs.labels > 0)
+    gaps = np.full(len(core) + 1, np.inf, np.float32)  # (ufunc.at is fast on one dtype)
+    np.minimum.at(gaps, blobs.labels.ravel()[on], dt.ravel()[on])
+    gaps = gaps.astype(float)
+    if core.sum() <= 1:
         return gaps[1:], 0.0
-    graph = element_graph(lab, n_core - 1, px_mm=1.0)
-    nearest = np.full(n_core - 1, np.inf)
-    np.minimum.at(nearest, graph.a, graph.gaps)
-    np.minimum.at(nearest, graph.b, graph.gaps)
-    return gaps[1:], float(np.median(nearest[np.isfinite(nearest)]))
+    a, b, g = _voronoi_pairs(lab, ink, dt, nearest)
+    nearest_gap = np.full(int(core.sum()) + 1, np.inf)
+    np.minimum.at(nearest_gap, a, g)
+    np.minimum.at(nearest_gap, b, g)
+    nearest_gap = nearest_gap[1:]
+    return gaps[1:], float(np.median(nearest_gap[np.isfinite(nearest_gap)]))
 
 
 def thin_protrusions(mask: np.ndarray, *, width_px: float, dots: bool = True) -> np.ndarray:
@@ -575,7 +594,9 @@ class _ThinParts:
     ends: np.ndarray  # (n,) bool: pieces off the print's ends
 
 
-def _thin_parts(mask: np.ndarray, width_px: float) -> _ThinParts | None:
+def _thin_parts(mask: np.ndarray, width_px: float, comps=None) -> _ThinParts | None:
+    """The thin ink outside the thick ink's hull (``comps``: the mask's
+    :func:`components_with_stats` if known)."""
     import cv2
 
     d = max(3, round(width_px) | 1)
@@ -593,7 +614,7 @@ def _thin_parts(mask: np.ndarray, width_px: float) -> _ThinParts | None:
     # only the thin ink of pieces that hold thick ink too (a stroke's foot on the
     # print); a piece thin all through (a sliver of a tip block, a speck) is left to
     # the section 7.1.1 rule
-    n, lab, stats, cent = cv2.connectedComponentsWithStats(mask.view(np.uint8), connectivity=8)
+    n, lab, stats, cent = comps or components_with_stats(mask, connectivity=8)
     foot = np.zeros(n, bool)
     foot[lab[thick.view(bool)]] = True
     stroke = np.maximum(stats[:, cv2.CC_STAT_WIDTH], stats[:, cv2.CC_STAT_HEIGHT]) > width_px
@@ -657,7 +678,8 @@ def edge_spots(
     width = mm_to_px_length(opts.stroke_width_mm, mm_per_px)
     # the rule is off when no blob can be faint and no distance too far (1 m)
     rule_on = opts.edge_spot_faintness > 0 or opts.edge_spot_distance_mm < 1e3
-    parts = _thin_parts(group.mask, width)  # thin_protrusions, both ways
+    comps = components_with_stats(group.mask, connectivity=8)
+    parts = _thin_parts(group.mask, width, comps)  # thin_protrusions, both ways
     kept = _drop_thin(group.mask, parts, dots=rule_on)
     thin = group.mask & ~kept if kept.any() else np.zeros_like(group.mask)
     strokes = thin & ~_drop_thin(group.mask, parts, dots=False)
@@ -670,12 +692,15 @@ def edge_spots(
             n_spots=spots.n_spots + n_dots,
             spot_pixels=spots.spot_pixels + int(np.count_nonzero(thin & ~strokes)),
         )
-    return _spots(group, darkness, mm_per_px, opts)
+    return _spots(group, darkness, mm_per_px, opts, comps)
 
 
-def _spots(group: Group, darkness, mm_per_px: float, opts: AnalysisOptions) -> EdgeSpots:
-    """The section 7.1.1 rule on the blobs of ``group`` (see :func:`edge_spots`)."""
-    blobs = _blobs(group, darkness, mm_per_px)
+def _spots(
+    group: Group, darkness, mm_per_px: float, opts: AnalysisOptions, comps=None
+) -> EdgeSpots:
+    """The section 7.1.1 rule on the blobs of ``group`` (see :func:`edge_spots`;
+    ``comps``: the group mask's :func:`components_with_stats` if known)."""
+    blobs = _blobs(group, darkness, mm_per_px, comps)
     n_blobs = len(blobs.areas)
     if n_blobs <= 1:
         return EdgeSpots(group.mask, n_blobs, 0, 0)
@@ -690,7 +715,7 @@ def _spots(group: Group, darkness, mm_per_px: float, opts: AnalysisOptions) -> E
     core_mask = np.concatenate([[False], core])[blobs.labels]
     outside = _outside_core(blobs, core_mask) & ~core
     small = outside & ~faint & (blobs.areas < opts.edge_spot_area_mm2)
-    gaps, pattern = _core_gaps(blobs, core_mask)
+    gaps, pattern = _core_gaps(blobs, core)
     reach = max(mm_to_px_length(opts.edge_spot_distance_mm, mm_per_px), 1.5 * pattern)
     spot = outside & (faint | (small & (gaps > reach)))
     is_spot = np.concatenate([[False], spot])[blobs.labels]

@@ -25,6 +25,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from .components import components_with_stats
 from .coords import mm_to_px_length
 from .options import AnalysisOptions, resolve_options
 
@@ -148,7 +149,7 @@ def find_page(small: np.ndarray, paper: float) -> _Frame | None:
     if table > 0.6 * paper:
         return None
     bright = (small > 0.5 * (table + paper)).astype(np.uint8)
-    n, lab, stats, _ = cv2.connectedComponentsWithStats(bright, connectivity=4)
+    n, lab, stats, _ = components_with_stats(bright, connectivity=4)
     if n < 2:
         return None
     k = 1 + int(np.argmax(stats[1:, cv2.CC_STAT_AREA]))

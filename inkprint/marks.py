@@ -42,6 +42,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from .components import components_with_stats
 from .coords import area_px_to_mm2, binned_mm_per_px, mm_to_px_length, px_to_mm_length
 from .group import (
     Group,
@@ -212,21 +213,19 @@ def _split(pooled: _Pooled, opts: AnalysisOptions) -> _Parts:
         opened, cv2.MORPH_OPEN, _disk(mm_to_px_length(2 * opts.stroke_width_mm, pooled.px_mm))
     )
     opened &= ~_straight_skinny(opened & ~core, pooled, opts)
-    n1, l1, s1, _ = cv2.connectedComponentsWithStats(opened, connectivity=8)
+    n1, l1, s1, _ = components_with_stats(opened, connectivity=8)
     area = s1[:, cv2.CC_STAT_AREA]
     keep = area >= MIN_THICK_DISKS * disk
     keep[0] = False
     check = np.flatnonzero(keep & (area < SMALL_THICK_DISKS * disk))
     if len(check):
-        _, l2, s2, _ = cv2.connectedComponentsWithStats(
-            m & (l1 == 0).view(np.uint8), connectivity=8
-        )
+        _, l2, s2, _ = components_with_stats(m & (l1 == 0).view(np.uint8), connectivity=8)
         for k in check:
             keep[k] = _attached_thin(l1, l2, s2, s1, k) <= 0.5 * area[k]
     if not keep[1:].all():
-        n1, l1, s1, _ = cv2.connectedComponentsWithStats(keep[l1].view(np.uint8), connectivity=8)
+        n1, l1, s1, _ = components_with_stats(keep[l1].view(np.uint8), connectivity=8)
     thin = m & (l1 == 0).view(np.uint8)
-    n2, l2, s2, _ = cv2.connectedComponentsWithStats(thin, connectivity=8)
+    n2, l2, s2, _ = components_with_stats(thin, connectivity=8)
     return _Parts(l1, n1 - 1, s1, l2, n2 - 1, s2, core.view(bool) & (l1 > 0))
 
 
@@ -237,7 +236,7 @@ def _straight_skinny(skinny: np.ndarray, pooled: _Pooled, opts: AnalysisOptions)
     opening, where it crosses a print too; a rib follows the outline or is wider)."""
     import cv2
 
-    _n, lab, stats, _ = cv2.connectedComponentsWithStats(skinny, connectivity=8)
+    _n, lab, stats, _ = components_with_stats(skinny, connectivity=8)
     out = np.zeros(skinny.shape, np.uint8)
     long = np.maximum(stats[:, cv2.CC_STAT_WIDTH], stats[:, cv2.CC_STAT_HEIGHT])
     for k in np.flatnonzero(px_to_mm_length(long, pooled.px_mm) >= opts.line_length_mm):
@@ -736,7 +735,7 @@ def _lost_on_edge(g: Group, lost: np.ndarray) -> Group:
     near = np.zeros(lost[r0:r1, c0:c1].shape, np.uint8)
     near[g.rows.start - r0 : g.rows.stop - r0, g.cols.start - c0 : g.cols.stop - c0] = g.mask
     touch = cv2.dilate(near, np.ones((5, 5), np.uint8)) & lost[r0:r1, c0:c1].view(np.uint8)
-    n, _, stats, _ = cv2.connectedComponentsWithStats(touch, connectivity=8)
+    n, _, stats, _ = components_with_stats(touch, connectivity=8)
     if n <= 1:
         return g
     longest = float(np.hypot(stats[1:, cv2.CC_STAT_WIDTH], stats[1:, cv2.CC_STAT_HEIGHT]).max())

@@ -195,3 +195,45 @@ def test_thin_protrusions_drops_a_stroke_beside_keeps_a_sliver_at_the_end():
     assert not out[10:18, 100:102].any() and not out[5:12, 60:62].any()
     assert out[28:32, 182:186].all()
     assert out[20:40, 24:176].all()  # the print untouched (corners rounded by the disk)
+
+
+def test_analyze_scan_threads_give_the_same_result(sheet_factory):
+    # prints and their band re-measures run as separate tasks on threads: the
+    # result (values, bands, flags, order) is that of one thread (to 1e-9: the
+    # ellipse fit's LAPACK call may sum in another order under threads)
+    from inkprint.synth import PrintSpec, SheetSpec
+
+    prints = tuple(
+        PrintSpec(50.0, 12.0, (x, y), 0.0, tread)
+        for (x, y), tread in zip(
+            [(40.0, 40.0), (110.0, 40.0), (40.0, 110.0), (110.0, 110.0)],
+            ["knobby", "ribbed", "file", "slick"],
+            strict=True,
+        )
+    )
+    path, _ = sheet_factory(
+        "four.png", spec=SheetSpec(prints, dpi=150.0, size=(150.0, 150.0), seed=2, specks=20)
+    )
+    one = ip.analyze_scan(path, threads=1)
+    for threads in (2, 5, None):
+        many = ip.analyze_scan(path, threads=threads)
+        assert len(many.prints) == len(one.prints) == 4
+        for a, b in zip(one.prints, many.prints, strict=True):
+            assert_allclose(
+                [a.metrics.length, a.metrics.width, a.metrics.hull_area],
+                [b.metrics.length, b.metrics.width, b.metrics.hull_area],
+                rtol=1e-9,
+            )
+            assert a.band.keys() == b.band.keys()
+            assert_allclose([a.band[k] for k in a.band], [b.band[k] for k in a.band], rtol=1e-9)
+            assert a.flags == b.flags and a.bbox == b.bbox
+    assert any(lo < hi for lo, hi in one.prints[0].band.values())  # a real band
+
+
+@pytest.mark.parametrize("threads", [0, -1, 1.5, True, "2"])
+def test_analyze_scan_rejects_bad_threads(sheet_factory, threads):
+    path, _ = sheet_factory("one.png", spec=one_print_sheet(dpi=150.0))
+    with pytest.raises(ip.InvalidInput, match="threads"):
+        ip.analyze_scan(path, threads=threads)
+    with pytest.raises(ip.InvalidInput, match="threads"):
+        ip.BatchOptions(threads=threads)
