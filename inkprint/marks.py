@@ -222,11 +222,26 @@ def _split(pooled: _Pooled, opts: AnalysisOptions) -> _Parts:
         _, l2, s2, _ = components_with_stats(m & (l1 == 0).view(np.uint8), connectivity=8)
         for k in check:
             keep[k] = _attached_thin(l1, l2, s2, s1, k) <= 0.5 * area[k]
-    if not keep[1:].all():
-        n1, l1, s1, _ = components_with_stats(keep[l1].view(np.uint8), connectivity=8)
+    if not keep[1:].all():  # drop pieces: the others keep their order (raster)
+        keep[0] = True
+        new = np.cumsum(keep, dtype=np.int32) - 1
+        new[~keep] = 0
+        l1, s1, n1 = new[l1], s1[keep], int(keep.sum())
+        s1[0] = _paper_stats(l1)
     thin = m & (l1 == 0).view(np.uint8)
     n2, l2, s2, _ = components_with_stats(thin, connectivity=8)
     return _Parts(l1, n1 - 1, s1, l2, n2 - 1, s2, core.view(bool) & (l1 > 0))
+
+
+def _paper_stats(labels: np.ndarray) -> np.ndarray:
+    """OpenCV's statistics row (left, top, width, height, area) of the label-0 pixels."""
+    paper = labels == 0
+    rows = np.flatnonzero(paper.any(axis=1))
+    cols = np.flatnonzero(paper.any(axis=0))
+    if not len(rows):
+        return np.zeros(5, np.int32)
+    r0, r1, c0, c1 = rows[0], rows[-1], cols[0], cols[-1]
+    return np.array([c0, r0, c1 - c0 + 1, r1 - r0 + 1, np.count_nonzero(paper)], np.int32)
 
 
 def _straight_skinny(skinny: np.ndarray, pooled: _Pooled, opts: AnalysisOptions) -> np.ndarray:
@@ -270,28 +285,49 @@ def _groups_of_elements(
     """Print index of each thick element (footprint rule, then hull overlaps). The
     ``bridge`` pixels (lines taken out) count as the ink of the nearest element, so
     a line that crossed a print does not widen the gap between its two sides."""
-    import cv2
 
     n = parts.n_thick
     if n == 0:
         return np.zeros(0, int)
     labels = parts.thick
     if bridge is not None and bridge.any():
-        free = (labels == 0).view(np.uint8)
-        dist, nearest = cv2.distanceTransformWithLabels(
-            free, cv2.DIST_L2, 3, labelType=cv2.DIST_LABEL_PIXEL
-        )
-        lut = np.zeros(int(nearest.max()) + 1, np.int32)
-        lut[nearest[labels > 0]] = labels[labels > 0]
         reach = mm_to_px_length(
             opts.stroke_width_mm + BRIDGE_MM, pooled.px_mm
         )  # a line's width, a groove
-        labels = np.where(bridge & (labels == 0) & (dist <= reach), lut[nearest], labels)
+        labels = _bridged(labels, bridge, reach)
     step = max(1, int(mm_to_px_length(GRAPH_STEP_MM, pooled.px_mm)))
     graph = element_graph(labels, n, px_mm=pooled.px_mm, step=step)
     link = linked_edges(graph, options=opts)
     comp = union_labels(n, graph.a[link], graph.b[link])
     return merge_overlapping(_hulls(parts.thick, comp), comp)
+
+
+def _bridged(labels: np.ndarray, bridge: np.ndarray, reach: float) -> np.ndarray:
+    """``labels`` with the ``bridge`` pixels within ``reach`` [px] of an element
+    labelled as the nearest one. Computed in the bridge's box grown by the farthest
+    a distance of ``reach`` can run (OpenCV's 3x3 L2 distance steps at least 0.955
+    px a pixel), which holds every element pixel that near."""
+    import cv2
+
+    rows = np.flatnonzero(bridge.any(axis=1))
+    cols = np.flatnonzero(bridge.any(axis=0))
+    m = int(np.ceil(reach / 0.955)) + 2
+    h, w = labels.shape
+    box = (
+        slice(max(rows[0] - m, 0), min(rows[-1] + m + 1, h)),
+        slice(max(cols[0] - m, 0), min(cols[-1] + m + 1, w)),
+    )
+    lab = labels[box]
+    if not (lab > 0).any():
+        return labels
+    dist, nearest = cv2.distanceTransformWithLabels(
+        (lab == 0).view(np.uint8), cv2.DIST_L2, 3, labelType=cv2.DIST_LABEL_PIXEL
+    )
+    lut = np.zeros(int(nearest.max()) + 1, np.int32)
+    lut[nearest[lab > 0]] = lab[lab > 0]
+    out = labels.copy()
+    out[box] = np.where(bridge[box] & (lab == 0) & (dist <= reach), lut[nearest], lab)
+    return out
 
 
 def _hulls(labels: np.ndarray, comp: np.ndarray, core=None) -> list:
@@ -300,16 +336,21 @@ def _hulls(labels: np.ndarray, comp: np.ndarray, core=None) -> list:
     (a fine tread like a file pattern has little core: whole)."""
     import cv2
 
-    src = (labels > 0).astype(np.uint8)
+    ink = labels > 0
+    src = ink.view(np.uint8)
     if core is not None:
         n = len(comp) + 1
-        share = np.bincount(labels[core], minlength=n) / np.maximum(
-            np.bincount(labels.ravel(), minlength=n), 1
+        on = np.flatnonzero(ink)  # (sums over the ink only)
+        lab = labels.ravel()[on]
+        share = np.bincount(lab[core.ravel()[on]], minlength=n) / np.maximum(
+            np.bincount(lab, minlength=n), 1
         )
         cored = share >= 0.5
         cored[0] = False
-        src = (core & cored[labels]) | ((labels > 0) & ~cored[labels])
-        src = src.astype(np.uint8)
+        keep = np.where(cored[lab], core.ravel()[on], True)
+        src = np.zeros(labels.size, np.uint8)
+        src[on[keep]] = 1
+        src = src.reshape(labels.shape)
     contours, _ = cv2.findContours(src, cv2.RETR_EXTERNAL, cv2.CHAIN_APPROX_SIMPLE)
     pts: list[list] = [[] for _ in range(int(comp.max()) + 1 if len(comp) else 0)]
     for c in contours:
@@ -365,6 +406,8 @@ class _ThinStats:
 
 
 def _thin_stats(parts: _Parts, hull_map, near_dist, near_id, pooled: _Pooled) -> _ThinStats:
+    """Statistics of the thin pieces; ``near_dist``, ``near_id``: :func:`_nearest_hull`
+    at the thin pixels (in flat order)."""
     import cv2
 
     n = parts.n_thin + 1
@@ -374,7 +417,7 @@ def _thin_stats(parts: _Parts, hull_map, near_dist, near_id, pooled: _Pooled) ->
     )
     area = area_px_to_mm2(st[:, cv2.CC_STAT_AREA].astype(float), pooled.px_mm)
     on = parts.thin > 0
-    lab, d, ids = parts.thin[on], px_to_mm_length(near_dist[on], pooled.px_mm), near_id[on]
+    lab, d, ids = parts.thin[on], px_to_mm_length(near_dist, pooled.px_mm), near_id
     gap, reach = np.full(n, np.inf), np.zeros(n)
     target = np.full(n, -1)
     if len(lab):
@@ -441,31 +484,39 @@ def _short_reason(kind: str, t: _ThinStats, k: int, opts: AnalysisOptions) -> st
     return f"writing or a mark ({t.extent[k]:.1f} mm) away from the prints"
 
 
-def _nearest_hull(hull_map: np.ndarray, reach_px: float) -> tuple[np.ndarray, np.ndarray]:
+def _nearest_hull(
+    hull_map: np.ndarray, reach_px: float, at: np.ndarray
+) -> tuple[np.ndarray, np.ndarray]:
     """Distance [pooled px] to the nearest print hull and that print's map id, up to
-    ``reach_px`` from the hulls (beyond: inf and 0; computed on the hulls' box only)."""
+    ``reach_px`` from the hulls (beyond: inf and 0; computed on the hulls' box only),
+    at the pixels ``at`` (flat indices into the map)."""
     import cv2
 
-    dist = np.full(hull_map.shape, np.inf, np.float32)
-    ids = np.zeros(hull_map.shape, np.int32)
+    dist = np.full(len(at), np.inf, np.float32)
+    ids = np.zeros(len(at), np.int32)
     ys, xs = np.nonzero(hull_map[::4, ::4] if hull_map.size > 4_000_000 else hull_map)
-    if not len(ys):
+    if not len(ys) or not len(at):
         return dist, ids
     f = 4 if hull_map.size > 4_000_000 else 1
     pad = int(np.ceil(reach_px)) + f + 1
     h, w = hull_map.shape
     r0, r1 = max(ys.min() * f - pad, 0), min(ys.max() * f + pad + 1, h)
     c0, c1 = max(xs.min() * f - pad, 0), min(xs.max() * f + pad + 1, w)
+    r, c = np.divmod(at, w)
+    inside = (r >= r0) & (r < r1) & (c >= c0) & (c < c1)
+    if not inside.any():
+        return dist, ids
     sub = hull_map[r0:r1, c0:c1]
     d, nearest = cv2.distanceTransformWithLabels(
-        (sub == 0).astype(np.uint8), cv2.DIST_L2, 3, labelType=cv2.DIST_LABEL_PIXEL
+        (sub == 0).view(np.uint8), cv2.DIST_L2, 3, labelType=cv2.DIST_LABEL_PIXEL
     )
     lut = np.zeros(int(nearest.max()) + 1, np.int32)
     lut[nearest[sub > 0]] = sub[sub > 0]
-    far = d > reach_px
-    d[far] = np.inf
-    dist[r0:r1, c0:c1] = d
-    ids[r0:r1, c0:c1] = np.where(far, 0, lut[nearest])
+    rr, cc = r[inside] - r0, c[inside] - c0
+    d_at, id_at = d[rr, cc], lut[nearest[rr, cc]]
+    far = d_at > reach_px
+    dist[inside] = np.where(far, np.inf, d_at)
+    ids[inside] = np.where(far, 0, id_at)
     return dist, ids
 
 
@@ -488,7 +539,9 @@ def _sort_pooled(pooled: _Pooled, opts: AnalysisOptions, network=None, bridge=No
     hulls = _hulls(parts.thick, comp, parts.core) if len(comp) else []
     hull_map = _hull_map(hulls, pooled.mask.shape)
     near_dist, near_id = _nearest_hull(
-        hull_map, mm_to_px_length(opts.line_length_mm, pooled.px_mm)
+        hull_map,
+        mm_to_px_length(opts.line_length_mm, pooled.px_mm),
+        np.flatnonzero(parts.thin > 0),
     )
     stats = _thin_stats(parts, hull_map, near_dist, near_id, pooled)
     owner, kind = _judge_thin(stats, parts, opts, network)
