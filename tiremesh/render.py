@@ -4,7 +4,9 @@ Views: ``iso`` (front quarter, from slightly below through the ground grid, so t
 contact patch and a bulge show), ``side`` (along the axle), ``front`` (against the
 rolling direction, cut at the central section: the Rotta section of Figure 5-5)
 and ``bottom`` (straight up through the ground grid at the patch). The contact
-patch's outline is drawn in every view.
+patch's outline is drawn in every view. Each view shows a cutaway of the wheel around
+the patch (:func:`view_region`: the rest is cut away at planes, so the tire ends
+inside the frame) with a free margin all round (:func:`fit_camera`).
 
 The image is laid out in three parts that never overlap: a title block on top (tire,
 rim, pressure in bar, load, camber, slip, surface), the model, and a colour-bar
@@ -181,12 +183,18 @@ def to_polydata(tire_mesh: TireMesh):
 
 
 def view_camera(view: str, tire_mesh: TireMesh) -> ViewCamera:
-    """The default camera of a view, framed on the tire and its patch.
+    """The default camera of a view: its direction, and the bottom view's scale.
+
+    The iso, side and front views are framed on the bounds of what they draw
+    (:func:`fit_camera` on :func:`frame_points`) when rendered; the bottom view's
+    scale follows from the patch alone (:func:`view_region`), so that bottom views
+    of several cases can share one scale.
 
     Parameters
     ----------
     view : {'iso', 'side', 'front', 'bottom'}
     tire_mesh : TireMesh
+        Or any object with its ``patch``.
 
     Returns
     -------
@@ -202,20 +210,104 @@ def view_camera(view: str, tire_mesh: TireMesh) -> ViewCamera:
         return ViewCamera((0.0, 0.0, 1.6 * r0), 90.0 * side, 0.0, 0.5 * max(p.length, 6 * r0))
     if view == "front":  # a little from below, through the ground: the patch shows
         return ViewCamera((0.0, 0.0, 0.9 * r0), 0.0, -14.0, 1.9 * r0)
-    return ViewCamera((0.0, 0.0, 0.0), 0.0, -90.0, 0.55 * p.length + 1.6 * r0)
+    half_x, _ = _bottom_half_extents(p)
+    return ViewCamera((0.0, 0.0, 0.0), 0.0, -90.0, half_x * (1 + FIT_MARGIN))
 
 
-#: views framed on the bounds of what they draw (:func:`fit_camera`); the side and
-#: bottom views frame the patch's neighbourhood on purpose (the wheel runs out of them)
-FITTED_VIEWS = ("iso", "front")
-#: free border around the fitted model, a fraction of the half-height
+#: views framed on the bounds of what they draw (:func:`fit_camera`); the bottom view
+#: has a scale of its own (:func:`view_camera`)
+FITTED_VIEWS = ("iso", "side", "front")
+#: free border around the model, a fraction of the half-height (or half-width)
 FIT_MARGIN = 0.08
-#: height of the front view's framed part of the tire [tire radii r0]: its section
-#: with the rim's (the iso view frames the lower half of the wheel)
-FRONT_FRAME_HEIGHT = 3.6
-#: height of the iso view's framed part of the wheel [wheel radii]: up to 0.6 the
-#: arc is within 8 % (the margin) of its widest, so it leaves the frame at the top
-ISO_FRAME_HEIGHT = 0.6
+#: the front view shows the tire and rim behind its central section up to this
+#: height above the rim's section [tire radii r0]
+FRONT_FRAME_ABOVE = 0.3
+#: depth of the renders' rim bed below the bead lines [mm] (:func:`tiremesh.mesh.rim_mesh`)
+RIM_DEPTH = 12.0
+#: the iso view shows the lower part of the wheel: this many patch lengths either
+#: side of the patch's centre (so the patch stays large), and at least this many
+#: times the height of the tire and rim, up to this height at most [wheel radii]
+ISO_FRAME_LENGTH = 1.5
+ISO_FRAME_SECTIONS = 2.0
+ISO_FRAME_HEIGHT = 0.35
+#: the front view's far cut faces the camera by this much [deg]
+FRONT_CUT_TILT = 1.0
+#: the side view shows the tire this far beyond the patch's ends [r0]
+SIDE_FRAME_BEYOND = 2.0
+#: the bottom view shows the tire and ground this far beyond the patch's ends [r0],
+#: and the ground at least this far to each side [r0]
+BOTTOM_FRAME_BEYOND = 1.5
+BOTTOM_FRAME_SIDE = 2.5
+#: ground grid spacing [mm]
+GRID_SPACING = 10.0
+
+
+def _bottom_half_extents(p: ContactPatch) -> tuple[float, float]:
+    """Half-length and half-width [mm] of the bottom view's ground: whole grid cells,
+    at least 3/4 as wide as long."""
+    r0, s = p.tire.tire_radius, GRID_SPACING
+    half_x = s * math.ceil((0.5 * p.length + BOTTOM_FRAME_BEYOND * r0) / s)
+    half_y = s * math.ceil(max(BOTTOM_FRAME_SIDE * r0, 0.75 * half_x) / s)
+    return half_x, half_y
+
+
+def view_region(view: str, tire_mesh: TireMesh, *, camera: ViewCamera | None = None) -> list:
+    """What a view shows, as half-spaces: the tire, rim, surface and patch outline
+    are cut at their planes (a cutaway), so that the model ends inside the frame.
+
+    The iso view shows the lower part of the wheel (:data:`ISO_FRAME_LENGTH`), the
+    side view the tire around the patch (:data:`SIDE_FRAME_BEYOND`), the bottom view
+    the patch and a stretch of tire and ground beyond its ends
+    (:data:`BOTTOM_FRAME_BEYOND`). The front view shows the half behind the central
+    section (the Rotta section, Figure 5-5) up to the rim's section
+    (:data:`FRONT_FRAME_ABOVE`), cut there along the image's horizontal and turned
+    a little toward the camera: the camera sees into the tire through the section,
+    and no line of sight comes out through the far cut.
+
+    Parameters
+    ----------
+    view : {'iso', 'side', 'front', 'bottom'}
+    tire_mesh : TireMesh
+    camera : ViewCamera, optional
+        The direction the front view is seen from (default :func:`view_camera`'s).
+
+    Returns
+    -------
+    list of (normal, offset)
+        Keep the points ``p`` [mm] (ground frame) with ``normal . p <= offset`` for
+        every pair (``normal``: (3,) float).
+    """
+    p = tire_mesh.patch
+    r0 = p.tire.tire_radius
+    ex, ez = np.eye(3)[0], np.eye(3)[2]
+    if view == "iso":
+        R = p.tire.wheel_radius
+        h = max(
+            (ISO_FRAME_LENGTH * p.length) ** 2 / (2 * R), ISO_FRAME_SECTIONS * _rim_top(tire_mesh)
+        )
+        return [(ez, min(h, ISO_FRAME_HEIGHT * R))]
+    axle = (ez, p.tire.wheel_radius)  # the lower half of the wheel (the rest is hidden)
+    if view == "side":
+        half = 0.5 * p.length + SIDE_FRAME_BEYOND * r0
+        return [(ex, half), (-ex, half), axle]
+    if view == "front":
+        right, up = image_axes(camera or view_camera(view, tire_mesh))
+        tilt = math.radians(FRONT_CUT_TILT)
+        n = math.cos(tilt) * up + math.sin(tilt) * np.cross(right, up)  # toward the camera
+        top = _rim_top(tire_mesh) + FRONT_FRAME_ABOVE * r0
+        return [(ex, 0.0), (n, float(n @ (top * ez)))]
+    # a hair beyond the ground's outer grid lines, so that they stay
+    half_x, half_y = (h + 0.01 * GRID_SPACING for h in _bottom_half_extents(p))
+    ey = np.eye(3)[1]
+    return [(ex, half_x), (-ex, half_x), (ey, half_y), (-ey, half_y), axle]
+
+
+def _rim_top(tire_mesh: TireMesh) -> float:
+    """Height of the rim bed over the central section [mm]."""
+    v = np.asarray(tire_mesh.mesh.vertices, float)
+    beads = v[np.asarray(tire_mesh.bead_vertices)]  # (2, n_sections, 3)
+    k = int(np.argmin(np.abs(beads[0, :, 0])))
+    return float(beads[:, k, 2].max()) + RIM_DEPTH
 
 
 def image_axes(c: ViewCamera) -> tuple[np.ndarray, np.ndarray]:
@@ -260,7 +352,7 @@ def fit_camera(c: ViewCamera, points, *, aspect: float, margin: float = FIT_MARG
     right, up = image_axes(c)
     u, v = pts @ right, pts @ up
     uc, vc = 0.5 * (u.min() + u.max()), 0.5 * (v.min() + v.max())
-    look = np.cross(up, right)  # toward the camera
+    look = np.cross(up, right)  # away from the camera
     depth = float(np.mean(pts @ look))
     focal = uc * right + vc * up + depth * look
     half = max(0.5 * (v.max() - v.min()), 0.5 * (u.max() - u.min()) / aspect)
@@ -268,9 +360,8 @@ def fit_camera(c: ViewCamera, points, *, aspect: float, margin: float = FIT_MARG
 
 
 def frame_points(tire_mesh: TireMesh, view: str) -> np.ndarray:
-    """What a view frames, as points: the patch outline on the surface and the tire
-    up to a height (the front view: its half before the cut, up to the rim's
-    section; the iso view: the lower part of the wheel, so the patch stays large).
+    """What a view draws with its default camera, as points: the tire, rim, surface
+    and patch outline cut to :func:`view_region`.
 
     Parameters
     ----------
@@ -281,16 +372,54 @@ def frame_points(tire_mesh: TireMesh, view: str) -> np.ndarray:
     -------
     (n, 3) float [mm]
     """
-    v = np.asarray(tire_mesh.mesh.vertices, float)
+    below = view_camera(view, tire_mesh).elevation < 0
+    parts = _view_parts(tire_mesh, view, view_region(view, tire_mesh), below=below)
+    return _points(parts)
+
+
+def _points(parts: dict) -> np.ndarray:
+    pts = [vs.points_of(pd) for pd in _flat(parts.values())]
+    return np.concatenate(pts) if pts else np.empty((0, 3))
+
+
+def _flat(items):
+    for x in items:
+        yield from (x if isinstance(x, list) else [x])
+
+
+def _view_parts(tire_mesh: TireMesh, view: str, region, *, below: bool, rim=True, surface=True):
+    """A view's geometry as ``vtkPolyData`` (a dict) cut to ``region`` (None: uncut):
+    ``tire``, ``rim``, ``surface`` (a slab, or a grid seen from ``below``),
+    ``outlines`` (a list: the patch's, then the rounded footprint's if asked for) and,
+    when the region cuts at ``x = 0`` (the front view), ``section``: the tire's and
+    rim's sections there."""
+
+    def cut(pd, planes=region):
+        return pd if planes is None else vs.clip_halfspaces(pd, planes)
+
+    tire = _tire_polydata(tire_mesh)
+    parts = {"tire": cut(tire)}
+    rims = [_trimesh_vtk(rim_mesh(tire_mesh, depth=RIM_DEPTH))] if rim else []
+    if rims:
+        parts["rim"] = cut(rims[0])
+    if region is not None and any(np.allclose(n, (1, 0, 0)) and c == 0 for n, c in region):
+        # sliced whole (a slice of the cut surface would lie on its ragged edge)
+        others = [(n, c) for n, c in region if not np.allclose(n, (1, 0, 0))]
+        parts["section"] = [cut(vs.slice_x(pd), others) for pd in [tire, *rims]]
+    if surface and below:
+        wide = _bottom_half_extents(tire_mesh.patch)[1] if view == "bottom" else None
+        grid = ground_grid(tire_mesh, spacing=GRID_SPACING, half_width=wide)
+        parts["surface"] = cut(vs.lines(grid))
+    elif surface:
+        parts["surface"] = cut(_trimesh_vtk(support_mesh(tire_mesh.patch, sink=0.3)))
     p = tire_mesh.patch
-    r0 = p.tire.tire_radius
-    if view == "front":
-        v = v[(v[:, 0] <= 0.0) & (v[:, 2] <= FRONT_FRAME_HEIGHT * r0)]
-    elif view == "iso":  # the arc's widest part (within the margin); it leaves at the top
-        v = v[v[:, 2] <= ISO_FRAME_HEIGHT * p.tire.wheel_radius]
-    x = p.surface.roll(p.outline[:, 0])
-    outline = np.column_stack([x, p.outline[:, 1], p.surface.height(x)])
-    return np.concatenate([v, outline])
+    rings = [p.outline] + ([p.footprint.outline] if p.case.footprint.kind != "rotta" else [])
+    lifted = -0.2 if below else 0.2  # toward the camera
+    parts["outlines"] = [
+        cut(vs.lines([np.column_stack([x, xy[:, 1], p.surface.height(x) + lifted])]))
+        for xy, x in ((xy, p.surface.roll(xy[:, 0])) for xy in rings)
+    ]
+    return parts
 
 
 def render(
@@ -431,26 +560,20 @@ def _scene(tire_mesh: TireMesh, o: _Options, bg, title: bool, cmap, parts: dict)
         top = TITLE_FRACTION if title else 0.0
         right = BAR_FRACTION if parts["bar"] else 0.0
         ren = win.renderer((0.0, 0.0, 1.0 - right, 1.0 - top), lights=True)
-        # the front view is cut at the central section: the edge is the Rotta section
-        cut = o.view == "front" and not isinstance(o.camera, list)
-        poly = _cut(_tire_polydata(tire_mesh), cut)
-        colour = _add_tire(ren, poly, o.scalars, cmap)
-        if cut:  # the section line, just in front of the cut (no z-fighting)
-            section = vs.actor(vs.slice_x(poly), colour=ink, line_width=3)
-            section.SetPosition(0.3, 0.0, 0.0)
-            ren.AddActor(section)
+        # a free perspective camera sees the whole tire; the views their cutaway
+        free = isinstance(o.camera, list)
+        turned = None if free else _turned(o.camera, o.view, tire_mesh)
+        region = None if free else view_region(o.view, tire_mesh, camera=turned)
         below = _from_below(o, tire_mesh)
-        if parts["surface"]:
-            # seen edge-on (side, front) the surface is see-through: a drum would hide the patch
-            _add_surface(ren, tire_mesh, grid=below, see_through=o.view in ("side", "front"))
-        _add_patch_outline(ren, tire_mesh, lifted=-0.2 if below else 0.2)
-        if parts["rim"]:
-            rim = _cut(_trimesh_vtk(rim_mesh(tire_mesh)), cut)
-            ren.AddActor(vs.actor(rim, colour=RIM_COLOR))
+        geometry = _view_parts(
+            tire_mesh, o.view, region, below=below, rim=parts["rim"], surface=parts["surface"]
+        )
+        colour = _add_model(ren, geometry, o, cmap, ink)
         aspect = (1.0 - right) * w / ((1.0 - top) * h)
-        cam = None if isinstance(o.camera, list) else _camera(o.camera, o.view, tire_mesh, aspect)
+        cam = None if free else _camera(o.camera, o.view, tire_mesh, aspect, _points(geometry))
         if parts["ruler"]:
-            _add_ruler(ren, tire_mesh, o.view, ink, max(8, round(h / 50)), cam)
+            ruler = (max(8, round(h / 50)), cam, _points(geometry))
+            _add_ruler(ren, tire_mesh, o.view, ink, ruler)
         _set_camera(ren, o.camera, cam, tire_mesh)
         if title:
             _overlay_title(win, title_lines(tire_mesh), (0.0, 1.0 - top, 1.0, 1.0), ink, h)
@@ -463,6 +586,25 @@ def _scene(tire_mesh: TireMesh, o: _Options, bg, title: bool, cmap, parts: dict)
         win.close()
         raise
     return win
+
+
+def _add_model(ren, geometry: dict, o: _Options, cmap, ink):
+    """The actors of :func:`_view_parts`' geometry; returns the tire's colouring
+    (:func:`_add_tire`)."""
+    poly = geometry["tire"]
+    colour = _add_tire(ren, poly, o.scalars, cmap)
+    for pd in geometry.get("section", []):
+        # the section lines, just in front of the cut at x = 0 (no z-fighting)
+        section = vs.actor(pd, colour=ink, line_width=3)
+        section.SetPosition(0.3, 0.0, 0.0)
+        ren.AddActor(section)
+    if "surface" in geometry:
+        _add_surface(ren, geometry["surface"], o.view)
+    for pd, c in zip(geometry["outlines"], (PATCH_COLOR, FOOTPRINT_COLOR), strict=False):
+        ren.AddActor(vs.actor(pd, colour=c, line_width=3))
+    if "rim" in geometry:
+        ren.AddActor(vs.actor(geometry["rim"], colour=RIM_COLOR))
+    return colour
 
 
 def _tire_polydata(tire_mesh: TireMesh):
@@ -482,11 +624,6 @@ def _tire_polydata(tire_mesh: TireMesh):
 
 def _trimesh_vtk(mesh):
     return vs.polydata(mesh.vertices, mesh.faces)
-
-
-def _cut(poly, cut: bool):
-    """The part behind the central section (x <= 0) when ``cut``."""
-    return vs.clip_x(poly) if cut else poly
 
 
 def _from_below(o: _Options, tire_mesh: TireMesh) -> bool:
@@ -524,7 +661,7 @@ def title_lines(tire_mesh: TireMesh) -> list[str]:
         f"{p.pressure / MPA_PER_BAR:.3g} bar, {p.vertical_force:.0f} N, "
         f"camber {math.degrees(p.camber):.3g} deg, slip {math.degrees(p.slip):.3g} deg, "
         f"{surface_label(p.surface)}",
-        f"patch {p.length:.1f} x {p.width:.1f} mm, {p.area:.0f} mm2; "
+        f"patch {p.length:.1f} x {p.width:.1f} mm, {p.area:.0f} mm²; "
         f"deflection {p.deflection:.1f} mm",
     ]
 
@@ -604,23 +741,24 @@ def _add_tire(ren, poly, scalars: str, cmap: str):
     return lut, ticks, decimals
 
 
-def _add_surface(ren, tire_mesh: TireMesh, *, grid: bool, see_through: bool = False) -> None:
-    """A solid slab (translucent when ``see_through``), or (seen from below) the
-    surface as a grid with its outline."""
-    if not grid:
-        slab = vs.actor(
-            _trimesh_vtk(support_mesh(tire_mesh.patch, sink=0.3)), colour=SURFACE_COLOR
-        )
-        if see_through:
-            slab.GetProperty().SetOpacity(0.35)
-        ren.AddActor(slab)
+def _add_surface(ren, surface, view: str) -> None:
+    """The support surface: a grid of lines (seen from below), else a solid slab,
+    see-through in the views along the ground (side, front: a drum would hide the
+    patch)."""
+    if surface.GetNumberOfPolys() == 0:
+        a = vs.actor(surface, colour=GRID_COLOR, line_width=1)
+        a.GetProperty().SetOpacity(0.6)
+        ren.AddActor(a)
         return
-    a = vs.actor(vs.lines(ground_grid(tire_mesh)), colour=GRID_COLOR, line_width=1)
-    a.GetProperty().SetOpacity(0.6)
-    ren.AddActor(a)
+    slab = vs.actor(surface, colour=SURFACE_COLOR)
+    if view in ("side", "front"):
+        slab.GetProperty().SetOpacity(0.35)
+    ren.AddActor(slab)
 
 
-def ground_grid(tire_mesh: TireMesh, *, spacing: float = 10.0) -> list[np.ndarray]:
+def ground_grid(
+    tire_mesh: TireMesh, *, spacing: float = 10.0, half_width: float | None = None
+) -> list[np.ndarray]:
     """The support surface under the tire as grid lines ``spacing`` mm apart,
     outline included, lying on the surface (a drum's lines follow its curve).
 
@@ -628,6 +766,8 @@ def ground_grid(tire_mesh: TireMesh, *, spacing: float = 10.0) -> list[np.ndarra
     ----------
     tire_mesh : TireMesh
     spacing : float [mm]
+    half_width : float [mm], optional
+        Across the wheel plane (default 2.5 tire radii); whole cells either way.
 
     Returns
     -------
@@ -637,7 +777,7 @@ def ground_grid(tire_mesh: TireMesh, *, spacing: float = 10.0) -> list[np.ndarra
     p = tire_mesh.patch
     r0 = p.tire.tire_radius
     half_x = spacing * math.ceil((0.5 * p.length + 2.5 * r0) / spacing)
-    half_y = spacing * math.ceil(2.5 * r0 / spacing)
+    half_y = spacing * math.ceil((2.5 * r0 if half_width is None else half_width) / spacing - 1e-9)
     s_fine = np.linspace(-half_x, half_x, 4 * round(2 * half_x / spacing) + 1)
 
     def on_surface(s, y):
@@ -653,19 +793,6 @@ def ground_grid(tire_mesh: TireMesh, *, spacing: float = 10.0) -> list[np.ndarra
         for s in np.arange(-half_x, half_x + 1e-9, spacing)
     ]
     return out
-
-
-def _add_patch_outline(ren, tire_mesh: TireMesh, *, lifted: float) -> None:
-    """The solver's patch outline on the surface, ``lifted`` mm toward the camera, and
-    the rounded print footprint when the load case asks for it (``footprint``)."""
-    p = tire_mesh.patch
-    rings = [(p.outline, PATCH_COLOR)]
-    if p.case.footprint.kind != "rotta":
-        rings.append((p.footprint.outline, FOOTPRINT_COLOR))
-    for xy, colour in rings:
-        x = p.surface.roll(xy[:, 0])
-        pts = np.column_stack([x, xy[:, 1], p.surface.height(x) + lifted])
-        ren.AddActor(vs.actor(vs.lines([pts]), colour=colour, line_width=3))
 
 
 def _set_camera(ren, camera, c: ViewCamera | None, tire_mesh: TireMesh) -> None:
@@ -684,23 +811,33 @@ def _set_camera(ren, camera, c: ViewCamera | None, tire_mesh: TireMesh) -> None:
     ren.ResetCameraClippingRange()
 
 
-def _camera(camera, view: str, tire_mesh: TireMesh, aspect: float) -> ViewCamera:
-    """The view's camera (fitted to what it draws, :data:`FITTED_VIEWS`, with room
-    for the front view's ruler below), turned to ``camera``'s azimuth and elevation
-    and magnified by its zoom."""
-    c = view_camera(view, tire_mesh)
-    zoom = 1.0
-    if camera is not None:
-        az, el, zoom = camera
-        c = ViewCamera(c.focal, az, el, c.scale)
+def _camera(camera, view: str, tire_mesh: TireMesh, aspect: float, points=None) -> ViewCamera:
+    """The view's camera (fitted to ``points``, what it draws, default
+    :func:`frame_points`, in :data:`FITTED_VIEWS`, with room for the front view's
+    ruler below), turned to ``camera``'s azimuth and elevation and magnified by its
+    zoom."""
+    c = _turned(camera, view, tire_mesh)
+    zoom = 1.0 if camera is None else camera[2]
+    pts = frame_points(tire_mesh, view) if points is None else points
     if view in FITTED_VIEWS:
-        pts = frame_points(tire_mesh, view)
         c = fit_camera(c, pts, aspect=aspect)
         if view == "front":  # the ruler below the tire, its labels under it
             a, b = front_ruler(c, pts, _front_ruler_length(tire_mesh))
-            below = np.stack([a, b]) - 0.12 * c.scale * image_axes(c)[1]
+            below = np.stack([a, b]) - 0.17 * c.scale * image_axes(c)[1]
             c = fit_camera(c, np.concatenate([pts, below]), aspect=aspect)
+    else:  # the bottom view's own scale, wide enough for its ground
+        half_y = _bottom_half_extents(tire_mesh.patch)[1]
+        scale = max(c.scale, half_y * (1 + FIT_MARGIN) / aspect)
+        c = ViewCamera(c.focal, c.azimuth, c.elevation, scale)
     return ViewCamera(c.focal, c.azimuth, c.elevation, c.scale / zoom)
+
+
+def _turned(camera, view: str, tire_mesh: TireMesh) -> ViewCamera:
+    """The view's default camera turned to ``camera``'s (azimuth, elevation, zoom)."""
+    c = view_camera(view, tire_mesh)
+    if camera is None:
+        return c
+    return ViewCamera(c.focal, camera[0], camera[1], c.scale)
 
 
 def _front_ruler_length(tire_mesh: TireMesh) -> float:
@@ -840,11 +977,13 @@ def _overlay_triad(win, main, viewport, ink, font_size: int) -> None:
     ren.ResetCameraClippingRange()
 
 
-def _add_ruler(ren, tire_mesh: TireMesh, view: str, ink, font_size: int, cam=None) -> None:
+def _add_ruler(ren, tire_mesh: TireMesh, view: str, ink, how) -> None:
     """A mm ruler with three round labels (0, half, full length); the front view's
-    under the tire in the image (``cam``: its fitted camera)."""
+    under the tire in the image. ``how``: font size, the fitted camera (or None) and
+    the points it frames."""
     from vtkmodules.vtkRenderingAnnotation import vtkAxisActor2D
 
+    font_size, cam, points = how
     p = tire_mesh.patch
     r0 = p.tire.tire_radius
     side = -1.0 if p.camber >= 0 else 1.0
@@ -852,7 +991,7 @@ def _add_ruler(ren, tire_mesh: TireMesh, view: str, ink, font_size: int, cam=Non
         length = _front_ruler_length(tire_mesh)
         a, b = (0.0, -length / 2, -0.25 * r0), (0.0, length / 2, -0.25 * r0)
         if cam is not None:
-            a, b = (tuple(x) for x in front_ruler(cam, frame_points(tire_mesh, view), length))
+            a, b = (tuple(x) for x in front_ruler(cam, points, length))
     else:
         step = 20.0 if p.length < 150 else 100.0
         length = step * max(1, int(p.length // step))
@@ -928,4 +1067,5 @@ __all__ = [
     "title_lines",
     "to_polydata",
     "view_camera",
+    "view_region",
 ]

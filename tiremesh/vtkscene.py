@@ -293,6 +293,60 @@ def clip_x(pd, *, keep_negative: bool = True):
     return clip.GetOutput()
 
 
+def clip_halfspaces(pd, planes):
+    """The part of a surface (or of lines) inside half-spaces, data interpolated: a
+    cutaway with exact cut edges.
+
+    Parameters
+    ----------
+    pd : vtkPolyData
+        In the ground frame [mm].
+    planes : sequence of (normal, offset)
+        Keep the points ``p`` with ``normal . p <= offset`` for every plane
+        (``normal``: (3,) float, ``offset`` [mm]).
+
+    Returns
+    -------
+    vtkPolyData
+        The cells inside, cut cells split at the planes.
+    """
+    from vtkmodules.vtkCommonDataModel import vtkPlane
+    from vtkmodules.vtkFiltersCore import vtkClipPolyData
+
+    for normal, offset in planes:
+        n = np.asarray(normal, float)
+        plane = vtkPlane()
+        plane.SetNormal(*n)
+        plane.SetOrigin(*(n * (offset / float(n @ n))))
+        clip = vtkClipPolyData()
+        clip.SetInputData(pd)
+        clip.SetClipFunction(plane)
+        clip.SetInsideOut(True)  # keep the side the normal points away from
+        clip.Update()
+        pd = clip.GetOutput()
+    return pd
+
+
+def points_of(pd) -> np.ndarray:
+    """The points of a polydata as an array.
+
+    Parameters
+    ----------
+    pd : vtkPolyData
+
+    Returns
+    -------
+    (n, 3) float
+        Empty (0, 3) when it has no point.
+    """
+    from vtkmodules.util.numpy_support import vtk_to_numpy
+
+    pts = pd.GetPoints()
+    if pts is None or pts.GetNumberOfPoints() == 0:
+        return np.empty((0, 3))
+    return np.asarray(vtk_to_numpy(pts.GetData()), float).reshape(-1, 3)
+
+
 def slice_x(pd):
     """The section of a surface by the plane ``x = 0``.
 
@@ -503,6 +557,10 @@ class Window:
         exp.SetTitle(title)
         exp.CompressOff()
         exp.Write3DPropsAsRasterImageOn()
+        if suffix.lower() != "svg":
+            # PDF and EPS fonts have 8-bit encodings without the glyphs of 'mm²' and
+            # DejaVu Sans: their text is drawn as outlines (SVG keeps UTF-8 text)
+            exp.TextAsPathOn()
         exp.Write()
 
     def close(self) -> None:
@@ -514,11 +572,13 @@ __all__ = [
     "VIRIDIS",
     "Window",
     "actor",
+    "clip_halfspaces",
     "clip_x",
     "font_file",
     "lines",
     "lookup_table",
     "parse_colour",
+    "points_of",
     "polydata",
     "scalar_actor",
     "slice_x",

@@ -234,11 +234,14 @@ def _surface_offset(surface: str, surfaces: list[str]) -> float:
 
 
 def _shade(colour: str, level: int, n: int) -> str:
-    """The tire's colour darker (first level) to lighter (last), as hex."""
+    """The tire's colour darker (first level) to lighter (last), as hex: from 25 %
+    toward black to 45 % toward white, so that both ends stay clear of the white
+    background and of each other (the tire's own colour with one level)."""
     c = colour.lstrip("#")
     rgb = np.array([int(c[i : i + 2], 16) for i in (0, 2, 4)], float)
-    t = 0.0 if n <= 1 else 0.6 * level / (n - 1)
-    r, g, b = (rgb + (255 - rgb) * t).round().astype(int)
+    t = 0.0 if n <= 1 else -0.25 + 0.7 * level / (n - 1)
+    mixed = rgb * (1 + t) if t < 0 else rgb + (255 - rgb) * t
+    r, g, b = mixed.round().astype(int)
     return f"#{r:02x}{g:02x}{b:02x}"
 
 
@@ -254,8 +257,9 @@ def tire_trends(paired, tire: str, colour: str, *, name: str = "trends") -> str:
     tire : str
         The tire's name (``tire`` column).
     colour : str
-        The tire's colour (hex); its shades tell the levels of the other variable
-        apart (darkest: lowest).
+        The tire's colour (hex); its shades tell the levels of the variable held
+        fixed along each line apart (darkest: lowest): load in the top row (x:
+        pressure), pressure in the bottom row (x: load), as each row's legend says.
     name : str
         The figure's name (prefix of its SVG ids: unique on a page).
 
@@ -265,7 +269,7 @@ def tire_trends(paired, tire: str, colour: str, *, name: str = "trends") -> str:
         SVG: 2 x 3 panels, a legend per row.
     """
     rows = [r for r in _ok(paired) if r["tire"] == tire]
-    W, pw, ph, top, dx = 900.0, 185.0, 190.0, 10.0, 238.0
+    W, pw, ph, top, dx = 900.0, 178.0, 190.0, 10.0, 246.0
     plot = Plot(W, top + 2 * (ph + 62))
     panels = (
         ("pressure_bar", "load_N", "pressure [bar]", "N"),
@@ -302,19 +306,28 @@ def tire_trends(paired, tire: str, colour: str, *, name: str = "trends") -> str:
             few = len(set(xs)) <= 6
             plot.axes(p, xlabel=xlabel, ylabel=ylabel, xticks=sorted(set(xs)) if few else None)
         x_leg = 70 + 2 * dx + pw + 20
-        kinds = [
-            LegendItem("prints", "#444", "o", line=True),
-            LegendItem("model", "#444", "o", filled=False, line=True, dashed=True),
-        ]
-        for k, it in enumerate(kinds):
-            plot.legend([it], x_leg, y0 + 20 * k, width=W - x_leg)
-        what = "load" if unit == "N" else "pressure"
-        plot.text(x_leg, y0 + 56, f"shade: {what} [{unit}]", size=11)
-        for k, (s, v) in enumerate(groups):
-            c = _shade(colour, levels.index(_f(v)), len(levels))
-            item = LegendItem(f"{s}, {_f(v):g} {unit}", c, surface_marker(s), line=True)
-            plot.legend([item], x_leg, y0 + 62 + 20 * k, width=W - x_leg)
+        what = ("load", "N") if unit == "N" else ("pressure", "bar")
+        _trend_legend(plot, (x_leg, y0, W - x_leg), colour, levels, what, _surfaces(rows))
     return plot.svg(name, f"{tire}: trends")
+
+
+def _trend_legend(plot, box, colour: str, levels, what, surfaces) -> None:
+    """A trend row's legend in a column at ``box`` (x, y, width): prints / model
+    (line and fill), the surfaces (marker), and the shades: the levels of ``what``
+    (name, unit), the variable held fixed along each line, darkest = lowest."""
+    x, y, width = box
+    items = [
+        LegendItem("prints", "#444", "o", line=True),
+        LegendItem("model", "#444", "o", filled=False, line=True, dashed=True),
+    ]
+    items += [LegendItem(s, "#444", surface_marker(s), filled=False) for s in surfaces]
+    for k, it in enumerate(items):
+        plot.legend([it], x, y + 20 * k, width=width)
+    y += 20 * len(items) + 16
+    plot.text(x, y, f"line shade: {what[0]}", size=12)
+    for k, v in enumerate(levels):
+        item = LegendItem(f"{v:g} {what[1]}", _shade(colour, k, len(levels)), None, line=True)
+        plot.legend([item], x, y + 6 + 20 * k, width=width)
 
 
 def _medians(rows, xkey: str, ykey: str):

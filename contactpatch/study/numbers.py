@@ -264,7 +264,7 @@ def pressure_note(value_n_mm2) -> str:
     str
     """
     x = as_number(value_n_mm2)
-    return "" if x is None or math.isnan(x) else f"{x:.4f} N/mm2 (MPa)"
+    return "" if x is None or math.isnan(x) else f"{x:.4f} N/mm² (MPa)"
 
 
 __all__ = [

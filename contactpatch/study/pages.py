@@ -60,8 +60,8 @@ NOTES = (
     "Which ink spots at a print's edge bore load is a judgement (7.1.1); the print table "
     "carries both all-ink and load-bearing numbers and a +-10 % threshold band.",
     "No deflection beyond the patch, friction or slip is modelled in these comparisons.",
-    "Pressures are in bar throughout (1 bar = 0.1 N/mm2 = 0.1 MPa); hover a load / area "
-    "cell for N/mm2.",
+    "Pressures are in bar throughout (1 bar = 0.1 N/mm² = 0.1 MPa); hover a load / area "
+    "cell for N/mm².",
     "Exponents are least-squares fits in logs; ± is one standard error, with the 95 % "
     "interval (Student t) in the cell's tooltip. With as many points as parameters a "
     "fit is exact and has no error estimate.",

@@ -321,7 +321,7 @@ def report_config(rows: list[dict], tables: ReportTables, *, source: str = "") -
         "model cases": len(solved),
         "surfaces": f"plate -> flat ground; drum -> {drum_m:g} m drum unless "
         "drum_diameter_mm is given",
-        "units": "mm, N, bar (1 bar = 0.1 N/mm2)",
+        "units": "mm, N, bar (1 bar = 0.1 N/mm²)",
     }
 
 
@@ -682,9 +682,9 @@ def draw_figures(tables: ReportTables, fig_dir, colours: dict, *, tick=None) -> 
                 paired, tire, colours[tire], name=f"trends_tire{k}"
             ),
             f"trends_tire{k}",
-            f"{tire}: length, width and area vs pressure and load (log-log), prints solid and "
-            "filled, model dashed and open; in both rows the shade is the level of the "
-            "variable not on the x axis, darkest = lowest.",
+            f"{tire}: length, width and area vs pressure (top) and load (bottom), log-log; "
+            "prints solid and filled, model dashed and open; a line's shade is the level of "
+            "the variable held fixed along it (each row's legend), darkest = lowest.",
         )
         for k, tire in enumerate(colours)
     }

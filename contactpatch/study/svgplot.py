@@ -137,8 +137,10 @@ def log_ticks(lo: float, hi: float, values=()) -> list[float]:
     out = []
     for e in range(math.floor(math.log10(lo)), math.ceil(math.log10(hi)) + 1):
         out += [k * 10.0**e for k in (1, 2, 5) if lo <= k * 10.0**e <= hi]
-    if len(out) < 3:
-        out = [t for t in linear_ticks(lo, hi, 4) if lo <= t <= hi]
+    for n in (4, 6, 8):  # under a decade: linear steps, finer until three fit
+        if len(out) >= 3:
+            break
+        out = [t for t in linear_ticks(lo, hi, n) if lo <= t <= hi]
     if len(out) < 2:  # a very short axis: its two ends, rounded inward
         out = sorted({float(f"{lo * 1.02:.3g}"), float(f"{hi / 1.02:.3g}"), *v})
     return out

@@ -207,7 +207,7 @@ def relaxation_figure(curve: dict, variants: list[dict]) -> str:
     a = plot.panel(90, 60, 470, 250, xlim=xlim, ylim=ylim, xlog=True)
     plot.axes(
         a,
-        xlabel="casing modulus E [N/mm^2] (t fixed)",
+        xlabel="casing modulus E [N/mm²] (t fixed)",
         ylabel="RMS log error, static lateral stiffness",
         xticks=_ticks(*xlim),
     )
@@ -223,7 +223,7 @@ def relaxation_figure(curve: dict, variants: list[dict]) -> str:
         [
             LegendItem("in sample, all fit tires", "#111", marker=None, line=True),
             LegendItem("E = 0 (taut string)", "#777", marker=None, line=True, dashed=True),
-            LegendItem(f"fitted E = {curve['fitted']:.3g} N/mm^2", "#D55E00", None, line=True),
+            LegendItem(f"fitted E = {curve['fitted']:.3g} N/mm²", "#D55E00", None, line=True),
             LegendItem("E fitted without one tire", "#0072B2", marker=None, line=True),
         ],
         40,

@@ -213,7 +213,7 @@ def variants(runner: ModelRunner, points: list[Point], fit: RelaxationFit) -> li
         ),
         (
             "taut beam, E fitted (in sample)",
-            f"E = {fit.modulus:.4g} N/mm^2",
+            f"E = {fit.modulus:.4g} N/mm²",
             1,
             lambda c, t: rel(c, BeamRelaxation(_or(fit.modulus, 0.0))),
             "fitted to these points",

@@ -44,7 +44,7 @@ LOTO_COLUMNS = [
     ("tire_id", "tire"),
     ("tire", "name"),
     ("n", "n"),
-    ("modulus_without_tire", "casing modulus E without it [N/mm^2]"),
+    ("modulus_without_tire", "casing modulus E without it [N/mm²]"),
     ("ratios", "its model/meas."),
     ("rms_log_error", "RMS log error"),
 ]
@@ -192,7 +192,8 @@ def is_number(v) -> bool:
 
 def display_rows(rows: list[dict]) -> list[dict]:
     """Rows as shown: pressures in bar (the report's one pressure unit; 1 bar =
-    0.1 N/mm^2) -- ``load / ink-print area`` in the statistics and points.
+    0.1 N/mm^2) -- ``load / ink-print area`` in the statistics and points; areas
+    in mm² (the data's ``mm^2``).
 
     Parameters
     ----------
@@ -210,6 +211,8 @@ def display_rows(rows: list[dict]) -> list[dict]:
             for k in ("measured", "model"):
                 if is_number(r.get(k)):
                     r[k] = 10.0 * r[k]
+        elif r.get("unit") == "mm^2":
+            r = dict(r, unit="mm²")
         out.append(r)
     return out
 
@@ -450,7 +453,7 @@ def headline(data: dict) -> str:
         f"ambiguous load, {counts.get('not a measurement', 0)} interpolated by the author, "
         f"{counts.get('not modelled', 0)} not modelled, {counts.get('model input', 0)} model "
         f"inputs, {counts.get('model error', 0)} model errors. One global parameter is fitted: "
-        f"the casing modulus of the taut beam (5.9), E = {st['modulus_N_mm2']:.3g} N/mm^2 at "
+        f"the casing modulus of the taut beam (5.9), E = {st['modulus_N_mm2']:.3g} N/mm² at "
         f"t = {st['thickness_mm']:g} mm (E t = {st['modulus_times_thickness_N_mm']:.3g} N/mm), "
         f"fitted to the {beam.get('n', 0)} static lateral stiffnesses; every reported value of "
         "a fitted tire uses E fitted without that tire (leave one tire out: RMS log error "

@@ -234,7 +234,7 @@ class BeamRelaxation:
         if self.modulus == 0:
             return f"taut string (EI = 0), T by equation {eq}"
         return (
-            f"taut beam, E = {self.modulus:.4g} N/mm^2, t = {self.thickness:g} mm, "
+            f"taut beam, E = {self.modulus:.4g} N/mm², t = {self.thickness:g} mm, "
             f"T by equation {eq}"
         )
 

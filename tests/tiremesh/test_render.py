@@ -65,7 +65,7 @@ def test_title_block_states_the_load_case(tire_mesh):
     lines = title_lines(tire_mesh)
     assert lines[0] == "Schwalbe Big Apple 55-622 on a 18.7 mm rim"
     assert lines[1] == "4 bar, 400 N, camber 20 deg, slip 0 deg, flat ground"
-    assert lines[2].startswith("patch ") and "mm2" in lines[2]
+    assert lines[2].startswith("patch ") and "mm²;" in lines[2]
     drum = tm.solve(tm.get_tire(8), load=400.0, pressure=0.69, surface=tm.Drum(2500))
     assert "6.9 bar" in title_lines(build_mesh(drum, n_around=60))[1]
     assert title_lines(build_mesh(drum, n_around=60))[1].endswith("drum 2.5 m")
@@ -295,9 +295,9 @@ def test_fit_camera_frames_the_points_both_ways():
     assert (tall.azimuth, tall.elevation) == (c.azimuth, c.elevation)
 
 
-@pytest.mark.parametrize("view", ["front", "iso"])
+@pytest.mark.parametrize("view", VIEWS)
 def test_fitted_views_keep_the_framed_tire_inside(tire_mesh, view):
-    """Front and iso: every framed point projects inside the model's part of the
+    """Every view: every point it draws projects inside the model's part of the
     image; the front view's ruler lies below the tire (not across it)."""
     from tiremesh.render import _camera, frame_points, front_ruler, image_axes
 
@@ -313,3 +313,39 @@ def test_fitted_views_keep_the_framed_tire_inside(tire_mesh, view):
         a, b = front_ruler(c, pts, 40.0)
         assert max((a - f) @ up, (b - f) @ up) < v.min()
         assert -c.scale < (a - f) @ up  # and still in the image
+
+
+@pytest.mark.parametrize("view", VIEWS)
+def test_every_view_leaves_a_margin_around_the_model(tire_mesh, view):
+    """A cutaway (:func:`tiremesh.render.view_region`) ends the wheel inside the
+    frame: a border of the model's part of the image (below the title block, left
+    of the colour bar) is background all round, but for the axis triad's corner."""
+    w, h = GOLDEN_SIZE
+    img = render(tire_mesh, view=view, size=GOLDEN_SIZE)
+    body = img[round(h * TITLE_FRACTION) :, : round(w * (1 - BAR_FRACTION))]
+    bh = body.shape[0]
+    k = round(0.02 * bh)
+    blank = (body == 255).all(axis=2)
+    triad_w, triad_h = round(0.13 * h / w * 1.33 * w) + 2, round(0.17 * bh) + 2
+    assert blank[:k].all() and blank[:, -k:].all(), view  # top, right
+    assert blank[: bh - triad_h, :k].all(), view  # left, above the triad
+    assert blank[-k:, triad_w:].all(), view  # bottom, right of the triad
+
+
+def test_view_region_cuts_the_wheel_to_the_patch_neighbourhood(tire_mesh):
+    """The half-spaces of each view keep the patch and drop the top of the wheel;
+    the front view keeps the half behind the central section, its far cut turned
+    toward the camera (no line of sight leaves the tire through it)."""
+    from tiremesh.render import image_axes, view_region
+
+    p = tire_mesh.patch
+    top = np.array([0.0, 0.0, 2 * p.tire.wheel_radius])
+    for view in VIEWS:
+        planes = view_region(view, tire_mesh)
+        assert all(n @ np.zeros(3) <= c for n, c in planes), view  # the patch centre
+        assert any(n @ top > c for n, c in planes), view
+    front = view_region("front", tire_mesh)
+    assert_allclose(front[0][0], [1, 0, 0]) and front[0][1] == 0.0
+    right, up = image_axes(view_camera("front", tire_mesh))
+    look = np.cross(up, right)  # into the scene
+    assert front[1][0] @ look < 0
