@@ -380,7 +380,10 @@ def process_file(
     from .read import read_file_bytes
 
     if watch is not None:
+        from .allocator import keep_freed_memory
+
         watch_parent(watch, exit_code=3)  # a killed batch leaves no worker blocked
+        keep_freed_memory()  # a local worker process: reuse freed image buffers
     opts = _batch_options(options)
     if job.error:
         return [_error_row(job, job.error)]

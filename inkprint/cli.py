@@ -570,8 +570,10 @@ def main(argv: Sequence[str] | None = None) -> int:
     """
     from tiremesh.errors import TireModelError
 
+    from .allocator import keep_freed_memory
     from .errors import InkPrintError
 
+    keep_freed_memory()  # this process analyses sheets: reuse freed image buffers
     a = build_parser().parse_args(argv)
     a.quiet = getattr(a, "quiet", False)  # -q / -v before or after the command
     a.verbose = getattr(a, "verbose", False)
