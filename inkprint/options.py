@@ -46,6 +46,7 @@ _RULES = {
     "edge_spot_area_mm2": (lambda v: v >= 0, ">= 0 mm^2"),
     "edge_spot_faintness": (lambda v: 0 <= v <= 1, "a fraction in [0, 1]"),
     "edge_spot_distance_mm": (lambda v: v >= 0, ">= 0 mm"),
+    "edge_spot_pattern_factor": (lambda v: v >= 0, ">= 0 (times the core's tread gap)"),
     "edge_window_mm": (lambda v: v > 0, "> 0 mm"),
     "sensitivity": (lambda v: 0 <= v < 1, "a relative change in [0, 1)"),
     "min_ink_fraction": (lambda v: 0 <= v < 1, "a fraction in [0, 1)"),
@@ -119,7 +120,12 @@ class AnalysisOptions:
         A blob outside the core whose peak darkness is below this fraction of the
         core's was not pressed: it bore no load.
     edge_spot_distance_mm : float [mm]
-        A small blob outside the core farther than this from it bore no load.
+        A small blob outside the core farther than this from it bore no load ...
+    edge_spot_pattern_factor : float [-]
+        ... and farther than this many times the core's own tread gap (the median
+        gap between its blobs): nearer, a small dark block continues the tread
+        pattern (a tip block; a knobby tread's gaps along and across differ by a
+        third, so 1.5 dropped tip blocks).
     edge_window_mm : float [mm]
         Window of the local paper and ink levels whose mean defines the print's
         edge (half contrast) for the outline.
@@ -167,6 +173,7 @@ class AnalysisOptions:
     edge_spot_area_mm2: float = 1.5
     edge_spot_faintness: float = 0.6
     edge_spot_distance_mm: float = 1.0
+    edge_spot_pattern_factor: float = 2.0
     edge_window_mm: float = 0.6
     light_tolerance: float = 0.1
     light_scale_mm: float = 30.0
