@@ -537,7 +537,12 @@ def _core_gaps(blobs: _Blobs, core_mask: np.ndarray) -> tuple:
 
 
 def thin_protrusions(
-    mask: np.ndarray, *, width_px: float, dots: bool = True, along_px: float = 0.0
+    mask: np.ndarray,
+    *,
+    width_px: float,
+    dots: bool = True,
+    along_px: float = 0.0,
+    options: AnalysisOptions | None = None,
 ) -> np.ndarray:
     """The ink without the pen-thin pieces sticking out of the print's outline.
 
@@ -564,13 +569,16 @@ def thin_protrusions(
         Keep (leave to the section 7.1.1 rule) a convex piece apart from the print
         lying along its outline, no thicker across it than this: a tread block the
         outline cut to a sliver (``mark_overhang_mm``; 0: none kept).
+    options : AnalysisOptions, optional
+        Uses ``sliver_solidity`` and ``sliver_elongation`` (defaults when None).
 
     Returns
     -------
     (h, w) bool
         ``mask`` less the thin ink outside the thick ink's hull.
     """
-    return _drop_thin(mask, _thin_parts(mask, width_px, along_px), dots=dots)
+    parts = _thin_parts(mask, width_px, along_px, resolve_options(options))
+    return _drop_thin(mask, parts, dots=dots)
 
 
 @dataclass(frozen=True)
@@ -584,7 +592,9 @@ class _ThinParts:
     ends: np.ndarray  # (n,) bool: pieces off the print's ends or along its outline
 
 
-def _thin_parts(mask: np.ndarray, width_px: float, along_px: float = 0.0) -> _ThinParts | None:
+def _thin_parts(
+    mask: np.ndarray, width_px: float, along_px: float = 0.0, opts: AnalysisOptions | None = None
+) -> _ThinParts | None:
     import cv2
 
     d = max(3, round(width_px) | 1)
@@ -608,24 +618,22 @@ def _thin_parts(mask: np.ndarray, width_px: float, along_px: float = 0.0) -> _Th
     stroke = np.maximum(stats[:, cv2.CC_STAT_WIDTH], stats[:, cv2.CC_STAT_HEIGHT]) > width_px
     ends = _at_the_ends(hull_pts.reshape(-1, 2).astype(float), cent)
     if along_px > 0:
-        ends |= _along_outline(thin, lab, stats, hull_pts, along_px, skip=foot | ends)
+        ends |= _along_outline(
+            thin, lab, stats, (hull_pts, along_px), skip=foot | ends, opts=resolve_options(opts)
+        )
     return _ThinParts(thin, lab, foot, stroke, ends)
 
 
-#: a sliver along a print's outline fills at least this share of its convex hull
-SLIVER_SOLIDITY = 0.75
-#: ... and is at least this many times longer than it is thick across the outline
-SLIVER_ELONGATION = 2.0
-
-
-def _along_outline(thin, lab, stats, hull_pts, along_px: float, *, skip) -> np.ndarray:
-    """Per piece: convex (:data:`SLIVER_SOLIDITY`), apart from the print and lying
-    along the hull's outline, its thin ink no thicker across the outline than
-    ``along_px`` [px] (the farthest minus the nearest distance out of the hull) and
-    :data:`SLIVER_ELONGATION` times longer than that: a tread block the outline cut
-    to a thin bar, not a stroke sticking out or a letter's foot."""
+def _along_outline(thin, lab, stats, hull, *, skip, opts: AnalysisOptions) -> np.ndarray:
+    """Per piece: convex (``sliver_solidity``), apart from the print and lying along
+    the outline of ``hull`` (its points and ``along_px``), its thin ink no thicker
+    across the outline than ``along_px`` [px] (the farthest minus the nearest
+    distance out of the hull) and ``sliver_elongation`` times longer than that: a
+    tread block the outline cut to a thin bar, not a stroke sticking out or a
+    letter's foot."""
     import cv2
 
+    hull_pts, along_px = hull
     n = len(stats)
     out = np.zeros(n, bool)
     ys, xs = np.nonzero(thin)
@@ -646,7 +654,7 @@ def _along_outline(thin, lab, stats, hull_pts, along_px: float, *, skip) -> np.n
         hull = cv2.convexHull(pts)
         fill = len(pts) / max(cv2.contourArea(hull) + 0.5 * cv2.arcLength(hull, True) + 1.0, 1.0)
         long = max(cv2.minAreaRect(pts)[1]) + 1.0
-        out[k] = fill >= SLIVER_SOLIDITY and long >= SLIVER_ELONGATION * across[k]
+        out[k] = fill >= opts.sliver_solidity and long >= opts.sliver_elongation * across[k]
     return out
 
 
@@ -724,7 +732,7 @@ def edge_spots(
     # the rule is off when no blob can be faint and no distance too far (1 m)
     rule_on = opts.edge_spot_faintness > 0 or opts.edge_spot_distance_mm < 1e3
     along = mm_to_px_length(opts.mark_overhang_mm, mm_per_px)
-    parts = _thin_parts(group.mask, width, along)  # thin_protrusions, both ways
+    parts = _thin_parts(group.mask, width, along, opts)  # thin_protrusions, both ways
     kept = _drop_thin(group.mask, parts, dots=rule_on)
     thin = group.mask & ~kept if kept.any() else np.zeros_like(group.mask)
     strokes = thin & ~_drop_thin(group.mask, parts, dots=False)

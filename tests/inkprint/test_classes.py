@@ -165,7 +165,7 @@ def test_sort_ink_ruler_across_a_print_is_set_aside(tmp_path, seed):
 def test_analyze_scan_mark_pulling_a_print_edge_is_flagged(tmp_path, kind, k):
     # a label's letter feet merged into the print's edge (+3.7 % width) and a ruler
     # crossing it (+1.3 %) passed unflagged: without the ink next to the mark the
-    # print is narrower by more than MARK_PULL, so it is flagged, never silent
+    # print is narrower by more than options.mark_pull, so it is flagged, never silent
     results, rows = outcomes(tmp_path, kind, 4242 * 100_003 + k, dpi=None)
     assert not [r for r in results if r["outcome"] in SILENT], results
     (row,) = rows
