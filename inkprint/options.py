@@ -57,6 +57,7 @@ _RULES = {
     "grid_span": (lambda v: 0 < v <= 1, "a fraction of the sheet in (0, 1]"),
     "grid_min_lines": (lambda v: v >= 1 and float(v).is_integer(), "a whole number >= 1"),
     "grid_graze_mm": (lambda v: v >= 0, ">= 0 mm"),
+    "grid_aside_share": (lambda v: v >= 0, ">= 0 (a share of the print's hull area)"),
     "axis_uncertain_aspect": (lambda v: v >= 1, ">= 1 (length over width)"),
     "axis_misaligned_deg": (lambda v: 0 <= v < 45, "an angle in [0, 45) degrees"),
     "axis_misaligned_excess": (lambda v: 0 <= v < 1, "a relative change in [0, 1)"),
@@ -174,6 +175,10 @@ class AnalysisOptions:
         A gridline taken out grazes a print's edge where they touch over a run at
         least this long (counted into ``edge_mark_mm``; a line leaving the edge at
         a slant touches it over a shorter run).
+    grid_aside_share : float [-]
+        On a sheet with gridlines, pen-thin ink set aside touching a print over more
+        than this share of its hull area flags it ``mark_on_edge``: tread slivers a
+        gridline joined read as strokes (hull area -5 %).
     axis_uncertain_aspect : float [-]
         With ``rolling_axis='auto'``, a print whose length / width is below this is
         flagged ``axis_uncertain`` (its longer axis may not be the rolling one).
@@ -182,9 +187,11 @@ class AnalysisOptions:
         flags it ``axis_misaligned`` ...
     axis_misaligned_excess : float [-]
         ... when measuring along the given axis also lengthens or widens it by more
-        than this share (a nearly round print reads the same along any axis; one
-        whose own axis is not defined, aspect below ``axis_uncertain_aspect``, by
-        more than 4 x this).
+        than this share (half the 1 % bar; a nearly round print reads the same along
+        any axis; one whose own axis is not defined, aspect below
+        ``axis_uncertain_aspect``, by more than 4 x this). The own axis of a
+        wide-groove knob pattern is uncertain by ~0.7 degrees: at 0.002, knobby
+        prints taped square and read within 0.1 % were flagged.
     light_tolerance : float [-]
         When the paper's brightness varies by more than this fraction over the
         sheet (a gradient, a shadow), the light is flattened before thresholding.
@@ -240,9 +247,10 @@ class AnalysisOptions:
     grid_span: float = 0.7
     grid_min_lines: int = 3
     grid_graze_mm: float = 1.0
+    grid_aside_share: float = 0.005
     axis_uncertain_aspect: float = 1.3
     axis_misaligned_deg: float = 1.0
-    axis_misaligned_excess: float = 0.002
+    axis_misaligned_excess: float = 0.005
     light_tolerance: float = 0.1
     light_scale_mm: float = 30.0
     perspective_tolerance_deg: float = 1.5
