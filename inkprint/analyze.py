@@ -13,7 +13,8 @@ print's principal axis, the longer direction; the row says ``axis_source = auto`
 A given axis is used as given: a print taped askew reads too wide along it (+4 % at
 3 degrees, +27 % at 10), so a print whose own axis (:func:`own_axis`: its hull's
 minimum-area rectangle, confirmed by the principal axis) is turned more than
-:data:`AXIS_MISALIGNED_DEG` from the given one is flagged ``axis_misaligned`` with
+``axis_misaligned_deg`` (:class:`inkprint.AnalysisOptions`) from the given one is
+flagged ``axis_misaligned`` with
 the fix (``auto`` or square the print). The
 *gross* outline is the convex hull of the
 ink's sub-pixel edge (the iso-line half-way between the local paper and ink levels,
@@ -48,28 +49,6 @@ from .read import Scan, read_scan
 from .results import BAND_KEYS, PrintResult, SheetResult, contact_pressure, marks_summary
 
 AXES = ("auto", "x", "y")
-#: ``auto`` on a print whose length / width is below this is flagged axis_uncertain
-AXIS_UNCERTAIN_ASPECT = 1.3
-#: a given rolling axis farther than this [deg] from the print's own axis flags it
-#: axis_misaligned (when the print's own axis is defined, see :func:`own_axis`)
-AXIS_MISALIGNED_DEG = 1.0
-#: ... and when measuring along the given axis lengthens or widens it by more than this
-#: share (a nearly round print reads the same along any axis; one whose own axis is
-#: not defined, aspect below AXIS_UNCERTAIN_ASPECT, by more than 4 x this)
-AXIS_MISALIGNED_EXCESS = 0.002
-#: a mark set aside covering more than this [mm] of a print's outline flags it
-EDGE_MARK_MM = 2.5
-#: ink of a mark set aside (a label's letter, a ruler) this close [px] to a print's
-#: ink may be the mark's (a stroke's foot merged into the print's edge) ...
-MARK_NEAR_PX = 2
-#: ... and when the print's length or width without it is smaller by more than this,
-#: the print is flagged ``mark_on_edge`` (a third of the 1 % bar: the pixels next to
-#: the mark are a lower bound of its pull; the outline also follows the mark's grey:
-#: a ruler pulling 0.4 % by its ink widened a print by 1.3 %)
-MARK_PULL = 0.003
-#: a group with more pen strokes set aside around it than this share of its own ink
-#: is writing
-WRITING_SHARE = 0.5
 
 
 def _hull_px(mask, field, r0: int, c0: int) -> np.ndarray:
@@ -134,10 +113,12 @@ def edge_field(
     so darker or lighter inking does not move the measured outline (a global
     threshold does: the hull then follows the darkest stretch of a long edge). Where
     the local contrast is below half the print's paper-to-ink contrast (inside the
-    ink, on bare paper) the mask decides. Where the locally darkest ink is *faint*
-    (lighter than ``edge_spot_faintness`` of the print's median ink darkness: a halo
-    speck touching the edge, section 7.1.1), the print's median ink stands in for
-    it, so the speck reads as paper instead of adding its width to the outline.
+    ink, on bare paper) the mask decides. Where the locally darkest ink is lighter
+    than the print's median ink (a faint halo speck touching the edge, section 7.1.1;
+    a knob inked lighter than the rest), the print's median ink stands in for it: a
+    speck inked at half the print's darkness reads as paper instead of adding its
+    width to the outline (next to a knob inked 0.7 x the median it read as ink:
+    width +1.2 %).
 
     Parameters
     ----------
@@ -147,7 +128,7 @@ def edge_field(
         The print's ink in the box.
     mm_per_px : float [mm / px]
     options : AnalysisOptions, optional
-        Uses ``edge_window_mm`` and ``edge_spot_faintness`` (defaults when None).
+        Uses ``edge_window_mm`` (defaults when None).
 
     Returns
     -------
@@ -166,8 +147,7 @@ def edge_field(
         ink, paper = np.median(sub_g[sub_m]), np.median(sub_g[~sub_m])
     else:
         ink, paper = 0.0, 1.0
-    faint = lo > paper - opts.edge_spot_faintness * (paper - ink)
-    lo = np.where(faint, np.float32(ink), lo)
+    lo = np.minimum(lo, np.float32(ink))
     sharp = (hi - lo) > 0.5 * max(paper - ink, 1e-6)
     return np.where(sharp, grey - 0.5 * (lo + hi), np.where(mask, -0.5, 0.5)).astype(np.float32)
 
@@ -399,7 +379,7 @@ def find_prints(
             continue
         check = is_print(g, mm_per_px=mm_per_px, options=opts, floor_mm2=floor, image_shape=shape)
         ink_mm2 = area_px_to_mm2(g.n_pixels, mm_per_px)
-        if check.ok and g.aside_mm2 > WRITING_SHARE * ink_mm2:
+        if check.ok and g.aside_mm2 > opts.writing_share * ink_mm2:
             check = PrintCheck(
                 False,
                 f"writing: {g.aside_mm2:.1f} mm^2 of pen strokes around {ink_mm2:.1f} mm^2 of "
@@ -670,7 +650,9 @@ def _padded(g: Group, shape, pad: int) -> Group:
     return dataclasses.replace(g, rows=slice(r0, r1), cols=slice(c0, c1), mask=mask)
 
 
-def _axis_flags(metrics, hull_px, index: int, flags: list, warnings: list) -> tuple[list, list]:
+def _axis_flags(
+    metrics, hull_px, index: int, flags: list, warnings: list, *, opts: AnalysisOptions
+) -> tuple[list, list]:
     """Flag ``axis_misaligned``: the print turned on the sheet against the given axis."""
     aspect = max(metrics.aspect_ratio, 1.0 / max(metrics.aspect_ratio, 1e-9))
     given = float(metrics.orientation)
@@ -678,9 +660,10 @@ def _axis_flags(metrics, hull_px, index: int, flags: list, warnings: list) -> tu
     # the principal (second-moment) axis must agree: a rounded knob pattern's
     # min-area rectangle can lie on a diagonal (-26 deg on a square print)
     principal = (math.degrees(rolling_angle(hull_px, "auto") - given) + 45.0) % 90.0 - 45.0
-    agree = abs(principal - turn) <= max(AXIS_MISALIGNED_DEG, 0.3 * abs(turn))
-    if agree and abs(turn) > AXIS_MISALIGNED_DEG and excess > AXIS_MISALIGNED_EXCESS:
-        if aspect > AXIS_UNCERTAIN_ASPECT or excess > 4 * AXIS_MISALIGNED_EXCESS:
+    deg, most = opts.axis_misaligned_deg, opts.axis_misaligned_excess
+    agree = abs(principal - turn) <= max(deg, 0.3 * abs(turn))
+    if agree and abs(turn) > deg and excess > most:
+        if aspect > opts.axis_uncertain_aspect or excess > 4 * most:
             flags.append("axis_misaligned")
             warnings.append(
                 f"print #{index} is turned {turn:+.1f} deg from the given rolling axis: its "
@@ -697,8 +680,10 @@ def _print_flags(
     contact = px_to_mm_length(g.edge_marks, ctx.scan.mm_per_px)
     if ctx.found.grid is not None:  # a gridline grazing the edge, taken out with it
         grid = ctx.found.grid
-        contact += grid.along_mm(g.mask, g.rows.start, g.cols.start, mm_per_px=ctx.scan.mm_per_px)
-    if contact > EDGE_MARK_MM:
+        contact += grid.along_mm(
+            g.mask, g.rows.start, g.cols.start, mm_per_px=ctx.scan.mm_per_px, options=ctx.opts
+        )
+    if contact > ctx.opts.edge_mark_mm:
         flags.append("mark_on_edge")
         warnings.append(
             f"print #{index}: a mark set aside covers {contact:.1f} mm of its outline (a "
@@ -708,7 +693,7 @@ def _print_flags(
     pull = 0.0
     if "mark_on_edge" not in flags:
         pull = _mark_pull(ctx, padded, kept, m.metrics.orientation)
-    if pull > MARK_PULL:
+    if pull > ctx.opts.mark_pull:
         flags.append("mark_on_edge")
         warnings.append(
             f"print #{index}: a mark set aside (a label, a line) touches its edge: without "
@@ -723,13 +708,22 @@ def _print_flags(
             f"a texture): where it joins the print's edge the outline is uncertain; see "
             f"the overlay or rescan on plain paper"
         )
+    if ctx.found.grid is not None and "mark_on_edge" not in flags:
+        hull = m.metrics.hull_area
+        if g.aside_mm2 > ctx.opts.grid_aside_share * hull:
+            flags.append("mark_on_edge")
+            warnings.append(
+                f"print #{index}: {g.aside_mm2:.1f} mm^2 of pen-thin ink set aside touches "
+                f"its edge on chart paper (tread slivers a gridline joined?): its outline "
+                f"there is uncertain; see the overlay or rescan on plain paper"
+            )
     cut = clipped(g, ctx.page.work.shape, ctx.page.sheet, margin_px=margin)
     if cut:
         flags.append("clipped")
         warnings.append(f"print #{index} {cut}")
     if ctx.rolling_axis != "auto":
-        flags, warnings = _axis_flags(m.metrics, m.hull_px, index, flags, warnings)
-    elif m.metrics.aspect_ratio < AXIS_UNCERTAIN_ASPECT:
+        flags, warnings = _axis_flags(m.metrics, m.hull_px, index, flags, warnings, opts=ctx.opts)
+    elif m.metrics.aspect_ratio < ctx.opts.axis_uncertain_aspect:
         flags.append("axis_uncertain")
         warnings.append(
             f"print #{index} is nearly as wide as long ({m.metrics.aspect_ratio:.2f}): the "
@@ -742,7 +736,7 @@ def _mark_pull(ctx: _Context, g: Group, kept: np.ndarray, angle: float) -> float
     """How much ink set aside (larger than a speck, not a gridline taken out) touching
     the print may have pulled it out: the largest relative excess of its length or
     width (along ``angle`` [rad] and across) over those of its ink without the
-    pixels within :data:`MARK_NEAR_PX` of that mark (a stroke's foot on the print's
+    pixels within ``mark_near_px`` of that mark (a stroke's foot on the print's
     edge; a line crossing the edge only notches it, the hull spans the notch).
     ``g`` is the print's padded box, ``kept`` its ink measured (over ``g.mask``'s
     box): what the edge-spot rule took out of the group (a letter's strokes) counts
@@ -752,7 +746,8 @@ def _mark_pull(ctx: _Context, g: Group, kept: np.ndarray, angle: float) -> float
     from .group import outline_points
 
     h, w = ctx.page.work.shape
-    pad = MARK_NEAR_PX + 2
+    near_px = ctx.opts.mark_near_px
+    pad = near_px + 2
     r0, c0 = max(g.rows.start - pad, 0), max(g.cols.start - pad, 0)
     r1, c1 = min(g.rows.stop + pad, h), min(g.cols.stop + pad, w)
     ink = ctx.binarization.mask[r0:r1, c0:c1].copy()
@@ -763,7 +758,7 @@ def _mark_pull(ctx: _Context, g: Group, kept: np.ndarray, angle: float) -> float
     aside = remove_specks(ink & ~own, area_mm2_to_px(ctx.opts.speck_area_mm2, ctx.scan.mm_per_px))
     if not aside.any():
         return 0.0
-    k = 2 * MARK_NEAR_PX + 1
+    k = 2 * near_px + 1
     near = cv2.dilate(aside.view(np.uint8), cv2.getStructuringElement(cv2.MORPH_ELLIPSE, (k, k)))
     core = own & ~near.view(bool)
     if not (own & near.view(bool)).any() or not core.any():

@@ -122,6 +122,44 @@ THRESHOLDS = (
         "MM",
         "small blobs farther than this from the core bore no load",
     ),
+    (
+        "--edge-spot-pattern",
+        "edge_spot_pattern_factor",
+        "FACTOR",
+        "small dark blobs within this many tread gaps of the print bear load (tip blocks)",
+    ),
+    (
+        "--mark-overhang",
+        "mark_overhang_mm",
+        "MM",
+        "thin ink reaching farther out of a print is a mark; a sliver along its edge no "
+        "thicker than this is its own",
+    ),
+    (
+        "--edge-mark",
+        "edge_mark_mm",
+        "MM",
+        "a mark set aside along more of a print's outline than this flags it mark_on_edge",
+    ),
+    (
+        "--mark-pull",
+        "mark_pull",
+        "FRACTION",
+        "a mark touching a print that may stretch it by more than this share flags it "
+        "mark_on_edge",
+    ),
+    (
+        "--grid-span",
+        "grid_span",
+        "FRACTION",
+        "chart-paper gridlines run unbroken over at least this share of the sheet",
+    ),
+    (
+        "--axis-tolerance",
+        "axis_misaligned_deg",
+        "DEG",
+        "a print turned more than this from the given --rolling-axis is flagged axis_misaligned",
+    ),
     ("--band", "sensitivity", "FRACTION", "relative threshold change of the band (0.1 = +-10 %%)"),
 )
 

@@ -2,15 +2,15 @@
 
 Gridlines are thin, straight, parallel to the sheet's sides, repeated and run
 unbroken over most of the sheet (a print's tread lines stop at its edge). So: rows
-(columns) with an unbroken run of ink over at least :data:`GRID_SPAN` of the sheet's
+(columns) with an unbroken run of ink over at least ``grid_span`` of the sheet's
 width (height), in bands no thicker than a pen stroke (``stroke_width_mm``), at
-least :data:`GRID_MIN_LINES` of them, are gridlines (a row of anti-aliased fringe
+least ``grid_min_lines`` of them (:class:`inkprint.AnalysisOptions`), are gridlines (a row of anti-aliased fringe
 either side). Their ink is taken out except over the prints' ground: the rest of the
 ink closed by the grouping distance (``group_distance_mm``), which spans the
 grooves and the line's own width where it crosses a print. Outside, the line no
 longer joins the print or runs along its edge, so the print measures as on plain
 paper. Where a line runs along a print's edge (print ink right across the line
-from the ink taken out, over more than ``inkprint.analyze.EDGE_MARK_MM``) the edge
+from the ink taken out, over more than ``edge_mark_mm``) the edge
 cannot be told from the line: that print stays flagged ``mark_on_edge``. A grid
 that does not come out this way (turned on the scanner, broken by a faint scan)
 is left to the marks' sorting, which flags the prints it touches.
@@ -24,13 +24,6 @@ import numpy as np
 
 from .coords import mm_to_px_length, px_to_mm_length
 from .options import AnalysisOptions, resolve_options
-
-#: a gridline runs unbroken over at least this share of the sheet's width (height)
-GRID_SPAN = 0.7
-#: a grid has at least this many parallel lines
-GRID_MIN_LINES = 3
-#: a print's edge grazes a gridline where they touch over a run this long [mm]
-GRAZE_MM = 1.0
 
 
 def _line_bands(covered: np.ndarray, max_px: float) -> list[tuple[int, int]]:
@@ -61,17 +54,18 @@ def _longest_runs(rows: np.ndarray) -> np.ndarray:
     return best
 
 
-def _line_rows(mask: np.ndarray, max_px: float) -> np.ndarray:
+def _line_rows(mask: np.ndarray, max_px: float, opts: AnalysisOptions) -> np.ndarray:
     """Rows of ``mask`` on horizontal gridlines, with a row of fringe either side."""
     h, w = mask.shape
     rows = np.zeros(h, bool)
-    cand = np.flatnonzero(np.count_nonzero(mask, axis=1) >= GRID_SPAN * w)
-    if len(cand) < GRID_MIN_LINES:  # the cheap test, on every sheet
+    span, least = opts.grid_span * w, opts.grid_min_lines
+    cand = np.flatnonzero(np.count_nonzero(mask, axis=1) >= span)
+    if len(cand) < least:  # the cheap test, on every sheet
         return rows
     covered = np.zeros(h, bool)
-    covered[cand] = _longest_runs(mask[cand]) >= GRID_SPAN * w
+    covered[cand] = _longest_runs(mask[cand]) >= span
     bands = _line_bands(covered, max_px)
-    if len(bands) < GRID_MIN_LINES:
+    if len(bands) < least:
         return rows
     for a, b in bands:
         rows[max(a - 1, 0) : b + 1] = True
@@ -97,7 +91,15 @@ class Gridlines:
     along_rows: np.ndarray
     along_cols: np.ndarray
 
-    def along_mm(self, own: np.ndarray, r0: int, c0: int, *, mm_per_px: float) -> float:
+    def along_mm(
+        self,
+        own: np.ndarray,
+        r0: int,
+        c0: int,
+        *,
+        mm_per_px: float,
+        options: AnalysisOptions | None = None,
+    ) -> float:
         """Length [mm] a print's edge runs along gridlines taken out.
 
         Parameters
@@ -106,11 +108,13 @@ class Gridlines:
             The print's ink, its box at sheet row ``r0``, column ``c0`` [px].
         r0, c0 : int [px]
         mm_per_px : float [mm / px]
+        options : AnalysisOptions, optional
+            Uses ``grid_graze_mm`` (defaults when None).
 
         Returns
         -------
         float [mm]
-            The runs along the lines, each at least :data:`GRAZE_MM` long, of
+            The runs along the lines, each at least ``grid_graze_mm`` long, of
             gridline pixels next to the print's ink (a line leaving the print's
             edge at a slant touches it over a shorter run).
         """
@@ -123,7 +127,7 @@ class Gridlines:
         near = np.zeros((e - a, f - b), np.uint8)
         near[r0 - a : r0 - a + h, c0 - b : c0 - b + w] = own[: e - r0, : f - c0]
         near = cv2.dilate(near, np.ones((3, 3), np.uint8)).view(bool)
-        least = mm_to_px_length(GRAZE_MM, mm_per_px)
+        least = mm_to_px_length(resolve_options(options).grid_graze_mm, mm_per_px)
         total = 0
         for along in (self.along_rows[a:e, b:f] & near, (self.along_cols[a:e, b:f] & near).T):
             runs = _runs(along)
@@ -165,7 +169,8 @@ def find_gridlines(
         Ink of the sheet.
     mm_per_px : float [mm / px]
     options : AnalysisOptions, optional
-        Uses ``stroke_width_mm`` and ``group_distance_mm`` (defaults when None).
+        Uses ``stroke_width_mm``, ``group_distance_mm``, ``grid_span`` and
+        ``grid_min_lines`` (defaults when None).
 
     Returns
     -------
@@ -174,8 +179,8 @@ def find_gridlines(
     """
     opts = resolve_options(options)
     stroke = max(1.0, mm_to_px_length(opts.stroke_width_mm, mm_per_px))
-    rows = _line_rows(mask, stroke)
-    cols = _line_rows(mask.T, stroke)
+    rows = _line_rows(mask, stroke, opts)
+    cols = _line_rows(mask.T, stroke, opts)
     if not rows.any() and not cols.any():
         return None
     h_line = mask & rows[:, None]

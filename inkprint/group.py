@@ -27,9 +27,9 @@ blobs (area >= ``edge_spot_area_mm2``, peak darkness >= ``edge_spot_faintness`` 
 the large blobs' median). A blob outside the core's hull bore no load when it is
 *faint* (peak darkness below that fraction: ink that was not pressed) or *small and
 isolated*: below the area and farther from the nearest core blob than
-``edge_spot_distance_mm`` or 1.5 x the core's own tread gap, whichever is larger. So
-small dark blocks at the tips that continue the tread pattern along the rolling
-direction are kept (before, their centroids' distance to the core's hull dropped
+``edge_spot_distance_mm`` or ``edge_spot_pattern_factor`` x the core's own tread
+gap, whichever is larger. So small dark blocks at the tips that continue the tread
+pattern along the rolling direction are kept (before, their centroids' distance to the core's hull dropped
 them: length -2.4 %), and a dark speck far out is dropped. The peak, not the mean,
 is used because a small dot's anti-aliased rim lowers its mean. Results are reported
 both with all ink and with load-bearing ink only.
@@ -38,8 +38,11 @@ Before the rule, pen-thin ink (narrower than ``stroke_width_mm``) outside the hu
 the print's thick ink is taken out when it is joined to the print (a stroke's foot,
 a ruler's tick) or lies beside it (a label's letters, specks: counted as edge
 spots); thin slivers off the print's ends along its major axis - tip blocks cut by
-the outline - are left to the rule, so the tips are kept (:func:`thin_protrusions`;
-an addition to section 7.1.1, which knew no labels touching a print).
+the outline - and convex slivers lying along its outline, no thicker across it than
+``mark_overhang_mm`` (blocks the outline cut to a bar: at the sides, or at the
+rolling ends of a print wider than long) are left to the rule, so they are kept
+(:func:`thin_protrusions`; an addition to section 7.1.1, which knew no labels
+touching a print).
 """
 
 from __future__ import annotations
@@ -552,7 +555,14 @@ def _core_gaps(blobs: _Blobs, core: np.ndarray) -> tuple:
     return gaps[1:], float(np.median(nearest_gap[np.isfinite(nearest_gap)]))
 
 
-def thin_protrusions(mask: np.ndarray, *, width_px: float, dots: bool = True) -> np.ndarray:
+def thin_protrusions(
+    mask: np.ndarray,
+    *,
+    width_px: float,
+    dots: bool = True,
+    along_px: float = 0.0,
+    options: AnalysisOptions | None = None,
+) -> np.ndarray:
     """The ink without the pen-thin pieces sticking out of the print's outline.
 
     A label's stroke or a ruler's tick touching a print, left in its ink after the
@@ -574,13 +584,20 @@ def thin_protrusions(mask: np.ndarray, *, width_px: float, dots: bool = True) ->
     dots : bool
         Drop the pieces beside the print no longer than ``width_px`` too (the bits
         of a letter, halo specks); else only longer strokes.
+    along_px : float [px]
+        Keep (leave to the section 7.1.1 rule) a convex piece apart from the print
+        lying along its outline, no thicker across it than this: a tread block the
+        outline cut to a sliver (``mark_overhang_mm``; 0: none kept).
+    options : AnalysisOptions, optional
+        Uses ``sliver_solidity`` and ``sliver_elongation`` (defaults when None).
 
     Returns
     -------
     (h, w) bool
         ``mask`` less the thin ink outside the thick ink's hull.
     """
-    return _drop_thin(mask, _thin_parts(mask, width_px), dots=dots)
+    parts = _thin_parts(mask, width_px, along_px, resolve_options(options))
+    return _drop_thin(mask, parts, dots=dots)
 
 
 @dataclass(frozen=True)
@@ -591,10 +608,16 @@ class _ThinParts:
     labels: np.ndarray  # (h, w) int32: the ink's 8-connected pieces
     foot: np.ndarray  # (n,) bool: pieces holding thick ink too
     stroke: np.ndarray  # (n,) bool: pieces longer than a stroke is wide
-    ends: np.ndarray  # (n,) bool: pieces off the print's ends
+    ends: np.ndarray  # (n,) bool: pieces off the print's ends or along its outline
 
 
-def _thin_parts(mask: np.ndarray, width_px: float, comps=None) -> _ThinParts | None:
+def _thin_parts(
+    mask: np.ndarray,
+    width_px: float,
+    along_px: float = 0.0,
+    opts: AnalysisOptions | None = None,
+    comps=None,
+) -> _ThinParts | None:
     """The thin ink outside the thick ink's hull (``comps``: the mask's
     :func:`components_with_stats` if known)."""
     import cv2
@@ -619,7 +642,62 @@ def _thin_parts(mask: np.ndarray, width_px: float, comps=None) -> _ThinParts | N
     foot[lab[thick.view(bool)]] = True
     stroke = np.maximum(stats[:, cv2.CC_STAT_WIDTH], stats[:, cv2.CC_STAT_HEIGHT]) > width_px
     ends = _at_the_ends(hull_pts.reshape(-1, 2).astype(float), cent)
+    if along_px > 0:
+        ends |= _along_outline(
+            thin, lab, stats, (hull_pts, along_px), skip=foot | ends, opts=resolve_options(opts)
+        )
     return _ThinParts(thin, lab, foot, stroke, ends)
+
+
+def _along_outline(thin, lab, stats, hull, *, skip, opts: AnalysisOptions) -> np.ndarray:
+    """Per piece: convex (``sliver_solidity``), apart from the print and lying along
+    the outline of ``hull`` (its points and ``along_px``), its thin ink no thicker
+    across the outline than ``along_px`` [px] (the farthest minus the nearest
+    distance out of the hull) and ``sliver_elongation`` times longer than that: a
+    tread block the outline cut to a thin bar, not a stroke sticking out or a
+    letter's foot."""
+    import cv2
+
+    hull_pts, along_px = hull
+    n = len(stats)
+    out = np.zeros(n, bool)
+    ys, xs = np.nonzero(thin)
+    ids = lab[ys, xs]
+    sel = ~skip[ids]
+    if not sel.any():
+        return out
+    ys, xs, ids = ys[sel], xs[sel], ids[sel]
+    d = _outside_distance(np.column_stack([xs, ys]).astype(float), hull_pts.reshape(-1, 2))
+    near, far = np.full(n, np.inf), np.full(n, -np.inf)
+    np.minimum.at(near, ids, d)
+    np.maximum.at(far, ids, d)
+    has = np.bincount(ids, minlength=n) > 0
+    across = far - near + 1.0
+    for k in np.flatnonzero(has & (across <= along_px)):
+        x, y, w, h = stats[k, :4]
+        pts = cv2.findNonZero((lab[y : y + h, x : x + w] == k).view(np.uint8))
+        hull = cv2.convexHull(pts)
+        fill = len(pts) / max(cv2.contourArea(hull) + 0.5 * cv2.arcLength(hull, True) + 1.0, 1.0)
+        long = max(cv2.minAreaRect(pts)[1]) + 1.0
+        out[k] = fill >= opts.sliver_solidity and long >= opts.sliver_elongation * across[k]
+    return out
+
+
+def _outside_distance(points: np.ndarray, polygon: np.ndarray) -> np.ndarray:
+    """Distance [px] of points (x, y) out of a convex polygon: the largest signed
+    distance to its sides' lines (exact off a side, a little less off a corner;
+    negative inside)."""
+    v = polygon.astype(float)
+    e = np.roll(v, -1, axis=0) - v
+    length = np.hypot(e[:, 0], e[:, 1])
+    ok = length > 0
+    v, e, length = v[ok], e[ok], length[ok]
+    if not len(v):
+        return np.hypot(*(points - polygon[0]).T)
+    normal = np.column_stack([e[:, 1], -e[:, 0]]) / length[:, None]
+    if np.einsum("kd,kd->k", v.mean(axis=0) - v, normal).mean() > 0:
+        normal = -normal  # the centre must lie inside every side
+    return np.einsum("pkd,kd->pk", points[:, None, :] - v[None], normal).max(axis=1)
 
 
 def _drop_thin(mask: np.ndarray, parts: _ThinParts | None, *, dots: bool) -> np.ndarray:
@@ -679,7 +757,8 @@ def edge_spots(
     # the rule is off when no blob can be faint and no distance too far (1 m)
     rule_on = opts.edge_spot_faintness > 0 or opts.edge_spot_distance_mm < 1e3
     comps = components_with_stats(group.mask, connectivity=8)
-    parts = _thin_parts(group.mask, width, comps)  # thin_protrusions, both ways
+    along = mm_to_px_length(opts.mark_overhang_mm, mm_per_px)
+    parts = _thin_parts(group.mask, width, along, opts, comps)  # thin_protrusions, both ways
     kept = _drop_thin(group.mask, parts, dots=rule_on)
     thin = group.mask & ~kept if kept.any() else np.zeros_like(group.mask)
     strokes = thin & ~_drop_thin(group.mask, parts, dots=False)
@@ -716,7 +795,10 @@ def _spots(
     outside = _outside_core(blobs, core_mask) & ~core
     small = outside & ~faint & (blobs.areas < opts.edge_spot_area_mm2)
     gaps, pattern = _core_gaps(blobs, core)
-    reach = max(mm_to_px_length(opts.edge_spot_distance_mm, mm_per_px), 1.5 * pattern)
+    reach = max(
+        mm_to_px_length(opts.edge_spot_distance_mm, mm_per_px),
+        opts.edge_spot_pattern_factor * pattern,
+    )
     spot = outside & (faint | (small & (gaps > reach)))
     is_spot = np.concatenate([[False], spot])[blobs.labels]
     return EdgeSpots(group.mask & ~is_spot, n_blobs, int(spot.sum()), int(is_spot.sum()), pattern)

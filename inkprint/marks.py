@@ -433,10 +433,14 @@ def _thin_stats(parts: _Parts, hull_map, near_dist, near_id, pooled: _Pooled) ->
     return _ThinStats(extent, area, gap, reach, target, inside, touch)
 
 
-def _compact(parts: _Parts, k: int, aspect: float | None = None) -> bool:
+def _compact(parts: _Parts, k: int, aspect: float | None = None, *, along: float = 0.0) -> bool:
     """Whether thin piece ``k`` is a compact blob (a clipped tread block: convex,
     filling :data:`COMPACT_SOLIDITY` of its hull, at most ``aspect`` (default
-    :data:`COMPACT_ASPECT`) times longer than wide), not a stroke (a letter, a tick)."""
+    :data:`COMPACT_ASPECT`) times longer than wide), not a stroke (a letter, a tick).
+    With ``along`` > 0 (the piece lies along the print's outline, no thicker across
+    it than ``mark_overhang_mm`` and ``sliver_elongation`` times longer), a sliver
+    filling at least ``along`` (``sliver_solidity``) of its hull, of any length, is
+    one too: a tread block the outline cut to a thin bar along the edge."""
     import cv2
 
     pts = cv2.findNonZero(_crop(parts.thin, parts.thin_stats, k).view(np.uint8))
@@ -444,6 +448,8 @@ def _compact(parts: _Parts, k: int, aspect: float | None = None) -> bool:
     a, b = max(a, b) + 1.0, min(a, b) + 1.0
     hull = cv2.convexHull(pts)
     solid = len(pts) / max(cv2.contourArea(hull) + 0.5 * cv2.arcLength(hull, True) + 1.0, 1.0)
+    if along > 0:
+        return solid >= along
     return solid >= COMPACT_SOLIDITY and a <= (aspect or COMPACT_ASPECT) * b
 
 
@@ -468,8 +474,17 @@ def _judge_thin(t: _ThinStats, parts: _Parts, opts: AnalysisOptions, network=Non
         on_line = np.bincount(parts.thin[network], minlength=len(own)) > 0
         on_line[0] = False
     own &= ~on_line
+    # lying along the outline: no thicker across it than the overhang allowed
+    with np.errstate(invalid="ignore"):  # inf - inf: far from every print
+        across = np.where(np.isfinite(t.gap), t.reach - t.gap, np.inf)
+    along = (
+        ~on_line
+        & (across <= opts.mark_overhang_mm)
+        & (t.extent >= opts.sliver_elongation * across)
+    )
     for k in np.flatnonzero(near & ~own & (~t.touch | on_line) & ~long):
-        own[k] = _compact(parts, k, LINE_COMPACT_ASPECT if on_line[k] else COMPACT_ASPECT)
+        aspect = LINE_COMPACT_ASPECT if on_line[k] else COMPACT_ASPECT
+        own[k] = _compact(parts, k, aspect, along=opts.sliver_solidity if along[k] else 0.0)
     keep = np.where(long, t.inside >= 0.5, own)
     owner = np.where(keep, t.target, -1)
     kind = np.where(long, "", np.where(dot, "dust", "text"))

@@ -46,7 +46,21 @@ _RULES = {
     "edge_spot_area_mm2": (lambda v: v >= 0, ">= 0 mm^2"),
     "edge_spot_faintness": (lambda v: 0 <= v <= 1, "a fraction in [0, 1]"),
     "edge_spot_distance_mm": (lambda v: v >= 0, ">= 0 mm"),
+    "edge_spot_pattern_factor": (lambda v: v >= 0, ">= 0 (times the core's tread gap)"),
     "edge_window_mm": (lambda v: v > 0, "> 0 mm"),
+    "sliver_solidity": (lambda v: 0 < v <= 1, "a fraction in (0, 1]"),
+    "sliver_elongation": (lambda v: v >= 1, ">= 1 (length over thickness)"),
+    "edge_mark_mm": (lambda v: v >= 0, ">= 0 mm"),
+    "mark_near_px": (lambda v: v >= 1 and float(v).is_integer(), "a whole number of pixels >= 1"),
+    "mark_pull": (lambda v: 0 <= v < 1, "a relative change in [0, 1)"),
+    "writing_share": (lambda v: v >= 0, ">= 0 (times the group's own ink)"),
+    "grid_span": (lambda v: 0 < v <= 1, "a fraction of the sheet in (0, 1]"),
+    "grid_min_lines": (lambda v: v >= 1 and float(v).is_integer(), "a whole number >= 1"),
+    "grid_graze_mm": (lambda v: v >= 0, ">= 0 mm"),
+    "grid_aside_share": (lambda v: v >= 0, ">= 0 (a share of the print's hull area)"),
+    "axis_uncertain_aspect": (lambda v: v >= 1, ">= 1 (length over width)"),
+    "axis_misaligned_deg": (lambda v: 0 <= v < 45, "an angle in [0, 45) degrees"),
+    "axis_misaligned_excess": (lambda v: 0 <= v < 1, "a relative change in [0, 1)"),
     "sensitivity": (lambda v: 0 <= v < 1, "a relative change in [0, 1)"),
     "min_ink_fraction": (lambda v: 0 <= v < 1, "a fraction in [0, 1)"),
     "max_ink_fraction": (lambda v: 0 < v <= 1, "a fraction in (0, 1]"),
@@ -119,10 +133,65 @@ class AnalysisOptions:
         A blob outside the core whose peak darkness is below this fraction of the
         core's was not pressed: it bore no load.
     edge_spot_distance_mm : float [mm]
-        A small blob outside the core farther than this from it bore no load.
+        A small blob outside the core farther than this from it bore no load ...
+    edge_spot_pattern_factor : float [-]
+        ... and farther than this many times the core's own tread gap (the median
+        gap between its blobs): nearer, a small dark block continues the tread
+        pattern (a tip block; a knobby tread's gaps along and across differ by a
+        third, so 1.5 dropped tip blocks).
     edge_window_mm : float [mm]
         Window of the local paper and ink levels whose mean defines the print's
         edge (half contrast) for the outline.
+    sliver_solidity : float [-]
+        A thin piece apart from a print, lying along its outline no thicker across
+        it than ``mark_overhang_mm``, is a tread block the outline cut to a sliver
+        (the print's own, left to the edge-spot rule) when it fills at least this
+        share of its convex hull (a letter's bits fill less than 0.55) ...
+    sliver_elongation : float [-]
+        ... and is at least this many times longer than it is thick across the
+        outline (a letter's foot beside the print is not).
+    edge_mark_mm : float [mm]
+        A mark set aside covering more of a print's outline than this (a line along
+        its edge, a label's strokes, a gridline grazing it) flags the print
+        ``mark_on_edge``: the outline there is uncertain by the mark's width.
+    mark_near_px : int [px]
+        Ink of a mark set aside (a label's letter, a ruler) this close to a print's
+        ink may be the mark's: a stroke's foot merged into the print's edge (in
+        pixels: the merge is the threshold's and the anti-aliasing's) ...
+    mark_pull : float [-]
+        ... and when the print's length or width without those pixels is smaller by
+        more than this share, the print is flagged ``mark_on_edge`` (a third of the
+        1 % bar: the pixels next to the mark are a lower bound of its pull; the
+        outline also follows the mark's grey).
+    writing_share : float [-]
+        A group with more pen strokes set aside around it than this share of its
+        own ink is writing, not a print.
+    grid_span : float [-]
+        A chart-paper gridline runs unbroken over at least this share of the
+        sheet's width (height) ...
+    grid_min_lines : int [-]
+        ... and a grid has at least this many parallel lines.
+    grid_graze_mm : float [mm]
+        A gridline taken out grazes a print's edge where they touch over a run at
+        least this long (counted into ``edge_mark_mm``; a line leaving the edge at
+        a slant touches it over a shorter run).
+    grid_aside_share : float [-]
+        On a sheet with gridlines, pen-thin ink set aside touching a print over more
+        than this share of its hull area flags it ``mark_on_edge``: tread slivers a
+        gridline joined read as strokes (hull area -5 %).
+    axis_uncertain_aspect : float [-]
+        With ``rolling_axis='auto'``, a print whose length / width is below this is
+        flagged ``axis_uncertain`` (its longer axis may not be the rolling one).
+    axis_misaligned_deg : float [deg]
+        A given rolling axis ('x', 'y') farther than this from the print's own axis
+        flags it ``axis_misaligned`` ...
+    axis_misaligned_excess : float [-]
+        ... when measuring along the given axis also lengthens or widens it by more
+        than this share (half the 1 % bar; a nearly round print reads the same along
+        any axis; one whose own axis is not defined, aspect below
+        ``axis_uncertain_aspect``, by more than 4 x this). The own axis of a
+        wide-groove knob pattern is uncertain by ~0.7 degrees: at 0.002, knobby
+        prints taped square and read within 0.1 % were flagged.
     light_tolerance : float [-]
         When the paper's brightness varies by more than this fraction over the
         sheet (a gradient, a shadow), the light is flattened before thresholding.
@@ -167,7 +236,21 @@ class AnalysisOptions:
     edge_spot_area_mm2: float = 1.5
     edge_spot_faintness: float = 0.6
     edge_spot_distance_mm: float = 1.0
+    edge_spot_pattern_factor: float = 2.0
     edge_window_mm: float = 0.6
+    sliver_solidity: float = 0.75
+    sliver_elongation: float = 2.0
+    edge_mark_mm: float = 2.5
+    mark_near_px: int = 2
+    mark_pull: float = 0.003
+    writing_share: float = 0.5
+    grid_span: float = 0.7
+    grid_min_lines: int = 3
+    grid_graze_mm: float = 1.0
+    grid_aside_share: float = 0.005
+    axis_uncertain_aspect: float = 1.3
+    axis_misaligned_deg: float = 1.0
+    axis_misaligned_excess: float = 0.005
     light_tolerance: float = 0.1
     light_scale_mm: float = 30.0
     perspective_tolerance_deg: float = 1.5
@@ -186,7 +269,8 @@ class AnalysisOptions:
                 continue
             if not (_finite(value) and ok(value)):
                 raise InvalidInput(name, value, allowed)
-        object.__setattr__(self, "max_pixels", int(self.max_pixels))
+        for name in ("max_pixels", "mark_near_px", "grid_min_lines"):
+            object.__setattr__(self, name, int(getattr(self, name)))
         if self.max_ink_fraction <= self.min_ink_fraction:
             raise InvalidInput(
                 "max_ink_fraction",

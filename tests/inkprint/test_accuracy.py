@@ -9,10 +9,11 @@ on the share of measurable prints within 1 % length, 1 % width and 2 % hull area
 from inkprint.accuracy import SILENT, run, summary
 from inkprint.synth_cases import CLASSES
 
-#: the floor on this small set (84.6 % at seed 11; the full bar, 95 %, on >= 100 sheets by
+#: the floor on this small set (88.0 % at seed 11, 84.6 % before issue 11's sliver, tip
+#: block and edge-level fixes; the full bar, 95 %, on >= 100 sheets by
 #: ``python -m inkprint.accuracy``); grid prints with a gridline along the outline
 #: are flagged, not measured
-PASS_FLOOR = 0.8
+PASS_FLOOR = 0.85
 
 
 def test_run_mixed_set_has_no_silent_outcome_and_a_pass_floor(tmp_path):

@@ -151,6 +151,21 @@ def test_options_change_single_calls(sheet_factory):
         ("min_dpi", 0.0),
         ("max_dpi", -1.0),
         ("pdf_dpi", math.nan),
+        ("edge_spot_pattern_factor", -1.0),
+        ("sliver_solidity", 0.0),
+        ("sliver_elongation", 0.5),
+        ("edge_mark_mm", -0.1),
+        ("mark_near_px", 1.5),
+        ("mark_near_px", 0),
+        ("mark_pull", 1.0),
+        ("writing_share", -0.5),
+        ("grid_span", 0.0),
+        ("grid_span", 1.5),
+        ("grid_min_lines", 2.5),
+        ("grid_graze_mm", math.inf),
+        ("axis_uncertain_aspect", 0.9),
+        ("axis_misaligned_deg", 45.0),
+        ("axis_misaligned_excess", -0.01),
     ],
 )
 def test_invalid_option_names_its_field(field, value):
@@ -214,3 +229,52 @@ def test_cli_threshold_options(scans, tmp_path, capsys):
     assert "3 error row(s)" in capsys.readouterr().err
     with open(out, newline="") as fh:
         assert no_print_rows(list(csv.DictReader(fh)))
+
+
+@real_workers
+def test_mark_and_axis_thresholds_reach_local_worker_processes(tmp_path):
+    # a print turned 6 degrees against the given axis is flagged axis_misaligned;
+    # with a 10-degree tolerance it is not, in this process and in the workers
+    from inkprint.synth import PrintSpec, SheetSpec
+
+    d = tmp_path / "turned"
+    d.mkdir()
+    for i in range(2):
+        p = PrintSpec(70.0, 12.0, (50.0, 40.0), 6.0 + i, "slick")
+        img, _ = render_sheet(SheetSpec((p,), dpi=150, size=(100.0, 80.0), seed=i))
+        save_scan(img, d / f"t{i}.png", dpi=150)
+    axis = dict(sensitivity=False, rolling_axis="x")
+    default = batch_rows(d, tmp_path / "default.csv", Options(**axis), workers=2)
+    loose = AnalysisOptions(axis_misaligned_deg=10.0, edge_mark_mm=1e3, mark_pull=0.5)
+    one = batch_rows(d, tmp_path / "one.csv", Options(**axis, analysis=loose), workers=1)
+    two = batch_rows(d, tmp_path / "two.csv", Options(**axis, analysis=loose), workers=2)
+    assert all(r["flags"] == "axis_misaligned" for r in default) and len(default) == 2
+    assert two == one and all(r["status"] == "ok" for r in one)
+
+
+def test_cli_mark_and_axis_threshold_flags(scans, capsys):
+    from inkprint.cli import main
+
+    scan = str(scans / "s0.png")
+    args = ["analyze", scan, "--no-band", "--csv", "--rolling-axis", "x"]
+    assert main([*args, "--axis-tolerance", "45"]) == 2
+    assert "axis_misaligned_deg" in capsys.readouterr().err
+    assert main([*args, "--mark-pull", "2"]) == 2
+    assert "mark_pull" in capsys.readouterr().err
+
+    def flags(*extra):
+        assert main([*args, *extra]) == 0, extra
+        rows = list(csv.DictReader(capsys.readouterr().out.splitlines()))
+        assert len(rows) == 2, extra
+        return {r["flags"] for r in rows}
+
+    assert "axis_misaligned" in flags()  # the drum print is turned on the sheet
+    assert "axis_misaligned" not in flags("--axis-tolerance", "30")
+    for flag, value in (
+        ("--edge-mark", "1000"),
+        ("--mark-pull", "0.5"),
+        ("--mark-overhang", "1.0"),
+        ("--edge-spot-pattern", "2"),
+        ("--grid-span", "0.9"),
+    ):
+        assert "axis_misaligned" in flags(flag, value)
