@@ -456,10 +456,11 @@ def _batch_and_report(a, pre) -> int:
         allow_outside=a.allow_outside,
     )
     n_ok = sum(1 for r in res.rows if r.get("status") == "ok")
+    n_flagged = sum(1 for r in res.rows if r.get("status") == "flagged")
     if not a.quiet:
         print(
-            f"{res.n_files} files ({res.n_skipped} already done), {n_ok} prints, "
-            f"{res.n_errors} errors"
+            f"{res.n_files} files ({res.n_skipped} already done), {n_ok + n_flagged} prints "
+            f"({n_ok} ok, {n_flagged} flagged), {res.n_errors} errors"
         )
         for path in res.outputs:
             print(f"wrote {path}")
