@@ -55,6 +55,8 @@ _RULES = {
     "edge_mark_mm": (lambda v: v >= 0, ">= 0 mm"),
     "mark_near_px": (lambda v: v >= 1 and float(v).is_integer(), "a whole number of pixels >= 1"),
     "mark_pull": (lambda v: 0 <= v < 1, "a relative change in [0, 1)"),
+    "tick_reach_mm": (lambda v: v >= 0, ">= 0 mm"),
+    "edge_bump_px": (lambda v: v > 0, "> 0 px"),
     "writing_share": (lambda v: v >= 0, ">= 0 (times the group's own ink)"),
     "grid_span": (lambda v: 0 < v <= 1, "a fraction of the sheet in (0, 1]"),
     "grid_min_lines": (lambda v: v >= 1 and float(v).is_integer(), "a whole number >= 1"),
@@ -179,6 +181,14 @@ class AnalysisOptions:
         more than this share, the print is flagged ``mark_on_edge`` (a third of the
         1 % bar: the pixels next to the mark are a lower bound of its pull; the
         outline also follows the mark's grey).
+    tick_reach_mm : float [mm]
+        Within this of ink set aside touching a print (a ruler's ticks are 3-5 mm
+        long) its outline is compared with a parabola fitted to the outline on
+        either side ...
+    edge_bump_px : float [px]
+        ... and outline points more than this beyond it (a tick lying along the
+        edge inside the print, its end out of the edge by a pixel or two) count
+        into ``mark_pull`` as a mark's foot.
     writing_share : float [-]
         A group with more pen strokes set aside around it than this share of its
         own ink is writing, not a print.
@@ -261,6 +271,8 @@ class AnalysisOptions:
     edge_mark_mm: float = 2.5
     mark_near_px: int = 2
     mark_pull: float = 0.003
+    tick_reach_mm: float = 5.0
+    edge_bump_px: float = 1.0
     writing_share: float = 0.5
     grid_span: float = 0.7
     grid_min_lines: int = 3

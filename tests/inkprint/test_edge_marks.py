@@ -10,6 +10,7 @@ import numpy as np
 from numpy.testing import assert_allclose
 
 import inkprint as ip
+from inkprint.accuracy import SILENT
 from inkprint.analyze import edge_field
 from inkprint.group import thin_protrusions
 from inkprint.synth import render_sheet
@@ -65,3 +66,28 @@ def test_thin_protrusions_keeps_tip_pieces_of_a_block_pattern_only():
     assert thin_protrusions(blocks, width_px=6.0)[28:31, 182:186].all()
     one = ip.AnalysisOptions(tip_block_strokes=20.0)  # no piece is a block
     assert not thin_protrusions(blocks, width_px=6.0, options=one)[28:31, 182:186].any()
+
+
+def test_analyze_scan_ruler_tick_along_the_edge_flags_the_print(tmp_path):
+    # 4244/0066: a ruler's tick lying along the print's lower edge inside it, its end
+    # 1-2 px out of the edge 2.5 mm from the line: width +1.4 %, unflagged; now
+    # mark_on_edge (the outline's bump over a parabola fitted beside it)
+    results, rows = outcomes(tmp_path, "ruler", mixed_file(4244, 66), dpi=None)
+    assert not [r for r in results if r["outcome"] in SILENT], results
+    assert rows[0]["flags"] == "mark_on_edge"
+    assert_allclose(results[0]["err_width"], 0.014, atol=0.003)  # the number flagged
+
+
+def test_bump_pull_tick_end_out_of_a_smooth_edge():
+    from inkprint.analyze import _bump_pull
+
+    yy, xx = np.mgrid[:120, :400]
+    own = ((xx - 200) / 180.0) ** 2 + ((yy - 40) / 40.0) ** 2 <= 1.0  # a smooth print
+    aside = np.zeros_like(own)
+    aside[81:120, 230:233] = True  # a line leaving its lower edge
+    assert _bump_pull(own, aside, 0.0, 40.0, 1.0) == 0.0
+    ticked = own.copy()
+    ticked[78:82, 205:222] = True  # a tick's end 2 px out of the edge near the line
+    # the points beyond 1 px out: a lower bound of the tick's 2 px on an 81 px width
+    assert_allclose(_bump_pull(ticked, aside, 0.0, 40.0, 1.0), 1.0 / 80.0, atol=0.003)
+    assert _bump_pull(ticked, aside, 0.0, 40.0, 3.0) == 0.0  # a bump under 3 px is edge
