@@ -118,7 +118,8 @@ def edge_field(
     a knob inked lighter than the rest), the print's median ink stands in for it: a
     speck inked at half the print's darkness reads as paper instead of adding its
     width to the outline (next to a knob inked 0.7 x the median it read as ink:
-    width +1.2 %).
+    width +1.2 %). A one-pixel pip of the outline much darker than its neighbours
+    along the edge (a dust speck touching it) takes their level.
 
     Parameters
     ----------
@@ -128,7 +129,7 @@ def edge_field(
         The print's ink in the box.
     mm_per_px : float [mm / px]
     options : AnalysisOptions, optional
-        Uses ``edge_window_mm`` (defaults when None).
+        Uses ``edge_window_mm`` and ``edge_pip_jump`` (defaults when None).
 
     Returns
     -------
@@ -149,7 +150,39 @@ def edge_field(
         ink, paper = 0.0, 1.0
     lo = np.minimum(lo, np.float32(ink))
     sharp = (hi - lo) > 0.5 * max(paper - ink, 1e-6)
-    return np.where(sharp, grey - 0.5 * (lo + hi), np.where(mask, -0.5, 0.5)).astype(np.float32)
+    f = np.where(sharp, grey - 0.5 * (lo + hi), np.where(mask, -0.5, 0.5)).astype(np.float32)
+    return _smooth_pips(f, mask, opts.edge_pip_jump * max(paper - ink, 1e-6))
+
+
+def _smooth_pips(f: np.ndarray, mask: np.ndarray, jump: float) -> np.ndarray:
+    """The field with each one-pixel pip of the outline (an ink pixel joined to the
+    ink by one side only) darker than both its neighbours along the edge by more
+    than ``jump`` taking their mean: a dust speck touching the edge, not the edge (a
+    print's edge changes its coverage from pixel to pixel by 1 / (2 R) for a radius
+    of curvature R [px]; a one-pixel speck at a print's widest point read +1.2 %)."""
+    import cv2
+
+    m8 = mask.view(np.uint8) if mask.dtype == bool else mask.astype(np.uint8)
+    n4 = cv2.filter2D(m8, -1, _CROSS, borderType=cv2.BORDER_CONSTANT)
+    pts = cv2.findNonZero(cv2.compare(n4, 1, cv2.CMP_EQ) & m8)
+    if pts is None:
+        return f
+    cc, rr = pts.reshape(-1, 2).T
+    h, w = f.shape
+    up, down = np.maximum(rr - 1, 0), np.minimum(rr + 1, h - 1)
+    left, right = np.maximum(cc - 1, 0), np.minimum(cc + 1, w - 1)
+    vertical = ((m8[up, cc] & (rr > 0)) | (m8[down, cc] & (rr < h - 1))).astype(bool)
+    a = np.where(vertical, f[rr, left], f[up, cc])
+    b = np.where(vertical, f[rr, right], f[down, cc])
+    dust = np.minimum(a, b) - f[rr, cc] > jump
+    if not dust.any():
+        return f
+    out = f.copy()
+    out[rr[dust], cc[dust]] = 0.5 * (a[dust] + b[dust])
+    return out
+
+
+_CROSS = np.array([[0, 1, 0], [1, 0, 1], [0, 1, 0]], np.float32)
 
 
 @dataclass(frozen=True)
@@ -696,8 +729,9 @@ def _print_flags(
     if pull > ctx.opts.mark_pull:
         flags.append("mark_on_edge")
         warnings.append(
-            f"print #{index}: a mark set aside (a label, a line) touches its edge: without "
-            f"the ink next to the mark it is up to {100 * pull:.1f} % shorter or narrower; "
+            f"print #{index}: a mark set aside (a label, a line, a ruler's tick along the "
+            f"edge) touches its edge: without the ink next to the mark or bulging out of "
+            f"the outline near it, it is up to {100 * pull:.1f} % shorter or narrower; "
             f"see the overlay, remove the mark or rescan"
         )
     spread = _spread_marks_over(ctx.found.marks, g)
@@ -767,7 +801,52 @@ def _mark_pull(ctx: _Context, g: Group, kept: np.ndarray, angle: float) -> float
         _extents(pts.reshape(-1, 2) * np.array([1.0, -1.0]), angle) + 1.0
         for pts in (outline_points(own), outline_points(core))
     ]
-    return float(np.max(ext[0] / ext[1]) - 1.0)
+    reach = mm_to_px_length(ctx.opts.tick_reach_mm, ctx.scan.mm_per_px)
+    bump = _bump_pull(own, aside, angle, reach, ctx.opts.edge_bump_px)
+    return max(float(np.max(ext[0] / ext[1]) - 1.0), bump)
+
+
+def _bump_pull(own: np.ndarray, aside: np.ndarray, angle: float, reach: float, bump: float):
+    """The largest relative excess of the print's length or width (along ``angle``
+    [rad] and across) over those without its outline's points sticking out more
+    than ``bump`` [px] beyond a parabola fitted to the outline on either side of
+    each stretch within ``reach`` [px] of ink set aside (``aside``): a ruler's tick
+    lying along the edge inside the print, its end out of the edge by a pixel or
+    two (width +1.4 %), or a letter's foot. A stretch whose sides a parabola does
+    not follow to half a pixel (a knob pattern, a tip) is not judged."""
+    import cv2
+
+    far = cv2.distanceTransform((~aside).view(np.uint8), cv2.DIST_L2, 3)
+    contours, _ = cv2.findContours(own.view(np.uint8), cv2.RETR_EXTERNAL, cv2.CHAIN_APPROX_NONE)
+    c = max(contours, key=len).reshape(-1, 2).astype(float)  # (x, y)
+    inz = far[c[:, 1].astype(int), c[:, 0].astype(int)] <= reach
+    if inz.all() or not inz.any():
+        return 0.0
+    start = int(np.argmin(inz))  # begin outside every stretch
+    c, inz = np.roll(c, -start, axis=0), np.roll(inz, -start)
+    cuts = np.flatnonzero(np.diff(inz.astype(np.int8))) + 1
+    drop, n, centre = np.zeros(len(c), bool), max(int(reach), 8), c.mean(axis=0)
+    for a, b in zip(cuts[::2], cuts[1::2], strict=False):
+        side = np.r_[np.arange(a - n, a), np.arange(b, b + n)] % len(c)
+        side = side[~inz[side]]
+        t = c[b - 1] - c[a]
+        if len(side) < 8 or not np.hypot(*t):
+            continue
+        t = t / np.hypot(*t)
+        nrm = np.array([-t[1], t[0]])
+        if (centre - c[a]) @ nrm > 0:
+            nrm = -nrm  # outward
+        x, y = (c - c[a]) @ t, (c - c[a]) @ nrm
+        coef = np.polyfit(x[side], y[side], 2)
+        if np.sqrt(np.mean((y[side] - np.polyval(coef, x[side])) ** 2)) > 0.5:
+            continue
+        run = np.arange(a, b)
+        drop[run[y[run] - np.polyval(coef, x[run]) > bump]] = True
+    if not drop.any() or drop.all():
+        return 0.0
+    flip = np.array([1.0, -1.0])
+    ext = _extents(c * flip, angle) / _extents(c[~drop] * flip, angle)
+    return float(np.max(ext) - 1.0)
 
 
 def _spread_marks_over(marks: list, g: Group) -> str:

@@ -571,9 +571,9 @@ def thin_protrusions(
     outside the convex hull of what the opening keeps and joined to thick ink is
     not the print's; so is a stroke thin all through beside the print (a letter of
     a label; a dot is left to the section 7.1.1 rule). Thin ink inside that hull
-    (ribs, sipes) is kept, and so are pieces thin all through off the print's ends
-    along its major axis (slivers of the tip blocks continuing the tread pattern:
-    the section 7.1.1 rule decides).
+    (ribs, sipes) is kept, and so are pieces thin all through off the ends along
+    its major axis of a print with a block pattern (slivers of the tip blocks
+    continuing the tread pattern: the section 7.1.1 rule decides).
 
     Parameters
     ----------
@@ -589,7 +589,8 @@ def thin_protrusions(
         lying along its outline, no thicker across it than this: a tread block the
         outline cut to a sliver (``mark_overhang_mm``; 0: none kept).
     options : AnalysisOptions, optional
-        Uses ``sliver_solidity`` and ``sliver_elongation`` (defaults when None).
+        Uses ``sliver_solidity``, ``sliver_elongation`` and ``tip_block_strokes``
+        (defaults when None).
 
     Returns
     -------
@@ -642,6 +643,11 @@ def _thin_parts(
     foot[lab[thick.view(bool)]] = True
     stroke = np.maximum(stats[:, cv2.CC_STAT_WIDTH], stats[:, cv2.CC_STAT_HEIGHT]) > width_px
     ends = _at_the_ends(hull_pts.reshape(-1, 2).astype(float), cent)
+    ends[0] = False
+    if ends.any() and not _block_pattern(
+        thick, resolve_options(opts).tip_block_strokes * width_px
+    ):
+        ends[:] = False
     if along_px > 0:
         ends |= _along_outline(
             thin, lab, stats, (hull_pts, along_px), skip=foot | ends, opts=resolve_options(opts)
@@ -708,6 +714,19 @@ def _drop_thin(mask: np.ndarray, parts: _ThinParts | None, *, dots: bool) -> np.
     drop = parts.foot | ((parts.stroke | dots) & ~parts.ends)
     drop[0] = False
     return mask & ~(parts.thin & drop[parts.labels])
+
+
+def _block_pattern(thick: np.ndarray, side_px: float) -> bool:
+    """Whether the thick ink holds two or more blocks (pieces of at least
+    ``side_px`` [px] squared, ``tip_block_strokes`` x the stroke width): only a
+    block pattern has tip blocks the outline can cut to slivers off the print's
+    ends; beside a one-piece print (slick, ribbed, file tread) a thin piece off its
+    ends is a letter's stroke (a pen label at a slick print's tip: hull area
+    +2.5 %)."""
+    import cv2
+
+    _, _, stats, _ = cv2.connectedComponentsWithStats(thick, connectivity=8)
+    return int(np.count_nonzero(stats[1:, cv2.CC_STAT_AREA] >= side_px**2)) >= 2
 
 
 def _at_the_ends(hull_xy: np.ndarray, points: np.ndarray, *, end: float = 0.8) -> np.ndarray:

@@ -48,11 +48,15 @@ _RULES = {
     "edge_spot_distance_mm": (lambda v: v >= 0, ">= 0 mm"),
     "edge_spot_pattern_factor": (lambda v: v >= 0, ">= 0 (times the core's tread gap)"),
     "edge_window_mm": (lambda v: v > 0, "> 0 mm"),
+    "edge_pip_jump": (lambda v: 0 < v <= 1, "a share of the paper-to-ink contrast in (0, 1]"),
+    "tip_block_strokes": (lambda v: v >= 0, ">= 0 (times the stroke width)"),
     "sliver_solidity": (lambda v: 0 < v <= 1, "a fraction in (0, 1]"),
     "sliver_elongation": (lambda v: v >= 1, ">= 1 (length over thickness)"),
     "edge_mark_mm": (lambda v: v >= 0, ">= 0 mm"),
     "mark_near_px": (lambda v: v >= 1 and float(v).is_integer(), "a whole number of pixels >= 1"),
     "mark_pull": (lambda v: 0 <= v < 1, "a relative change in [0, 1)"),
+    "tick_reach_mm": (lambda v: v >= 0, ">= 0 mm"),
+    "edge_bump_px": (lambda v: v > 0, "> 0 px"),
     "writing_share": (lambda v: v >= 0, ">= 0 (times the group's own ink)"),
     "grid_span": (lambda v: 0 < v <= 1, "a fraction of the sheet in (0, 1]"),
     "grid_min_lines": (lambda v: v >= 1 and float(v).is_integer(), "a whole number >= 1"),
@@ -142,6 +146,20 @@ class AnalysisOptions:
     edge_window_mm : float [mm]
         Window of the local paper and ink levels whose mean defines the print's
         edge (half contrast) for the outline.
+    edge_pip_jump : float [-]
+        A one-pixel pip of the outline (an ink pixel joined to the print by one
+        side) darker than both its neighbours along the edge by more than this
+        share of the paper-to-ink contrast is a dust speck touching the edge: the
+        outline takes the neighbours' level there (a print's edge changes by
+        1 / (2 R) per pixel, R its radius of curvature in pixels: under 0.3 for
+        R above 1.7 px, a 0.3 mm tip at 150 dpi).
+    tip_block_strokes : float [-]
+        A thin piece apart from a print off its ends along its major axis may be a
+        tip block the outline cut to a sliver (left to the edge-spot rule) only when
+        the print's thick ink holds two or more blocks at least this many
+        ``stroke_width_mm`` a side (squared); beside a one-piece print (slick,
+        ribbed, file tread) it is a letter's stroke (a label at a slick print's tip
+        read hull area +2.5 %).
     sliver_solidity : float [-]
         A thin piece apart from a print, lying along its outline no thicker across
         it than ``mark_overhang_mm``, is a tread block the outline cut to a sliver
@@ -163,6 +181,14 @@ class AnalysisOptions:
         more than this share, the print is flagged ``mark_on_edge`` (a third of the
         1 % bar: the pixels next to the mark are a lower bound of its pull; the
         outline also follows the mark's grey).
+    tick_reach_mm : float [mm]
+        Within this of ink set aside touching a print (a ruler's ticks are 3-5 mm
+        long) its outline is compared with a parabola fitted to the outline on
+        either side ...
+    edge_bump_px : float [px]
+        ... and outline points more than this beyond it (a tick lying along the
+        edge inside the print, its end out of the edge by a pixel or two) count
+        into ``mark_pull`` as a mark's foot.
     writing_share : float [-]
         A group with more pen strokes set aside around it than this share of its
         own ink is writing, not a print.
@@ -238,11 +264,15 @@ class AnalysisOptions:
     edge_spot_distance_mm: float = 1.0
     edge_spot_pattern_factor: float = 2.0
     edge_window_mm: float = 0.6
+    edge_pip_jump: float = 0.35
+    tip_block_strokes: float = 2.0
     sliver_solidity: float = 0.75
     sliver_elongation: float = 2.0
     edge_mark_mm: float = 2.5
     mark_near_px: int = 2
     mark_pull: float = 0.003
+    tick_reach_mm: float = 5.0
+    edge_bump_px: float = 1.0
     writing_share: float = 0.5
     grid_span: float = 0.7
     grid_min_lines: int = 3

@@ -188,13 +188,15 @@ def test_thin_protrusions_drops_a_stroke_beside_keeps_a_sliver_at_the_end():
 
     m = np.zeros((60, 200), bool)
     m[20:40, 20:180] = True  # the print: 160 x 20 px
+    m[20:40, 140:146] = False  # in two blocks (a block pattern: tip blocks)
     m[10:20, 100:102] = True  # a pen stroke standing on its side, joined
     m[5:12, 60:62] = True  # a letter's stroke beside it, apart
     m[28:32, 182:186] = True  # a small sliver off its end (a tip block), apart
     out = thin_protrusions(m, width_px=6.0)
     assert not out[10:18, 100:102].any() and not out[5:12, 60:62].any()
     assert out[28:32, 182:186].all()
-    assert out[20:40, 24:176].all()  # the print untouched (corners rounded by the disk)
+    # the print untouched (corners rounded by the disk)
+    assert out[20:40, 24:140].all() and out[20:40, 146:176].all()
 
 
 def test_analyze_scan_threads_give_the_same_result(sheet_factory):

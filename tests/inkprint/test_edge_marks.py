@@ -1,0 +1,93 @@
+"""Issue 11: marks touching a print's outline that widened it silently (seeds of the
+mixed sets): a one-pixel dust speck at the widest point, a label's stroke off a
+slick print's tip.
+
+``make_case(kind, seed=S * 100_003 + k)`` is file ``k`` of seed ``S`` of
+``python -m inkprint.accuracy``.
+"""
+
+import numpy as np
+from numpy.testing import assert_allclose
+
+import inkprint as ip
+from inkprint.accuracy import SILENT
+from inkprint.analyze import edge_field
+from inkprint.group import thin_protrusions
+from inkprint.synth import render_sheet
+from inkprint.synth_cases import make_case
+from tests.inkprint.test_classes import assert_passes, outcomes
+
+
+def mixed_file(seed: int, k: int) -> int:
+    return seed * 100_003 + k
+
+
+def test_analyze_scan_dust_pip_at_the_widest_point():
+    # 4244/0082 page 0: a one-pixel speck (grey 71) on the print's top row at its
+    # widest point, paper (~230) on both sides of it: width +1.15 %
+    case = make_case("pdf", seed=mixed_file(4244, 82))
+    img, truths = render_sheet(case.sheets[0])
+    res = ip.analyze_scan(ip.Scan(img, 25.4 / case.sheets[0].dpi, "given"), sensitivity=False)
+    m, t = res.prints[0].metrics, truths[0]
+    assert_allclose(
+        [m.length / t.length, m.width / t.width, m.hull_area / t.hull_area], 1.0, atol=0.005
+    )
+
+
+def test_edge_field_dust_pip_reads_as_paper_an_edge_run_as_ink():
+    grey = np.full((20, 40), 0.95, np.float32)
+    grey[10:, :] = 0.05  # ink below row 10
+    grey[9, 20] = 0.3  # a dust speck on the edge
+    grey[9, 5:8] = 0.3  # a short run of the edge itself (three pixels)
+    mask = grey < 0.5
+    f = edge_field(grey, mask, mm_per_px=0.1)
+    assert f[9, 20] > 0  # paper: the outline stays on the edge
+    assert (f[9, 5:8] < 0).all()  # the run keeps its ink
+    loose = ip.AnalysisOptions(edge_pip_jump=1.0)
+    assert edge_field(grey, mask, mm_per_px=0.1, options=loose)[9, 20] < 0
+
+
+def test_thin_protrusions_label_stroke_off_a_slick_print_tip(tmp_path):
+    # 4246/0060: a label's letter (A) beside a slick print's tip, off its ends along
+    # its major axis, was kept as a tip block's sliver: hull area +2.5 %
+    results, _ = outcomes(tmp_path, "label", mixed_file(4246, 60), dpi=None)
+    assert_passes(results)
+    (r,) = results
+    assert_allclose([r["err_width"], r["err_hull_area"]], 0.0, atol=0.015)
+
+
+def test_thin_protrusions_keeps_tip_pieces_of_a_block_pattern_only():
+    m = np.zeros((60, 200), bool)
+    m[20:40, 20:180] = True  # one-piece print
+    m[28:31, 182:186] = True  # a thin piece off its right end
+    assert not thin_protrusions(m, width_px=6.0)[28:31, 182:186].any()
+    blocks = m.copy()
+    blocks[20:40, 95:105] = False  # two blocks: a tread pattern
+    assert thin_protrusions(blocks, width_px=6.0)[28:31, 182:186].all()
+    one = ip.AnalysisOptions(tip_block_strokes=20.0)  # no piece is a block
+    assert not thin_protrusions(blocks, width_px=6.0, options=one)[28:31, 182:186].any()
+
+
+def test_analyze_scan_ruler_tick_along_the_edge_flags_the_print(tmp_path):
+    # 4244/0066: a ruler's tick lying along the print's lower edge inside it, its end
+    # 1-2 px out of the edge 2.5 mm from the line: width +1.4 %, unflagged; now
+    # mark_on_edge (the outline's bump over a parabola fitted beside it)
+    results, rows = outcomes(tmp_path, "ruler", mixed_file(4244, 66), dpi=None)
+    assert not [r for r in results if r["outcome"] in SILENT], results
+    assert rows[0]["flags"] == "mark_on_edge"
+    assert_allclose(results[0]["err_width"], 0.014, atol=0.003)  # the number flagged
+
+
+def test_bump_pull_tick_end_out_of_a_smooth_edge():
+    from inkprint.analyze import _bump_pull
+
+    yy, xx = np.mgrid[:120, :400]
+    own = ((xx - 200) / 180.0) ** 2 + ((yy - 40) / 40.0) ** 2 <= 1.0  # a smooth print
+    aside = np.zeros_like(own)
+    aside[81:120, 230:233] = True  # a line leaving its lower edge
+    assert _bump_pull(own, aside, 0.0, 40.0, 1.0) == 0.0
+    ticked = own.copy()
+    ticked[78:82, 205:222] = True  # a tick's end 2 px out of the edge near the line
+    # the points beyond 1 px out: a lower bound of the tick's 2 px on an 81 px width
+    assert_allclose(_bump_pull(ticked, aside, 0.0, 40.0, 1.0), 1.0 / 80.0, atol=0.003)
+    assert _bump_pull(ticked, aside, 0.0, 40.0, 3.0) == 0.0  # a bump under 3 px is edge
