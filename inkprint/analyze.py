@@ -837,11 +837,13 @@ def _bump_pull(own: np.ndarray, aside: np.ndarray, angle: float, reach: float, b
         if (centre - c[a]) @ nrm > 0:
             nrm = -nrm  # outward
         x, y = (c - c[a]) @ t, (c - c[a]) @ nrm
-        coef = np.polyfit(x[side], y[side], 2)
-        if np.sqrt(np.mean((y[side] - np.polyval(coef, x[side])) ** 2)) > 0.5:
+        if len(np.unique(np.round(x[side], 6))) < 3:
+            continue  # no parabola through fewer than three abscissae
+        fit = np.polynomial.Polynomial.fit(x[side], y[side], 2)  # (scaled: well conditioned)
+        if np.sqrt(np.mean((y[side] - fit(x[side])) ** 2)) > 0.5:
             continue
         run = np.arange(a, b)
-        drop[run[y[run] - np.polyval(coef, x[run]) > bump]] = True
+        drop[run[y[run] - fit(x[run]) > bump]] = True
     if not drop.any() or drop.all():
         return 0.0
     flip = np.array([1.0, -1.0])
