@@ -44,7 +44,7 @@ from .gridlines import Gridlines, find_gridlines
 from .group import Group, PrintCheck, edge_spots, is_print
 from .light import Page, prepare_page
 from .marks import Mark, SortedInk, sort_ink
-from .options import AnalysisOptions, resolve_options
+from .options import AnalysisOptions, resolve_options, resolve_threads
 from .read import Scan, read_scan
 from .results import BAND_KEYS, PrintResult, SheetResult, contact_pressure, marks_summary
 
@@ -509,8 +509,9 @@ def sensitivity_band(ctx: _Context, group: Group, *, base: dict) -> dict:
         ``{key: (low, high)}`` over the three thresholds.
     """
     values = {k: [v] for k, v in base.items()}
+    win = _band_window(ctx.page.work.shape, group, ctx.found, ctx.scan.mm_per_px, ctx.opts)
     for f in (1.0 - ctx.opts.sensitivity, 1.0 + ctx.opts.sensitivity):
-        for k, v in _band_at(ctx, group, f).items():
+        for k, v in _band_at(ctx, win, f).items():
             values[k].append(v)
     return _band_range(values)
 
@@ -520,11 +521,10 @@ def _band_range(values: dict) -> dict:
     return {k: (float(np.nanmin(v)), float(np.nanmax(v))) for k, v in values.items()}
 
 
-def _band_at(ctx: _Context, group: Group, factor: float) -> dict:
-    """The print's ``BAND_KEYS`` values with the sheet's threshold x ``factor``
-    (``{}`` when nothing of it is left at that threshold)."""
+def _band_at(ctx: _Context, win: _BandWindow, factor: float) -> dict:
+    """The print's ``BAND_KEYS`` values with the sheet's threshold x ``factor`` in
+    its window (:func:`_band_window`; ``{}`` when nothing of it is left there)."""
     opts, s = ctx.opts, ctx.scan.mm_per_px
-    win = _band_window(ctx.page.work.shape, group, ctx.found, s, opts)
     work = ctx.page.work[win.rows, win.cols]
     level = ctx.binarization.level
     level = level if np.ndim(level) == 0 else level[win.rows, win.cols]
@@ -906,9 +906,7 @@ def _measure_all(ctx: _Context, groups: list, *, sensitivity: bool, threads: int
     each print's measurement and its two re-measures of the threshold band are
     separate tasks (so one print uses three threads)."""
     n = len(groups)
-    if threads is None:
-        threads = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else 1
-    threads = min(int(threads), 3 * n if sensitivity else n)
+    threads = min(resolve_threads(threads), 3 * n if sensitivity else n)
     if threads <= 1:
         return [
             measure_print(ctx, g, index=i, sensitivity=sensitivity) for i, g in enumerate(groups)
@@ -916,10 +914,16 @@ def _measure_all(ctx: _Context, groups: list, *, sensitivity: bool, threads: int
     from concurrent.futures import ThreadPoolExecutor
 
     factors = (1.0 - ctx.opts.sensitivity, 1.0 + ctx.opts.sensitivity) if sensitivity else ()
+    shape, s = ctx.page.work.shape, ctx.scan.mm_per_px
     with ThreadPoolExecutor(threads, thread_name_prefix="inkprint-measure") as pool:
-        bands = [
-            [pool.submit(_band_at, ctx, _with_paper(ctx, g), f) for f in factors] for g in groups
-        ]
+        bands = []
+        for g in groups:  # each print's window once, its two thresholds as tasks
+            win = (
+                _band_window(shape, _with_paper(ctx, g), ctx.found, s, ctx.opts)
+                if factors
+                else None
+            )
+            bands.append([pool.submit(_band_at, ctx, win, f) for f in factors])
         prints = [
             pool.submit(measure_print, ctx, g, index=i, sensitivity=False)
             for i, g in enumerate(groups)
@@ -1005,10 +1009,7 @@ def analyze_scan(
     opts = resolve_options(options)
     if rolling_axis not in AXES:
         raise InvalidInput("rolling_axis", rolling_axis, " | ".join(AXES))
-    if threads is not None and not (
-        isinstance(threads, int | np.integer) and not isinstance(threads, bool) and threads >= 1
-    ):
-        raise InvalidInput("threads", threads, "an integer >= 1")
+    resolve_threads(threads)  # refused before any work
     scan = _as_scan(scan, opts)
     s = scan.mm_per_px
     page = prepare_page(scan, options=opts)

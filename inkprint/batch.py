@@ -54,7 +54,7 @@ from tiremesh.units import MPA_PER_BAR
 
 from .errors import InkPrintError, InvalidInput, OutputLocked
 from .jobs import SCAN_SUFFIXES, Job, collect_jobs, read_manifest
-from .options import AnalysisOptions
+from .options import AnalysisOptions, resolve_threads
 
 OUTPUT_FORMATS = TABLE_FORMATS
 """Suffixes of a batch table: .csv (with a .json twin), .json, .parquet."""
@@ -112,12 +112,7 @@ class Options:
     threads: int | None = 1
 
     def __post_init__(self) -> None:
-        if self.threads is not None and not (
-            isinstance(self.threads, int)
-            and not isinstance(self.threads, bool)
-            and self.threads >= 1
-        ):
-            raise InvalidInput("threads", self.threads, "an integer >= 1, or None (the cores)")
+        resolve_threads(self.threads)  # None stays None: the cores, resolved per sheet
         if self.rolling_axis not in AXES:
             raise InvalidInput("rolling_axis", self.rolling_axis, " | ".join(AXES))
         if self.pages is not None:

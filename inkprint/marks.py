@@ -405,9 +405,9 @@ class _ThinStats:
     touch: np.ndarray
 
 
-def _thin_stats(parts: _Parts, hull_map, near_dist, near_id, pooled: _Pooled) -> _ThinStats:
-    """Statistics of the thin pieces; ``near_dist``, ``near_id``: :func:`_nearest_hull`
-    at the thin pixels (in flat order)."""
+def _thin_stats(parts: _Parts, hull_map, near: tuple, on: np.ndarray, pooled: _Pooled):
+    """Statistics of the thin pieces (a :class:`_ThinStats`); ``on``: the thin
+    pixels (flat indices, ascending), ``near``: :func:`_nearest_hull` at them."""
     import cv2
 
     n = parts.n_thin + 1
@@ -416,8 +416,8 @@ def _thin_stats(parts: _Parts, hull_map, near_dist, near_id, pooled: _Pooled) ->
         np.maximum(st[:, cv2.CC_STAT_WIDTH], st[:, cv2.CC_STAT_HEIGHT]), pooled.px_mm
     )
     area = area_px_to_mm2(st[:, cv2.CC_STAT_AREA].astype(float), pooled.px_mm)
-    on = parts.thin > 0
-    lab, d, ids = parts.thin[on], px_to_mm_length(near_dist, pooled.px_mm), near_id
+    near_dist, ids = near
+    lab, d = parts.thin.ravel()[on], px_to_mm_length(near_dist, pooled.px_mm)
     gap, reach = np.full(n, np.inf), np.zeros(n)
     target = np.full(n, -1)
     if len(lab):
@@ -425,11 +425,11 @@ def _thin_stats(parts: _Parts, hull_map, near_dist, near_id, pooled: _Pooled) ->
         first = order[np.r_[True, lab[order][1:] != lab[order][:-1]]]
         gap[lab[first]], target[lab[first]] = d[first], ids[first] - 1
         np.maximum.at(reach, lab, d)
-    inside = np.bincount(lab, weights=(hull_map[on] > 0), minlength=n) / np.maximum(
+    inside = np.bincount(lab, weights=(hull_map.ravel()[on] > 0), minlength=n) / np.maximum(
         st[:, cv2.CC_STAT_AREA], 1
     )
     thick_near = cv2.dilate((parts.thick > 0).view(np.uint8), np.ones((3, 3), np.uint8))
-    touch = np.bincount(lab, weights=thick_near[on], minlength=n) > 0
+    touch = np.bincount(lab, weights=thick_near.ravel()[on], minlength=n) > 0
     return _ThinStats(extent, area, gap, reach, target, inside, touch)
 
 
@@ -553,12 +553,9 @@ def _sort_pooled(pooled: _Pooled, opts: AnalysisOptions, network=None, bridge=No
     comp = _groups_of_elements(parts, pooled, opts, bridge)
     hulls = _hulls(parts.thick, comp, parts.core) if len(comp) else []
     hull_map = _hull_map(hulls, pooled.mask.shape)
-    near_dist, near_id = _nearest_hull(
-        hull_map,
-        mm_to_px_length(opts.line_length_mm, pooled.px_mm),
-        np.flatnonzero(parts.thin > 0),
-    )
-    stats = _thin_stats(parts, hull_map, near_dist, near_id, pooled)
+    on = np.flatnonzero(parts.thin > 0)  # the thin pixels, flat
+    near = _nearest_hull(hull_map, mm_to_px_length(opts.line_length_mm, pooled.px_mm), on)
+    stats = _thin_stats(parts, hull_map, near, on, pooled)
     owner, kind = _judge_thin(stats, parts, opts, network)
     owner[0] = -1
     for k in np.flatnonzero((stats.extent >= opts.line_length_mm) & (owner >= 0)):

@@ -15,7 +15,7 @@ from __future__ import annotations
 import dataclasses
 import math
 from dataclasses import dataclass
-from numbers import Real
+from numbers import Integral, Real
 
 from .errors import InvalidInput
 
@@ -359,6 +359,32 @@ class AnalysisOptions:
 DEFAULT_OPTIONS = AnalysisOptions()
 
 
+def resolve_threads(threads) -> int:
+    """The threads a sheet's prints are measured on: ``threads``, or the cores this
+    process may use when None.
+
+    Parameters
+    ----------
+    threads : int or None
+
+    Returns
+    -------
+    int
+
+    Raises
+    ------
+    InvalidInput
+        ``threads`` is not an integer >= 1 or None.
+    """
+    import os
+
+    if threads is None:
+        return len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else 1
+    if isinstance(threads, bool) or not isinstance(threads, Integral) or threads < 1:
+        raise InvalidInput("threads", threads, "an integer >= 1, or None (the cores)")
+    return int(threads)
+
+
 def resolve_options(options: AnalysisOptions | None) -> AnalysisOptions:
     """The options a step runs with: ``options``, or the defaults when None.
 
@@ -382,4 +408,4 @@ def resolve_options(options: AnalysisOptions | None) -> AnalysisOptions:
     return options
 
 
-__all__ = ["DEFAULT_OPTIONS", "AnalysisOptions", "resolve_options"]
+__all__ = ["DEFAULT_OPTIONS", "AnalysisOptions", "resolve_options", "resolve_threads"]

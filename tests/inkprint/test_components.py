@@ -11,7 +11,7 @@ from numpy.testing import assert_allclose, assert_array_equal
 
 from inkprint.analyze import _crossings
 from inkprint.binarize import remove_specks
-from inkprint.components import DENSE, components_with_stats, remove_small
+from inkprint.components import DENSE, components_with_stats
 
 
 def _random_mask(seed: int, shape, share: float, blur: float) -> np.ndarray:
@@ -58,15 +58,13 @@ def test_components_with_stats_sparse_sheet_with_specks():
 
 
 @pytest.mark.parametrize("min_pixels", [0, 1, 2, 5, 40])
-def test_remove_small_equals_the_stats_rule(min_pixels):
+def test_remove_specks_equals_the_stats_rule(min_pixels):
     mask = _random_mask(7, (120, 150), 0.15, 0.8)
     _, lab, stats, _ = cv2.connectedComponentsWithStats(mask.view(np.uint8), connectivity=8)
     keep = stats[:, cv2.CC_STAT_AREA] >= min_pixels
     keep[0] = False
     expected = keep[lab] if min_pixels > 1 else mask
     assert_array_equal(remove_specks(mask, min_pixels), expected)
-    if min_pixels > 1:
-        assert_array_equal(remove_small(mask, min_pixels), expected)
 
 
 @settings(max_examples=60, deadline=None)
