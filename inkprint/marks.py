@@ -187,7 +187,6 @@ class _Parts:
 
     thick: np.ndarray
     n_thick: int
-    thick_stats: np.ndarray
     thin: np.ndarray
     n_thin: int
     thin_stats: np.ndarray
@@ -226,22 +225,10 @@ def _split(pooled: _Pooled, opts: AnalysisOptions) -> _Parts:
         keep[0] = True
         new = np.cumsum(keep, dtype=np.int32) - 1
         new[~keep] = 0
-        l1, s1, n1 = new[l1], s1[keep], int(keep.sum())
-        s1[0] = _paper_stats(l1)
+        l1, n1 = new[l1], int(keep.sum())
     thin = m & (l1 == 0).view(np.uint8)
     n2, l2, s2, _ = components_with_stats(thin, connectivity=8)
-    return _Parts(l1, n1 - 1, s1, l2, n2 - 1, s2, core.view(bool) & (l1 > 0))
-
-
-def _paper_stats(labels: np.ndarray) -> np.ndarray:
-    """OpenCV's statistics row (left, top, width, height, area) of the label-0 pixels."""
-    paper = labels == 0
-    rows = np.flatnonzero(paper.any(axis=1))
-    cols = np.flatnonzero(paper.any(axis=0))
-    if not len(rows):
-        return np.zeros(5, np.int32)
-    r0, r1, c0, c1 = rows[0], rows[-1], cols[0], cols[-1]
-    return np.array([c0, r0, c1 - c0 + 1, r1 - r0 + 1, np.count_nonzero(paper)], np.int32)
+    return _Parts(l1, n1 - 1, l2, n2 - 1, s2, core.view(bool) & (l1 > 0))
 
 
 def _straight_skinny(skinny: np.ndarray, pooled: _Pooled, opts: AnalysisOptions) -> np.ndarray:
