@@ -142,6 +142,13 @@ THRESHOLDS = (
         "a mark set aside along more of a print's outline than this flags it mark_on_edge",
     ),
     (
+        "--edge-uncertainty",
+        "edge_uncertainty",
+        "FRACTION",
+        "a line taken out along a print's edge that may hide more than this share of its "
+        "length or width flags it mark_on_edge",
+    ),
+    (
         "--mark-pull",
         "mark_pull",
         "FRACTION",

@@ -5,20 +5,20 @@ unbroken over most of the sheet (a print's tread lines stop at its edge). So: ro
 (columns) with an unbroken run of ink over at least ``grid_span`` of the sheet's
 width (height), in bands no thicker than a pen stroke (``stroke_width_mm``), at
 least ``grid_min_lines`` of them (:class:`inkprint.AnalysisOptions`), are gridlines (a row of anti-aliased fringe
-either side). Their ink is taken out except over the prints' ground: the rest of the
-ink closed by the grouping distance (``group_distance_mm``), which spans the
-grooves and the line's own width where it crosses a print. Outside, the line no
-longer joins the print or runs along its edge, so the print measures as on plain
-paper. Where a line runs along a print's edge (print ink right across the line
-from the ink taken out, over more than ``edge_mark_mm``) the edge
-cannot be told from the line: that print stays flagged ``mark_on_edge``. A grid
+either side). A line's pixel stays a print's ink where the rest of the ink lies
+right across the line on both sides (a line crossing a print or a tread block);
+elsewhere it is taken out, so it no longer joins a print, its grooves or a halo
+speck (dots, ``dot_mm``, do not count as ink across). Where a line runs along a
+print's edge the edge cannot be told from the line: the print is flagged
+``mark_on_edge`` when the line's far side would move its length, width or area
+by more than ``edge_uncertainty`` (:meth:`Gridlines.grazed`). A grid
 that does not come out this way (turned on the scanner, broken by a faint scan)
 is left to the marks' sorting, which flags the prints it touches.
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -38,12 +38,6 @@ def _run_ends(rows: np.ndarray) -> tuple:
     r_up, c_up = np.nonzero(d == 1)
     _, c_down = np.nonzero(d == -1)  # row-major: the ends pair with the starts
     return r_up, c_up, c_down
-
-
-def _runs(rows: np.ndarray) -> np.ndarray:
-    """Length [px] of every run of True along the rows."""
-    _, start, stop = _run_ends(np.ascontiguousarray(rows))
-    return stop - start
 
 
 def _longest_runs(rows: np.ndarray) -> np.ndarray:
@@ -90,8 +84,10 @@ class Gridlines:
     removed: np.ndarray
     along_rows: np.ndarray
     along_cols: np.ndarray
+    line_rows: np.ndarray
+    line_cols: np.ndarray
 
-    def along_mm(
+    def grazed(
         self,
         own: np.ndarray,
         r0: int,
@@ -99,8 +95,8 @@ class Gridlines:
         *,
         mm_per_px: float,
         options: AnalysisOptions | None = None,
-    ) -> float:
-        """Length [mm] a print's edge runs along gridlines taken out.
+    ) -> GrazedLines:
+        """The gridline ink taken out where it runs along a print's edge.
 
         Parameters
         ----------
@@ -109,41 +105,96 @@ class Gridlines:
         r0, c0 : int [px]
         mm_per_px : float [mm / px]
         options : AnalysisOptions, optional
-            Uses ``grid_graze_mm`` (defaults when None).
+            Uses ``grid_graze_mm`` and ``stroke_width_mm`` (defaults when None).
 
         Returns
         -------
-        float [mm]
+        GrazedLines
             The runs along the lines, each at least ``grid_graze_mm`` long, of
             gridline pixels next to the print's ink (a line leaving the print's
-            edge at a slant touches it over a shorter run).
+            edge at a slant touches it over a shorter run), and the lines' ink
+            within a line's width of them: where the edge may lie.
         """
         import cv2
 
+        opts = resolve_options(options)
         h, w = own.shape
         rows, cols = self.removed.shape
-        a, b = max(r0 - 1, 0), max(c0 - 1, 0)
-        e, f = min(r0 + h + 1, rows), min(c0 + w + 1, cols)
-        near = np.zeros((e - a, f - b), np.uint8)
-        near[r0 - a : r0 - a + h, c0 - b : c0 - b + w] = own[: e - r0, : f - c0]
-        near = cv2.dilate(near, np.ones((3, 3), np.uint8)).view(bool)
-        least = mm_to_px_length(resolve_options(options).grid_graze_mm, mm_per_px)
-        total = 0
-        for along in (self.along_rows[a:e, b:f] & near, (self.along_cols[a:e, b:f] & near).T):
-            runs = _runs(along)
-            total += int(runs[runs >= least].sum())
-        return float(px_to_mm_length(total, mm_per_px))
+        t = int(np.ceil(max(1.0, mm_to_px_length(opts.stroke_width_mm, mm_per_px)))) + 1
+        a, b = max(r0 - t - 1, 0), max(c0 - t - 1, 0)
+        e, f = min(r0 + h + t + 1, rows), min(c0 + w + t + 1, cols)
+        box = np.zeros((e - a, f - b), np.uint8)
+        box[r0 - a : r0 - a + h, c0 - b : c0 - b + w] = own[: e - r0, : f - c0]
+        near = cv2.dilate(box, np.ones((3, 3), np.uint8)).view(bool)
+        least = mm_to_px_length(opts.grid_graze_mm, mm_per_px)
+        removed = self.removed[a:e, b:f]
+        band, total = np.zeros(box.shape, bool), 0
+        h_line = removed & self.line_rows[a:e, None]
+        v_line = removed & self.line_cols[None, b:f]
+        runs = _long_runs(self.along_rows[a:e, b:f] & near, least)
+        total += int(np.count_nonzero(runs))
+        band |= cv2.dilate(runs.view(np.uint8), np.ones((2 * t + 1, 1), np.uint8)).view(bool)
+        band &= h_line
+        runs = _long_runs((self.along_cols[a:e, b:f] & near).T, least).T
+        total += int(np.count_nonzero(runs))
+        cross = cv2.dilate(runs.view(np.uint8), np.ones((1, 2 * t + 1), np.uint8)).view(bool)
+        band |= cross & v_line
+        return GrazedLines(float(px_to_mm_length(total, mm_per_px)), band, a, b)
 
 
-def _closing(ink: np.ndarray, radius_px: float) -> np.ndarray:
-    """Morphological closing by a disk (Euclidean distances): the ink with the
-    gaps narrower than the disk between its parts filled."""
+@dataclass(frozen=True)
+class GrazedLines:
+    """Gridlines taken out along a print's edge (:meth:`Gridlines.grazed`).
+
+    Attributes
+    ----------
+    along_mm : float [mm]
+        Length of the edge the lines run along.
+    band : (h, w) bool
+        The lines' ink there, a line's width either side of the edge: the edge
+        lies somewhere in it. Its box is the print's grown by a line's width.
+    r0, c0 : int [px]
+        Sheet row and column of the box.
+    """
+
+    along_mm: float
+    band: np.ndarray = field(repr=False)
+    r0: int
+    c0: int
+
+
+def _long_runs(rows: np.ndarray, least: float) -> np.ndarray:
+    """The runs of True along the rows at least ``least`` [px] long."""
+    r, start, stop = _run_ends(np.ascontiguousarray(rows))
+    out = np.zeros(rows.shape, bool)
+    for i, a, b in zip(r, start, stop, strict=True):
+        if b - a >= least:
+            out[i, a:b] = True
+    return out
+
+
+def _without_dots(ink: np.ndarray, dot_px: float) -> np.ndarray:
+    """The ink without its pieces no longer than ``dot_px`` either way (specks)."""
+    from .components import components_with_stats
+
+    _, labels, stats, _ = components_with_stats(ink)
+    dots = np.maximum(stats[:, 2], stats[:, 3]) <= dot_px
+    dots[0] = False
+    return ink & ~dots[labels] if dots.any() else ink
+
+
+def _both_sides(ink: np.ndarray, reach: int, *, vertical: bool) -> np.ndarray:
+    """Pixels with ink within ``reach`` [px] on both sides: above and below
+    (``vertical``), else left and right."""
     import cv2
 
-    far = cv2.distanceTransform((~ink).view(np.uint8), cv2.DIST_L2, cv2.DIST_MASK_PRECISE)
-    grown = far <= radius_px
-    back = cv2.distanceTransform(grown.view(np.uint8), cv2.DIST_L2, cv2.DIST_MASK_PRECISE)
-    return back >= radius_px
+    shape = (reach + 1, 1) if vertical else (1, reach + 1)
+    kernel = np.ones(shape, np.uint8)
+    src = ink.view(np.uint8)
+    last = (0, reach) if vertical else (reach, 0)  # anchor (x, y) at the kernel's end
+    before = cv2.dilate(src, kernel, anchor=last)  # ink at offsets -reach..0
+    after = cv2.dilate(src, kernel, anchor=(0, 0))  # ink at offsets 0..reach
+    return (before & after).view(bool)
 
 
 def _touching(removed: np.ndarray, kept: np.ndarray, *, vertical: bool) -> np.ndarray:
@@ -186,11 +237,20 @@ def find_gridlines(
     h_line = mask & rows[:, None]
     v_line = mask & cols[None, :]
     lines = h_line | v_line
-    # the prints' ground: the rest of the ink with its gaps under the group
-    # distance closed (between tread elements, under a line crossing a print)
-    body = _closing(mask & ~lines, mm_to_px_length(opts.group_distance_mm, mm_per_px) / 2)
+    # a line's pixel is a print's ink where the rest of the ink lies right across
+    # the line on both sides (a line crossing a print or a tread block); not in a
+    # groove, along an edge, or between a print and a halo speck (dots left out:
+    # a speck on the line beside the edge joined the print, width +8 %)
+    rest = _without_dots(mask & ~lines, mm_to_px_length(opts.dot_mm, mm_per_px))
+    reach = int(np.ceil(stroke)) + 3  # the band: stroke wide, a row of fringe each side
+    body = np.zeros_like(mask)
+    for _ in range(2):  # twice: where two lines cross inside a print, each is ink
+        ink = rest | body  # across the other (first pass: a hole of a line's width)
+        body = (h_line & _both_sides(ink, reach, vertical=True)) | (
+            v_line & _both_sides(ink, reach, vertical=False)
+        )
     removed = lines & ~body
     kept = mask & ~removed
     along_rows = _touching(removed & h_line, kept, vertical=True)
     along_cols = _touching(removed & v_line, kept, vertical=False)
-    return Gridlines(removed, along_rows, along_cols)
+    return Gridlines(removed, along_rows, along_cols, rows, cols)

@@ -23,7 +23,7 @@ resolution.
    * the print's own edge: within ``group_distance_mm`` of a print and reaching no
      farther than ``mark_overhang_mm`` out of its hull (rib tails, slivers), a
      compact blob apart from the print's thick ink (a clipped knob), or a dot no
-     longer than :data:`DOT_MM` (halo specks: the edge-spot rule of section 7.1.1
+     longer than ``dot_mm`` (halo specks: the edge-spot rule of section 7.1.1
      decides about them). The hull judging this is the prints' *core*: their thick
      ink opened by two stroke widths, so the foot of a pen stroke meeting the edge
      does not widen it;
@@ -55,8 +55,6 @@ from .options import AnalysisOptions, resolve_options
 
 #: the pooled grid has this many pixels across a stroke (``stroke_width_mm``)
 POOL_STROKES = 5.0
-#: thin ink no longer than this near a print is a dot (halo speck, clipped knob)
-DOT_MM = 1.5
 #: the Voronoi partition of the elements is sampled every this many mm
 GRAPH_STEP_MM = 0.5
 #: thick ink smaller than this many stroke disks is thin (the crossing of two lines,
@@ -114,12 +112,17 @@ class SortedInk:
         Where marks were set aside, on the pooled grid (``q`` sheet pixels a side).
     q : int
         Pooling factor of ``mark_map``.
+    grazed : (rows, cols) bool or None
+        Ink of straight lines set aside (rulers) with print ink right across the
+        line: where a line runs along a print's edge the edge lies under it
+        (:func:`remove_lines`); None without lines.
     """
 
     groups: list
     marks: list = field(default_factory=list)
     mark_map: np.ndarray | None = field(default=None, repr=False)
     q: int = 1
+    grazed: np.ndarray | None = field(default=None, repr=False)
 
     def marks_near(self, rows: slice, cols: slice) -> np.ndarray:
         """Sheet pixels of a box that lie on or next to a mark set aside.
@@ -454,7 +457,7 @@ def _judge_thin(t: _ThinStats, parts: _Parts, opts: AnalysisOptions, network=Non
     """
     long = t.extent >= opts.line_length_mm
     near = (t.target >= 0) & (t.gap <= opts.group_distance_mm)
-    dot = t.extent <= DOT_MM
+    dot = t.extent <= opts.dot_mm
     own = near & (dot | (t.reach <= opts.mark_overhang_mm))
     on_line = np.zeros(len(own), bool)
     if network is not None:
@@ -682,9 +685,11 @@ def sort_ink(mask, *, mm_per_px: float, options: AnalysisOptions | None = None) 
     pooled = _pool(mask, mm_per_px, opts)
     first = _sort_pooled(pooled, opts)
     lines, network, bands, line_marks = _lines(first, pooled, opts)
-    sorted_, lost = first, None
+    sorted_, grazed, lost = first, None, None
     if bands:  # take the lines out of the ink, bridge them inside prints, sort again
-        mask, lost = remove_lines(mask, bands, bridge_px=mm_to_px_length(BRIDGE_MM, mm_per_px))
+        bridge = mm_to_px_length(BRIDGE_MM, mm_per_px)
+        graze = mm_to_px_length(opts.grid_graze_mm, mm_per_px)
+        mask, lost, grazed = remove_lines(mask, bands, bridge_px=bridge, graze_px=graze)
         pooled = _pool(mask, mm_per_px, opts)
         sorted_ = _sort_pooled(pooled, opts, network & ~lines & pooled.mask, lines & ~pooled.mask)
     parts, st, owner = sorted_.parts, sorted_.stats, sorted_.owner
@@ -707,7 +712,7 @@ def sort_ink(mask, *, mm_per_px: float, options: AnalysisOptions | None = None) 
         if g
     ]
     groups.sort(key=lambda g: (g.rows.start + g.rows.stop, g.cols.start))
-    return SortedInk(groups, marks, group_map < 0, pooled.q)
+    return SortedInk(groups, marks, group_map < 0, pooled.q, grazed)
 
 
 def _aside_ink(st: _ThinStats, owner: np.ndarray, n: int, opts: AnalysisOptions) -> np.ndarray:
@@ -717,7 +722,7 @@ def _aside_ink(st: _ThinStats, owner: np.ndarray, n: int, opts: AnalysisOptions)
     return np.bincount(st.target[sel], weights=st.area[sel], minlength=n)[:n]
 
 
-def remove_lines(mask: np.ndarray, bands: list, *, bridge_px: float = 0.0):
+def remove_lines(mask: np.ndarray, bands: list, *, bridge_px: float = 0.0, graze_px: float = 0.0):
     """Take straight lines out of an ink mask, bridging them where they cross ink.
 
     The line's pixels are removed; where ink lies on both sides of it within
@@ -733,12 +738,18 @@ def remove_lines(mask: np.ndarray, bands: list, *, bridge_px: float = 0.0):
         The lines (sheet pixels).
     bridge_px : float [px]
         Reach of the bridge on each side of a line.
+    graze_px : float [px]
+        Least run along a line of its ``grazed`` pixels.
 
     Returns
     -------
     cleaned : (rows, cols) bool
     lost : (rows, cols) bool
         Ink under the lines not bridged.
+    grazed : (rows, cols) bool
+        Of it, the pixels with thick ink kept right across the line within a
+        line's width, in runs along the line at least ``graze_px`` long: where a
+        line runs along a print's edge, the edge lies somewhere under it.
     """
     import cv2
 
@@ -760,7 +771,20 @@ def remove_lines(mask: np.ndarray, bands: list, *, bridge_px: float = 0.0):
         width = max(int(np.ceil(b.width)) for b in bands) + 4 + 2 * int(np.ceil(bridge_px))
         restored |= band & cv2.morphologyEx(out, cv2.MORPH_CLOSE, _line_kernel(ang + 90, width))
     cleaned = (out | (m8 & restored)).view(bool)
-    return cleaned, (m8 & all_bands & ~restored & 1).view(bool)
+    lost = m8 & all_bands & ~restored & 1
+    grazed = np.zeros(mask.shape, np.uint8)
+    width = max(int(np.ceil(b.width)) for b in bands) + 2
+    # thick ink (a print, not a ruler's tick) right across the line, a line's width off
+    thick = cv2.morphologyEx(cleaned.view(np.uint8), cv2.MORPH_OPEN, _disk(width))
+    # across the line from the print's ink, over the line and a pixel of paper at
+    # most: where the line has left the edge, paper between them shows the edge
+    across = 2 * (width - 1) + 1
+    for ang, band in by_dir.items():
+        near = lost & band & cv2.dilate(thick, _line_kernel(ang + 90, across))
+        if graze_px > 1:  # runs along the line (a line leaving the edge at a slant: short)
+            near = cv2.morphologyEx(near, cv2.MORPH_OPEN, _line_kernel(ang, round(graze_px)))
+        grazed |= near
+    return cleaned, lost.view(bool), grazed.view(bool)
 
 
 def _line_kernel(angle_deg: float, length: int) -> np.ndarray:
@@ -777,9 +801,9 @@ def _line_kernel(angle_deg: float, length: int) -> np.ndarray:
 
 
 def _lost_on_edge(g: Group, lost: np.ndarray) -> Group:
-    """The group with ``edge_marks`` raised to the longest stretch [px] of its
-    outline that a line covered without a bridge (a line along its edge; a line
-    merely crossing the edge covers about its own width)."""
+    """The group with ``line_along`` set to the longest stretch [px] of its outline
+    that a line covered without a bridge (a line along its edge, a print split by
+    a ruler; a line merely crossing the edge covers about its own width)."""
     import cv2
 
     r0, r1 = max(g.rows.start - 2, 0), g.rows.stop + 2
@@ -791,7 +815,7 @@ def _lost_on_edge(g: Group, lost: np.ndarray) -> Group:
     if n <= 1:
         return g
     longest = float(np.hypot(stats[1:, cv2.CC_STAT_WIDTH], stats[1:, cv2.CC_STAT_HEIGHT]).max())
-    return dataclasses.replace(g, edge_marks=max(g.edge_marks, longest))
+    return dataclasses.replace(g, line_along=longest)
 
 
 def _box(stats: np.ndarray, k: int) -> tuple[slice, slice]:
@@ -937,4 +961,4 @@ def _tight(g: Group) -> Group:
     )
 
 
-__all__ = ["DOT_MM", "Mark", "SortedInk", "sort_ink"]
+__all__ = ["Mark", "SortedInk", "sort_ink"]

@@ -61,6 +61,8 @@ _RULES = {
     "grid_span": (lambda v: 0 < v <= 1, "a fraction of the sheet in (0, 1]"),
     "grid_min_lines": (lambda v: v >= 1 and float(v).is_integer(), "a whole number >= 1"),
     "grid_graze_mm": (lambda v: v >= 0, ">= 0 mm"),
+    "dot_mm": (lambda v: v >= 0, ">= 0 mm"),
+    "edge_uncertainty": (lambda v: 0 <= v < 1, "a relative change in [0, 1)"),
     "grid_aside_share": (lambda v: v >= 0, ">= 0 (a share of the print's hull area)"),
     "axis_uncertain_aspect": (lambda v: v >= 1, ">= 1 (length over width)"),
     "axis_misaligned_deg": (lambda v: 0 <= v < 45, "an angle in [0, 45) degrees"),
@@ -130,6 +132,10 @@ class AnalysisOptions:
         A thin piece of ink reaching farther than this out of a print's outline (a
         label touching the print, a ruler's tick) is set aside; nearer, it is the
         print's own edge (see :mod:`inkprint.marks`).
+    dot_mm : float [mm]
+        Thin ink no longer than this either way near a print is a dot (a halo
+        speck, a clipped knob): the print's own, for the edge-spot rule to judge.
+        On chart paper, dots do not keep a gridline under them as print ink.
     edge_spot_area_mm2 : float [mm^2]
         Section 7.1.1 rule: blobs at least this large (and dark) form the print's
         core.
@@ -169,9 +175,16 @@ class AnalysisOptions:
         ... and is at least this many times longer than it is thick across the
         outline (a letter's foot beside the print is not).
     edge_mark_mm : float [mm]
-        A mark set aside covering more of a print's outline than this (a line along
-        its edge, a label's strokes, a gridline grazing it) flags the print
-        ``mark_on_edge``: the outline there is uncertain by the mark's width.
+        A mark set aside covering more of a print's outline than this (a label's
+        strokes, a line's stub) flags the print ``mark_on_edge``: the outline there
+        is uncertain by the mark's width.
+    edge_uncertainty : float [-]
+        A print whose length or width, or half its hull area, grows by more than
+        this share with the ink of the lines taken out along its edge added
+        (gridlines, rulers: the edge lies somewhere under the line; the ink
+        measured is a lower bound, the line's far side an upper one) is flagged
+        ``mark_on_edge``. A line crossing the edge, or grazing a long flat side
+        away from the widest point, moves neither much.
     mark_near_px : int [px]
         Ink of a mark set aside (a label's letter, a ruler) this close to a print's
         ink may be the mark's: a stroke's foot merged into the print's edge (in
@@ -199,8 +212,8 @@ class AnalysisOptions:
         ... and a grid has at least this many parallel lines.
     grid_graze_mm : float [mm]
         A gridline taken out grazes a print's edge where they touch over a run at
-        least this long (counted into ``edge_mark_mm``; a line leaving the edge at
-        a slant touches it over a shorter run).
+        least this long (a line leaving the edge at a slant touches it over a
+        shorter run; see ``edge_uncertainty``).
     grid_aside_share : float [-]
         On a sheet with gridlines, pen-thin ink set aside touching a print over more
         than this share of its hull area flags it ``mark_on_edge``: tread slivers a
@@ -259,6 +272,7 @@ class AnalysisOptions:
     stroke_width_mm: float = 0.9
     line_length_mm: float = 12.0
     mark_overhang_mm: float = 1.0
+    dot_mm: float = 1.5
     edge_spot_area_mm2: float = 1.5
     edge_spot_faintness: float = 0.6
     edge_spot_distance_mm: float = 1.0
@@ -269,6 +283,7 @@ class AnalysisOptions:
     sliver_solidity: float = 0.75
     sliver_elongation: float = 2.0
     edge_mark_mm: float = 2.5
+    edge_uncertainty: float = 0.006
     mark_near_px: int = 2
     mark_pull: float = 0.003
     tick_reach_mm: float = 5.0

@@ -1,5 +1,6 @@
 """Chart-paper gridlines taken out before grouping (inkprint.gridlines, issue 11)."""
 
+import cv2
 import numpy as np
 from numpy.testing import assert_array_equal
 
@@ -36,15 +37,34 @@ def test_find_gridlines_none_for_ribbed_prints_without_a_grid():
     assert find_gridlines(m, mm_per_px=MM_PER_PX) is None
 
 
-def test_gridlines_along_mm_only_where_a_line_grazes_the_edge():
+def test_gridlines_grazed_only_where_a_line_runs_along_the_edge():
     printed = np.zeros((600, 800), bool)
     printed[150:330, 200:650] = True
     crossed = find_gridlines(printed | _grid(printed.shape), mm_per_px=MM_PER_PX)
     box = printed[150:330, 200:650]
-    assert crossed.along_mm(box, 150, 200, mm_per_px=MM_PER_PX) == 0.0
+    none = crossed.grazed(box, 150, 200, mm_per_px=MM_PER_PX)
+    assert none.along_mm == 0.0 and not none.band.any()
     # a line on the print's top edge: its ink cannot be told from the print's
     grazed = np.zeros_like(printed)
     grazed[121:330, 200:650] = True
     g = find_gridlines(grazed | _grid(printed.shape), mm_per_px=MM_PER_PX)
     kept = (grazed & ~g.removed)[100:330, 200:650]
-    assert g.along_mm(kept, 100, 200, mm_per_px=MM_PER_PX) > 40.0
+    gr = g.grazed(kept, 100, 200, mm_per_px=MM_PER_PX)
+    assert gr.along_mm > 40.0
+    rows = np.flatnonzero(gr.band.any(axis=1)) + gr.r0
+    assert rows.min() >= 119 and rows.max() <= 124  # the line's rows (and fringe) only
+
+
+def test_find_gridlines_halo_speck_on_a_line_stays_apart():
+    # a speck on a gridline just off a print's edge: the line between them is not
+    # print ink (it joined the speck to the print: width +8 %)
+    printed = np.zeros((600, 800), bool)
+    printed[126:330, 200:650] = True  # top edge 3 px under the line at rows 120-122
+    speck = np.zeros_like(printed)
+    speck[115:124, 400:409] = True  # 0.9 mm, straddling the line
+    sheet = printed | speck | _grid(printed.shape)
+    g = find_gridlines(sheet, mm_per_px=MM_PER_PX)
+    kept = sheet & ~g.removed
+    _, labels = cv2.connectedComponents(kept.view(np.uint8), connectivity=8)
+    assert labels[116, 404] != labels[200, 404]  # the speck is apart from the print
+    assert_array_equal(kept[150:330, 200:650], printed[150:330, 200:650])
