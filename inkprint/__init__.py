@@ -25,8 +25,9 @@ Errors    : InkPrintError, InvalidInput, ScanReadError, ImageTooLarge, ScaleMiss
 
 __version__ = "0.2.0"
 
-from .analyze import analyze_scan
-from .binarize import binarize
+import sys
+import types
+
 from .errors import (
     AllInk,
     ImageTooLarge,
@@ -38,13 +39,6 @@ from .errors import (
     ScaleUntrusted,
     ScanReadError,
 )
-from .group import edge_spots, group_blobs
-from .light import prepare_page
-from .marks import sort_ink
-from .options import AnalysisOptions
-from .overlay import draw_overlay
-from .read import Scan, iter_scans, read_scan
-from .results import PrintResult, SheetResult, contact_pressure
 
 __all__ = [
     "AllInk",
@@ -75,21 +69,58 @@ __all__ = [
     "sort_ink",
 ]
 
-# The batch (scheduler, tables, progress bar) loads on first use (PEP 562): one
-# ``inkprint analyze`` does not need it.
-_LAZY = {"BatchResult": "BatchResult", "run_batch": "run_batch", "BatchOptions": "Options"}
+# Everything but the errors loads on first use (PEP 562): importing the package
+# (``inkprint.cli`` does) does not import numpy, so the command line can set up the
+# process first (one OpenBLAS thread for ``inkprint analyze``), and one ``inkprint
+# analyze`` does not load the batch's scheduler, tables and progress bar.
+_LAZY = {
+    "AnalysisOptions": ("options", "AnalysisOptions"),
+    "BatchOptions": ("batch", "Options"),
+    "BatchResult": ("batch", "BatchResult"),
+    "PrintResult": ("results", "PrintResult"),
+    "Scan": ("read", "Scan"),
+    "SheetResult": ("results", "SheetResult"),
+    "analyze_scan": ("analyze", "analyze_scan"),
+    "binarize": ("binarize", "binarize"),
+    "contact_pressure": ("results", "contact_pressure"),
+    "draw_overlay": ("overlay", "draw_overlay"),
+    "edge_spots": ("group", "edge_spots"),
+    "group_blobs": ("group", "group_blobs"),
+    "iter_scans": ("read", "iter_scans"),
+    "prepare_page": ("light", "prepare_page"),
+    "read_scan": ("read", "read_scan"),
+    "run_batch": ("batch", "run_batch"),
+    "sort_ink": ("marks", "sort_ink"),
+}
 
 
 def __getattr__(name: str):
-    """A batch name, imported on first use (PEP 562)."""
+    """A public name, imported on first use (PEP 562)."""
     if name not in _LAZY:
         raise AttributeError(f"module 'inkprint' has no attribute {name!r}")
-    from . import batch
+    import importlib
 
-    value = getattr(batch, _LAZY[name])
+    module, attr = _LAZY[name]
+    value = getattr(importlib.import_module(f".{module}", __name__), attr)
     globals()[name] = value
     return value
 
 
 def __dir__() -> list[str]:
     return sorted(set(globals()) | set(__all__))
+
+
+class _Package(types.ModuleType):
+    """The package's module: ``inkprint.binarize`` stays the function when its
+    submodule :mod:`inkprint.binarize` is imported (the import system then sets the
+    submodule as the package's attribute; the eager imports used to set it back)."""
+
+    def __setattr__(self, name: str, value) -> None:
+        if isinstance(value, types.ModuleType) and name in _LAZY:
+            module, attr = _LAZY[name]
+            if module == name and value.__name__ == f"{__name__}.{name}":
+                value = getattr(value, attr)
+        super().__setattr__(name, value)
+
+
+sys.modules[__name__].__class__ = _Package

@@ -38,6 +38,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from .binarize import Binarization, binarize, remove_specks
+from .components import pixel_sums
 from .coords import area_mm2_to_px, area_px_to_mm2, mm_to_px_length, px_to_mm, px_to_mm_length
 from .errors import InvalidInput, NoInk
 from .gridlines import Gridlines, find_gridlines
@@ -240,12 +241,12 @@ def measure_mask(
     if axis is None or isinstance(axis, str):
         axis = rolling_angle(hull_px, axis or "auto")
     x, y = px_to_mm(hull_px[:, 0], hull_px[:, 1], n_rows=n_rows, mm_per_px=mm_per_px)
-    rr, cc = np.nonzero(mask)
+    n, row_sum, col_sum = pixel_sums(mask)  # the ink's centroid, exact sums
     cx, cy = px_to_mm(
-        rr.mean() + 0.5 + r0, cc.mean() + 0.5 + c0, n_rows=n_rows, mm_per_px=mm_per_px
+        row_sum / n + 0.5 + r0, col_sum / n + 0.5 + c0, n_rows=n_rows, mm_per_px=mm_per_px
     )
     hull = shapely.Polygon(np.column_stack([x, y]))
-    net = min(area_px_to_mm2(len(rr), mm_per_px), hull.area)
+    net = min(area_px_to_mm2(n, mm_per_px), hull.area)
     m = cp.measure(hull, axis=axis, net_area=net, net_centroid=(float(cx), float(cy)))
     return MaskMeasurement(m, hull_px)
 

@@ -309,7 +309,6 @@ def overlay_name(job: Job, page: int) -> str:
 
 
 def _analyze_job(job: Job, data: bytes, digest: str, key: str, options: Options) -> list[dict]:
-    from .analyze import analyze_scan
     from .errors import NoInk
     from .read import iter_scans
 
@@ -328,6 +327,10 @@ def _analyze_job(job: Job, data: bytes, digest: str, key: str, options: Options)
     )
     rows = []
     for scan in scans:
+        # imported once the first page is decoded: ``inkprint analyze`` imports the
+        # analysis in a thread meanwhile (cli._warm_imports)
+        from .analyze import analyze_scan
+
         try:
             result = analyze_scan(
                 scan,

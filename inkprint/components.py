@@ -14,7 +14,7 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["components_with_stats"]
+__all__ = ["components_with_stats", "pixel_sums", "row_counts"]
 
 #: above this share of ink, OpenCV's own statistics are the faster (a print's box:
 #: 60-75 % ink, 0.85 ms against 2.2 ms for the ink-only sums on 0.14 Mpx)
@@ -90,3 +90,47 @@ def _background(h: int, w: int, row: np.ndarray, col: np.ndarray):
         np.array([c0, r0, c1 - c0 + 1, r1 - r0 + 1, n0], np.int64),
         np.array([sum_c / n0, sum_r / n0]),
     )
+
+
+def row_counts(mask: np.ndarray) -> np.ndarray:
+    """Ink pixels in each row of a bool mask: ``np.count_nonzero(mask, axis=1)``.
+
+    OpenCV's sum of the rows (or, of a transposed mask, of the columns) of a 0/1
+    copy: 0.3-0.8 ms on a 300 dpi letter sheet against 2.5-12 ms. Any nonzero byte
+    counts once (a bool view of OpenCV's 0/255).
+
+    Parameters
+    ----------
+    mask : (rows, cols) bool
+
+    Returns
+    -------
+    (rows,) int
+    """
+    import cv2
+
+    for a, dim in ((mask, 1), (mask.T, 0)):
+        if a.flags.c_contiguous and a.size:
+            ones = np.not_equal(a.view(np.uint8), 0).view(np.uint8)
+            return cv2.reduce(ones, dim, cv2.REDUCE_SUM, dtype=cv2.CV_32S).ravel()
+    return np.count_nonzero(mask, axis=1)
+
+
+def pixel_sums(mask: np.ndarray) -> tuple[int, int, int]:
+    """Ink pixels of a bool mask and the sums of their row and of their column
+    indices, as exact integers (without listing the pixels).
+
+    ``row_sum / n`` is ``np.nonzero(mask)[0].mean()`` to the last bit: numpy's mean
+    of the indices adds exact integers (below 2**53) and divides once.
+
+    Parameters
+    ----------
+    mask : (rows, cols) bool
+
+    Returns
+    -------
+    n, row_sum, col_sum : int
+    """
+    rows, cols = row_counts(mask).astype(np.int64), row_counts(mask.T).astype(np.int64)
+    n = int(rows.sum())
+    return n, int(np.arange(len(rows)) @ rows), int(np.arange(len(cols)) @ cols)

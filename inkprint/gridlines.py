@@ -22,6 +22,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from .components import row_counts
 from .coords import mm_to_px_length, px_to_mm_length
 from .options import AnalysisOptions, resolve_options
 
@@ -53,7 +54,7 @@ def _line_rows(mask: np.ndarray, max_px: float, opts: AnalysisOptions) -> np.nda
     h, w = mask.shape
     rows = np.zeros(h, bool)
     span, least = opts.grid_span * w, opts.grid_min_lines
-    cand = np.flatnonzero(np.count_nonzero(mask, axis=1) >= span)
+    cand = np.flatnonzero(row_counts(mask) >= span)
     if len(cand) < least:  # the cheap test, on every sheet
         return rows
     covered = np.zeros(h, bool)

@@ -499,7 +499,8 @@ def _nearest_hull(
 
     dist = np.full(len(at), np.inf, np.float32)
     ids = np.zeros(len(at), np.int32)
-    ys, xs = np.nonzero(hull_map[::4, ::4] if hull_map.size > 4_000_000 else hull_map)
+    on = (hull_map[::4, ::4] if hull_map.size > 4_000_000 else hull_map) != 0
+    ys, xs = np.flatnonzero(on.any(axis=1)), np.flatnonzero(on.any(axis=0))  # the box
     if not len(ys) or not len(at):
         return dist, ids
     f = 4 if hull_map.size > 4_000_000 else 1
@@ -864,8 +865,13 @@ def _full_groups(mask, group_map, hulls: list, pooled: _Pooled, opts: AnalysisOp
     """Each print's ink at full resolution (None for one without ink)."""
     n_groups = len(hulls)
     on = group_map > 0
-    ids = group_map[on] - 1
-    ys, xs = np.nonzero(on)
+    rows, cols = np.flatnonzero(on.any(axis=1)), np.flatnonzero(on.any(axis=0))
+    ids = ys = xs = np.zeros(0, np.intp)
+    if len(rows):  # in the groups' box only: the same pixels, fewer to scan
+        box = (slice(rows[0], rows[-1] + 1), slice(cols[0], cols[-1] + 1))
+        ids = group_map[box][on[box]] - 1
+        ys, xs = np.nonzero(on[box])
+        ys, xs = ys + rows[0], xs + cols[0]
     big = np.iinfo(np.int64).max
     r0, c0 = np.full(n_groups, big), np.full(n_groups, big)
     r1, c1 = np.full(n_groups, -1), np.full(n_groups, -1)

@@ -22,12 +22,15 @@ from __future__ import annotations
 
 import math
 import os
-import socket
 import time
 import warnings
 from collections.abc import Callable, Iterator, Sequence
+from typing import TYPE_CHECKING
 
 from .errors import InvalidParameter, TireModelError
+
+if TYPE_CHECKING:
+    import socket
 
 DEFAULT_SCHEDULER_TIMEOUT = 10.0
 """Seconds to wait for a Dask scheduler to accept and answer (``--scheduler-timeout``)."""
@@ -135,6 +138,8 @@ def check_scheduler(address: str, *, timeout: float = DEFAULT_SCHEDULER_TIMEOUT)
     InvalidParameter
         ``timeout`` not a number > 0.
     """
+    import socket  # here: importing the module (for its defaults) needs no network
+
     timeout = _validate_timeout(timeout)
     scheme, host, port = _host_port(address)
     if scheme != "tcp":
