@@ -28,6 +28,8 @@ __version__ = "0.2.0"
 import sys
 import types
 
+from tiremesh.lazy import lazy_attributes
+
 from .errors import (
     AllInk,
     ImageTooLarge,
@@ -74,40 +76,26 @@ __all__ = [
 # process first (one OpenBLAS thread for ``inkprint analyze``), and one ``inkprint
 # analyze`` does not load the batch's scheduler, tables and progress bar.
 _LAZY = {
-    "AnalysisOptions": ("options", "AnalysisOptions"),
-    "BatchOptions": ("batch", "Options"),
-    "BatchResult": ("batch", "BatchResult"),
-    "PrintResult": ("results", "PrintResult"),
-    "Scan": ("read", "Scan"),
-    "SheetResult": ("results", "SheetResult"),
-    "analyze_scan": ("analyze", "analyze_scan"),
-    "binarize": ("binarize", "binarize"),
-    "contact_pressure": ("results", "contact_pressure"),
-    "draw_overlay": ("overlay", "draw_overlay"),
-    "edge_spots": ("group", "edge_spots"),
-    "group_blobs": ("group", "group_blobs"),
-    "iter_scans": ("read", "iter_scans"),
-    "prepare_page": ("light", "prepare_page"),
-    "read_scan": ("read", "read_scan"),
-    "run_batch": ("batch", "run_batch"),
-    "sort_ink": ("marks", "sort_ink"),
+    "AnalysisOptions": ".options",
+    "BatchOptions": (".batch", "Options"),
+    "BatchResult": ".batch",
+    "PrintResult": ".results",
+    "Scan": ".read",
+    "SheetResult": ".results",
+    "analyze_scan": ".analyze",
+    "binarize": ".binarize",
+    "contact_pressure": ".results",
+    "draw_overlay": ".overlay",
+    "edge_spots": ".group",
+    "group_blobs": ".group",
+    "iter_scans": ".read",
+    "prepare_page": ".light",
+    "read_scan": ".read",
+    "run_batch": ".batch",
+    "sort_ink": ".marks",
 }
 
-
-def __getattr__(name: str):
-    """A public name, imported on first use (PEP 562)."""
-    if name not in _LAZY:
-        raise AttributeError(f"module 'inkprint' has no attribute {name!r}")
-    import importlib
-
-    module, attr = _LAZY[name]
-    value = getattr(importlib.import_module(f".{module}", __name__), attr)
-    globals()[name] = value
-    return value
-
-
-def __dir__() -> list[str]:
-    return sorted(set(globals()) | set(__all__))
+__getattr__, __dir__ = lazy_attributes(__name__, globals(), _LAZY)
 
 
 class _Package(types.ModuleType):
@@ -116,10 +104,12 @@ class _Package(types.ModuleType):
     submodule as the package's attribute; the eager imports used to set it back)."""
 
     def __setattr__(self, name: str, value) -> None:
-        if isinstance(value, types.ModuleType) and name in _LAZY:
-            module, attr = _LAZY[name]
-            if module == name and value.__name__ == f"{__name__}.{name}":
-                value = getattr(value, attr)
+        if (
+            isinstance(value, types.ModuleType)
+            and _LAZY.get(name) == f".{name}"
+            and value.__name__ == f"{__name__}.{name}"
+        ):
+            value = getattr(value, name)
         super().__setattr__(name, value)
 
 

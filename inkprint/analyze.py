@@ -41,7 +41,7 @@ from .binarize import Binarization, binarize, remove_specks
 from .components import pixel_sums
 from .coords import area_mm2_to_px, area_px_to_mm2, mm_to_px_length, px_to_mm, px_to_mm_length
 from .errors import InvalidInput, NoInk
-from .gridlines import Gridlines, find_gridlines
+from .gridlines import Gridlines, find_gridlines, stroke_px
 from .group import Group, PrintCheck, edge_spots, is_print
 from .light import Page, prepare_page
 from .marks import Mark, SortedInk, sort_ink
@@ -717,7 +717,6 @@ def _print_flags(
 ) -> tuple[tuple, tuple]:
     flags, warnings = [], []
     contact = px_to_mm_length(g.edge_marks, ctx.scan.mm_per_px)
-    excess = _edge_uncertainty(ctx, padded, kept, m.metrics.orientation)
     along = px_to_mm_length(g.line_along, ctx.scan.mm_per_px)
     other = _split_by_line(ctx, g)
     if other >= 0:
@@ -734,7 +733,9 @@ def _print_flags(
             f"edge (a ruler splitting a print?): the outline there is uncertain; see the "
             f"overlay, remove the line or rescan"
         )
-    elif excess > ctx.opts.edge_uncertainty:
+    elif (
+        excess := _edge_uncertainty(ctx, padded, kept, m.metrics.orientation)
+    ) > ctx.opts.edge_uncertainty:
         flags.append("mark_on_edge")
         warnings.append(
             f"print #{index}: a line taken out (a gridline, a ruler) runs along its edge: "
@@ -824,24 +825,16 @@ def _edge_uncertainty(ctx: _Context, g: Group, kept: np.ndarray, angle: float) -
     grid, lines = ctx.found.grid, ctx.found.sorted.grazed
     if grid is None and lines is None:
         return 0.0
-    r0, c0 = g.rows.start, g.cols.start
-    h, w = kept.shape
     s = ctx.scan.mm_per_px
-    t = int(np.ceil(max(1.0, mm_to_px_length(ctx.opts.stroke_width_mm, s)))) + 2
-    a, b = max(r0 - t, 0), max(c0 - t, 0)
-    rows, cols = ctx.page.work.shape
-    own = np.zeros((min(r0 + h + t, rows) - a, min(c0 + w + t, cols) - b), bool)
-    own[r0 - a : r0 - a + h, c0 - b : c0 - b + w] = kept[: own.shape[0] - (r0 - a)]
+    t = stroke_px(s, ctx.opts) + 2  # room for a line's band beside the ink
+    big = _padded(dataclasses.replace(g, mask=kept), ctx.page.work.shape, t)
+    own = big.mask
     band = np.zeros(own.shape, bool)
     if grid is not None:
-        gr = grid.grazed(kept, r0, c0, mm_per_px=s, options=ctx.opts)
-        hb, wb = gr.band.shape
-        band[gr.r0 - a : gr.r0 - a + hb, gr.c0 - b : gr.c0 - b + wb] |= gr.band[
-            : own.shape[0] - (gr.r0 - a), : own.shape[1] - (gr.c0 - b)
-        ]
+        band |= grid.grazed(own, big.rows.start, big.cols.start, mm_per_px=s, options=ctx.opts)
     if lines is not None:
         near = cv2.dilate(own.view(np.uint8), np.ones((2 * t + 1, 2 * t + 1), np.uint8))
-        band |= lines[a : a + own.shape[0], b : b + own.shape[1]] & near.view(bool)
+        band |= lines[big.rows, big.cols] & near.view(bool)
     if not band.any():
         return 0.0
     pts = [outline_points(x).reshape(-1, 2).astype(float) for x in (own, own | band)]

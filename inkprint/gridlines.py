@@ -18,12 +18,12 @@ is left to the marks' sorting, which flags the prints it touches.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import numpy as np
 
 from .components import row_counts
-from .coords import mm_to_px_length, px_to_mm_length
+from .coords import mm_to_px_length
 from .options import AnalysisOptions, resolve_options
 
 
@@ -96,13 +96,14 @@ class Gridlines:
         *,
         mm_per_px: float,
         options: AnalysisOptions | None = None,
-    ) -> GrazedLines:
+    ) -> np.ndarray:
         """The gridline ink taken out where it runs along a print's edge.
 
         Parameters
         ----------
         own : (h, w) bool
-            The print's ink, its box at sheet row ``r0``, column ``c0`` [px].
+            The print's ink, its box at sheet row ``r0``, column ``c0`` [px],
+            grown by :func:`stroke_px` + 1 beyond the ink (within the sheet).
         r0, c0 : int [px]
         mm_per_px : float [mm / px]
         options : AnalysisOptions, optional
@@ -110,58 +111,42 @@ class Gridlines:
 
         Returns
         -------
-        GrazedLines
-            The runs along the lines, each at least ``grid_graze_mm`` long, of
-            gridline pixels next to the print's ink (a line leaving the print's
-            edge at a slant touches it over a shorter run), and the lines' ink
-            within a line's width of them: where the edge may lie.
+        (h, w) bool
+            The lines' ink next to the print's ink in runs along the lines at least
+            ``grid_graze_mm`` long (a line leaving the print's edge at a slant
+            touches it over a shorter run), a line's width either side: the edge
+            lies somewhere in it.
         """
         import cv2
 
         opts = resolve_options(options)
-        h, w = own.shape
-        rows, cols = self.removed.shape
-        t = int(np.ceil(max(1.0, mm_to_px_length(opts.stroke_width_mm, mm_per_px)))) + 1
-        a, b = max(r0 - t - 1, 0), max(c0 - t - 1, 0)
-        e, f = min(r0 + h + t + 1, rows), min(c0 + w + t + 1, cols)
-        box = np.zeros((e - a, f - b), np.uint8)
-        box[r0 - a : r0 - a + h, c0 - b : c0 - b + w] = own[: e - r0, : f - c0]
-        near = cv2.dilate(box, np.ones((3, 3), np.uint8)).view(bool)
+        t = stroke_px(mm_per_px, opts) + 1
+        box = (slice(r0, r0 + own.shape[0]), slice(c0, c0 + own.shape[1]))
+        near = cv2.dilate(own.view(np.uint8), np.ones((3, 3), np.uint8)).view(bool)
         least = mm_to_px_length(opts.grid_graze_mm, mm_per_px)
-        removed = self.removed[a:e, b:f]
-        band, total = np.zeros(box.shape, bool), 0
-        h_line = removed & self.line_rows[a:e, None]
-        v_line = removed & self.line_cols[None, b:f]
-        runs = _long_runs(self.along_rows[a:e, b:f] & near, least)
-        total += int(np.count_nonzero(runs))
-        band |= cv2.dilate(runs.view(np.uint8), np.ones((2 * t + 1, 1), np.uint8)).view(bool)
-        band &= h_line
-        runs = _long_runs((self.along_cols[a:e, b:f] & near).T, least).T
-        total += int(np.count_nonzero(runs))
+        removed = self.removed[box]
+        runs = _long_runs(self.along_rows[box] & near, least)
+        band = cv2.dilate(runs.view(np.uint8), np.ones((2 * t + 1, 1), np.uint8)).view(bool)
+        band &= removed & self.line_rows[box[0], None]
+        runs = _long_runs((self.along_cols[box] & near).T, least).T
         cross = cv2.dilate(runs.view(np.uint8), np.ones((1, 2 * t + 1), np.uint8)).view(bool)
-        band |= cross & v_line
-        return GrazedLines(float(px_to_mm_length(total, mm_per_px)), band, a, b)
+        return band | (cross & removed & self.line_cols[None, box[1]])
 
 
-@dataclass(frozen=True)
-class GrazedLines:
-    """Gridlines taken out along a print's edge (:meth:`Gridlines.grazed`).
+def stroke_px(mm_per_px: float, options: AnalysisOptions) -> int:
+    """A pen stroke's width (``stroke_width_mm``) in whole pixels, at least 1: the
+    widest a gridline's band is, fringe aside.
 
-    Attributes
+    Parameters
     ----------
-    along_mm : float [mm]
-        Length of the edge the lines run along.
-    band : (h, w) bool
-        The lines' ink there, a line's width either side of the edge: the edge
-        lies somewhere in it. Its box is the print's grown by a line's width.
-    r0, c0 : int [px]
-        Sheet row and column of the box.
-    """
+    mm_per_px : float [mm / px]
+    options : AnalysisOptions
 
-    along_mm: float
-    band: np.ndarray = field(repr=False)
-    r0: int
-    c0: int
+    Returns
+    -------
+    int [px]
+    """
+    return int(np.ceil(max(1.0, mm_to_px_length(options.stroke_width_mm, mm_per_px))))
 
 
 def _long_runs(rows: np.ndarray, least: float) -> np.ndarray:
@@ -221,8 +206,8 @@ def find_gridlines(
         Ink of the sheet.
     mm_per_px : float [mm / px]
     options : AnalysisOptions, optional
-        Uses ``stroke_width_mm``, ``group_distance_mm``, ``grid_span`` and
-        ``grid_min_lines`` (defaults when None).
+        Uses ``stroke_width_mm``, ``dot_mm``, ``grid_span`` and ``grid_min_lines``
+        (defaults when None).
 
     Returns
     -------
@@ -243,7 +228,7 @@ def find_gridlines(
     # groove, along an edge, or between a print and a halo speck (dots left out:
     # a speck on the line beside the edge joined the print, width +8 %)
     rest = _without_dots(mask & ~lines, mm_to_px_length(opts.dot_mm, mm_per_px))
-    reach = int(np.ceil(stroke)) + 3  # the band: stroke wide, a row of fringe each side
+    reach = stroke_px(mm_per_px, opts) + 3  # the band: stroke wide, a row of fringe each side
     body = np.zeros_like(mask)
     for _ in range(2):  # twice: where two lines cross inside a print, each is ink
         ink = rest | body  # across the other (first pass: a hole of a line's width)

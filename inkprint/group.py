@@ -382,7 +382,7 @@ def is_print(
         fill = max(fill, _main_blob_fill(group.mask))  # halo specks widen a tiny hull
     # a print cut by the image's edge need not be solid: measured, flagged clipped
     # (a knobby print's last 9 x 7 mm read as a letter and went missing)
-    cut = image_shape is not None and _touches_edge(group, image_shape)
+    cut = image_shape is not None and _sides(group, image_shape, near=False) > 0
     if hull_mm2 < SMALL_PRINT_MM2 and fill < SMALL_PRINT_FILL and not cut:
         return PrintCheck(
             False,
@@ -409,21 +409,11 @@ def _main_blob_fill(mask: np.ndarray) -> float:
     return px / max(cv2.contourArea(hull) + 0.5 * cv2.arcLength(hull, True) + 1.0, 1.0)
 
 
-def _touches_edge(group: Group, shape: tuple[int, int]) -> bool:
-    """Whether the group's ink reaches the image's edge."""
+def _sides(group: Group, shape: tuple[int, int], *, near: bool = True) -> int:
+    """How many sides of the image the group's box reaches (within 1 % when
+    ``near``, else its ink touching them)."""
     h, w = shape
-    return (
-        group.rows.start == 0
-        or group.cols.start == 0
-        or group.rows.stop >= h
-        or group.cols.stop >= w
-    )
-
-
-def _sides(group: Group, shape: tuple[int, int]) -> int:
-    """How many sides of the image the group's box reaches (within 1 %)."""
-    h, w = shape
-    mr, mc = max(1, h // 100), max(1, w // 100)
+    mr, mc = (max(1, h // 100), max(1, w // 100)) if near else (0, 0)
     return sum(
         (
             group.rows.start <= mr,

@@ -768,13 +768,14 @@ def remove_lines(mask: np.ndarray, bands: list, *, bridge_px: float = 0.0, graze
         all_bands |= band
     out = m8 & ~all_bands & 1
     restored = np.zeros(mask.shape, np.uint8)
-    for ang, band in by_dir.items():
-        width = max(int(np.ceil(b.width)) for b in bands) + 4 + 2 * int(np.ceil(bridge_px))
-        restored |= band & cv2.morphologyEx(out, cv2.MORPH_CLOSE, _line_kernel(ang + 90, width))
+    line_px = max(int(np.ceil(b.width)) for b in bands)  # the widest line
+    span = line_px + 4 + 2 * int(np.ceil(bridge_px))
+    for ang, band in by_dir.items():  # a closing across the line
+        restored |= band & cv2.morphologyEx(out, cv2.MORPH_CLOSE, _line_kernel(ang + 90, span))
     cleaned = (out | (m8 & restored)).view(bool)
     lost = m8 & all_bands & ~restored & 1
     grazed = np.zeros(mask.shape, np.uint8)
-    width = max(int(np.ceil(b.width)) for b in bands) + 2
+    width = line_px + 2
     # thick ink (a print, not a ruler's tick) right across the line, a line's width off
     thick = cv2.morphologyEx(cleaned.view(np.uint8), cv2.MORPH_OPEN, _disk(width))
     # across the line from the print's ink, over the line and a pixel of paper at

@@ -1,5 +1,5 @@
-"""Lazy public names for a package's ``__init__`` (PEP 562), shared by ``tiremesh``
-and ``contactpatch``: a name is imported from its module on first use, so importing
+"""Lazy public names for a package's ``__init__`` (PEP 562), shared by ``tiremesh``,
+``contactpatch`` and ``inkprint``: a name is imported from its module on first use, so importing
 one light submodule (``tiremesh.units``) does not pull in the solver."""
 
 from __future__ import annotations
@@ -16,8 +16,9 @@ def lazy_attributes(package: str, namespace: dict, table: dict):
         The package's ``__name__``.
     namespace : dict
         Its ``globals()``: a name is bound there once loaded.
-    table : dict of str to str
-        Public name -> relative module holding it (``".solver"``). A name not in the
+    table : dict of str to str or (str, str)
+        Public name -> relative module holding it (``".solver"``), or the module and
+        the name there when it differs (``(".batch", "Options")``). A name not in the
         table is tried as a submodule (``tiremesh.case``), as eager imports bound them.
 
     Returns
@@ -38,7 +39,8 @@ def lazy_attributes(package: str, namespace: dict, table: dict):
                     raise
                 raise AttributeError(f"module {package!r} has no attribute {name!r}") from None
         else:
-            value = getattr(importlib.import_module(module, package), name)
+            module, attr = module if isinstance(module, tuple) else (module, name)
+            value = getattr(importlib.import_module(module, package), attr)
         namespace[name] = value
         return value
 
