@@ -238,7 +238,12 @@ def _straight_skinny(skinny: np.ndarray, pooled: _Pooled, opts: AnalysisOptions)
     """Of the thick ink narrower than two strokes (``skinny``, uint8), the straight
     lines: pieces at least ``line_length_mm`` long and at most two strokes wide along
     their whole length (a ruler's or a drawn line thick enough to survive the
-    opening, where it crosses a print too; a rib follows the outline or is wider)."""
+    opening, where it crosses a print too; a rib follows the outline or is wider).
+
+    A line that touches a narrow sliver of a print (a half block at the edge) is one
+    piece with it, too wide as a whole: then the line's own pixels are taken - those
+    within a stroke of the straight line fitted to the piece - when they run
+    unbroken for ``line_length_mm`` and hold most of the piece (:func:`_line_run`)."""
     import cv2
 
     _n, lab, stats, _ = components_with_stats(skinny, connectivity=8)
@@ -253,6 +258,35 @@ def _straight_skinny(skinny: np.ndarray, pooled: _Pooled, opts: AnalysisOptions)
         narrow = px_to_mm_length(min(a, b) + 1, pooled.px_mm) <= 2.0 * opts.stroke_width_mm
         if narrow and px_to_mm_length(max(a, b) + 1, pooled.px_mm) >= opts.line_length_mm:
             out[y : y + h, x : x + w] |= piece
+        elif not narrow:
+            out[y : y + h, x : x + w] |= _line_run(piece, pooled.px_mm, opts)
+    return out
+
+
+def _line_run(piece: np.ndarray, px_mm: float, opts: AnalysisOptions) -> np.ndarray:
+    """The pixels of ``piece`` (uint8 crop) on a straight line through it: within a
+    stroke of the line fitted to the piece (Huber, refitted once to the pixels near
+    it), when they hold at least half the piece, lie no wider than two strokes and
+    run for ``line_length_mm`` with no gap over a stroke; else none."""
+    import cv2
+
+    ys, xs = np.nonzero(piece)
+    pts = np.column_stack([xs, ys]).astype(np.float32)
+    reach = mm_to_px_length(opts.stroke_width_mm, px_mm)
+    near = np.ones(len(pts), bool)
+    for _ in range(2):
+        vx, vy, x0, y0 = cv2.fitLine(pts[near], cv2.DIST_HUBER, 0, 0.01, 0.01).ravel()
+        off = (pts - [x0, y0]) @ np.array([-vy, vx])
+        near = np.abs(off) <= reach
+    out = np.zeros(piece.shape, np.uint8)
+    if near.sum() < 0.5 * len(pts) or np.ptp(off[near]) + 1 > 2.0 * reach:
+        return out
+    along = np.sort((pts[near] - [x0, y0]) @ np.array([vx, vy]))
+    runs = np.split(along, np.flatnonzero(np.diff(along) > reach) + 1)
+    run = max(runs, key=np.ptp)
+    if px_to_mm_length(np.ptp(run) + 1, px_mm) < opts.line_length_mm:
+        return out
+    out[ys[near], xs[near]] = 1
     return out
 
 
