@@ -848,8 +848,9 @@ def _mark_pull(ctx: _Context, g: Group, kept: np.ndarray, angle: float) -> float
     """How much ink set aside (larger than a speck, not a gridline taken out) touching
     the print may have pulled it out: the largest relative excess of its length or
     width (along ``angle`` [rad] and across) over those of its ink without the
-    pixels within ``mark_near_px`` of that mark (a stroke's foot on the print's
-    edge; a line crossing the edge only notches it, the hull spans the notch).
+    pixels within ``mark_near_px``, and at least half a stroke, of that mark (a
+    stroke's foot on the print's edge; a line crossing the edge only notches it, the
+    hull spans the notch).
     ``g`` is the print's padded box, ``kept`` its ink measured (over ``g.mask``'s
     box): what the edge-spot rule took out of the group (a letter's strokes) counts
     as set aside."""
@@ -858,7 +859,10 @@ def _mark_pull(ctx: _Context, g: Group, kept: np.ndarray, angle: float) -> float
     from .group import outline_points
 
     h, w = ctx.page.work.shape
-    near_px = ctx.opts.mark_near_px
+    # at least half a stroke: the foot a stroke-wide opening leaves where a tick
+    # meets the edge at a shallow angle (marks._drop_thin_near) reaches that far from
+    # the mark (a ruler's tick along the edge: width +4.5 %, unflagged with 2 px)
+    near_px = max(ctx.opts.mark_near_px, round(0.5 * stroke_px(ctx.scan.mm_per_px, ctx.opts)))
     pad = near_px + 2
     r0, c0 = max(g.rows.start - pad, 0), max(g.cols.start - pad, 0)
     r1, c1 = min(g.rows.stop + pad, h), min(g.cols.stop + pad, w)

@@ -187,13 +187,18 @@ class AnalysisOptions:
         away from the widest point, moves neither much.
     mark_near_px : int [px]
         Ink of a mark set aside (a label's letter, a ruler) this close to a print's
-        ink may be the mark's: a stroke's foot merged into the print's edge (in
-        pixels: the merge is the threshold's and the anti-aliasing's) ...
+        ink, and at least half a stroke (``stroke_width_mm``) close, may be the
+        mark's: a stroke's foot merged into the print's edge (the merge is the
+        threshold's and the anti-aliasing's, in pixels; the foot a stroke-wide
+        opening leaves where a tick meets the edge at a shallow angle reaches half
+        a stroke: with 2 px alone a ruler's tick along the edge gave width +4.5 %,
+        unflagged, at 200 dpi) ...
     mark_pull : float [-]
         ... and when the print's length or width without those pixels is smaller by
-        more than this share, the print is flagged ``mark_on_edge`` (a third of the
-        1 % bar: the pixels next to the mark are a lower bound of its pull; the
-        outline also follows the mark's grey).
+        more than this share, the print is flagged ``mark_on_edge`` (as
+        ``edge_uncertainty``: the pixels within half a stroke bound the pull from
+        above, so 0.6 %, not the 0.3 % a two-pixel lower bound needed; the outline
+        also follows the mark's grey).
     tick_reach_mm : float [mm]
         Within this of ink set aside touching a print (a ruler's ticks are 3-5 mm
         long) its outline is compared with a parabola fitted to the outline on
@@ -285,7 +290,7 @@ class AnalysisOptions:
     edge_mark_mm: float = 2.5
     edge_uncertainty: float = 0.006
     mark_near_px: int = 2
-    mark_pull: float = 0.003
+    mark_pull: float = 0.006
     tick_reach_mm: float = 5.0
     edge_bump_px: float = 1.0
     writing_share: float = 0.5

@@ -382,3 +382,13 @@ def test_analyze_scan_small_clipped_knob_print_is_flagged_not_missing(tmp_path):
     results, rows = outcomes(tmp_path, "clipped", 4249 * 100_003 + 74, dpi=None)
     assert not [r for r in results if r["outcome"] in SILENT], results
     assert any("clipped" in r["flags"] for r in rows)
+
+
+def test_analyze_scan_ruler_tick_foot_on_the_edge_is_flagged(tmp_path):
+    # 4251/0048 (200 dpi): a ruler's tick meets the print's edge at a shallow angle;
+    # its last 1.5 mm stayed print ink, 3-4 px proud of the edge: width +4.5 %,
+    # unflagged. The pixels within half a stroke of the tick now bound its pull
+    results, rows = outcomes(tmp_path, "ruler", 4251 * 100_003 + 48, dpi=None)
+    assert not [r for r in results if r["outcome"] in SILENT], results
+    (row,) = rows
+    assert row["flags"] == "mark_on_edge" and "touches its edge" in row["warnings"]
