@@ -378,6 +378,7 @@ def find_prints(
     mm_per_px: float,
     options: AnalysisOptions | None = None,
     sheet_area_mm2: float | None = None,
+    grey: np.ndarray | None = None,
 ) -> FoundPrints:
     """Sort a sheet's ink (:func:`inkprint.marks.sort_ink`) and keep the prints.
 
@@ -390,6 +391,9 @@ def find_prints(
         Grouping, mark, speck and print-shape thresholds (defaults when None).
     sheet_area_mm2 : float, optional [mm^2]
         Area of the page (for the automatic ink floor); default the image's.
+    grey : (rows, cols) uint8 or float, optional
+        The sheet's grey levels: ink printed over a gridline, darker than the line,
+        stays ink (:func:`inkprint.gridlines.find_gridlines`).
 
     Returns
     -------
@@ -400,7 +404,7 @@ def find_prints(
     area = sheet_area_mm2 if sheet_area_mm2 is not None else area_px_to_mm2(mask.size, mm_per_px)
     floor = opts.patch_area_floor(area)
     speck_px = area_mm2_to_px(opts.speck_area_mm2, mm_per_px)
-    grid = find_gridlines(mask, mm_per_px=mm_per_px, options=opts)
+    grid = find_gridlines(mask, mm_per_px=mm_per_px, options=opts, grey=grey)
     ink = sort_ink(
         mask if grid is None else mask & ~grid.removed, mm_per_px=mm_per_px, options=opts
     )
@@ -831,7 +835,13 @@ def _edge_uncertainty(ctx: _Context, g: Group, kept: np.ndarray, angle: float) -
     own = big.mask
     band = np.zeros(own.shape, bool)
     if grid is not None:
-        band |= grid.grazed(own, big.rows.start, big.cols.start, mm_per_px=s, options=ctx.opts)
+        grazed = grid.grazed(own, big.rows.start, big.cols.start, mm_per_px=s, options=ctx.opts)
+        if _dark_beside(ctx.page.work[big.rows, big.cols], own, grazed, t, grid.dark_below):
+            # ink that dark under the line shows: only the edge's last, partly
+            # covered pixel can hide there (the row next to the ink)
+            ring = cv2.dilate(own.view(np.uint8), np.ones((3, 3), np.uint8)).view(bool)
+            grazed &= ring
+        band |= grazed
     if lines is not None:
         near = cv2.dilate(own.view(np.uint8), np.ones((2 * t + 1, 2 * t + 1), np.uint8))
         band |= lines[big.rows, big.cols] & near.view(bool)
@@ -842,6 +852,21 @@ def _edge_uncertainty(ctx: _Context, g: Group, kept: np.ndarray, angle: float) -
     ext = _extents(pts[1] * flip, angle) / _extents(pts[0] * flip, angle)
     area = [cv2.contourArea(cv2.convexHull(p.astype(np.float32))) for p in pts]
     return float(max(np.max(ext) - 1.0, 0.5 * (area[1] / area[0] - 1.0)))
+
+
+def _dark_beside(grey, own: np.ndarray, band: np.ndarray, t: int, dark_below) -> bool:
+    """Whether the print's ink within ``t`` [px] of a gridline's ``band`` (its rim
+    aside) is all darker than ``dark_below`` (:class:`Gridlines`): ink that dark
+    under the line would have been kept as ink printed over it, so the edge is not
+    hidden there (the lines' grey is lighter than the ink's)."""
+    import cv2
+
+    if dark_below is None or not band.any():
+        return False
+    inner = cv2.erode(own.view(np.uint8), np.ones((3, 3), np.uint8))
+    grown = cv2.dilate(band.view(np.uint8), np.ones((2 * t + 1, 2 * t + 1), np.uint8))
+    beside = (inner & grown).view(bool)
+    return bool(beside.any()) and float(np.percentile(grey[beside], 90)) < dark_below
 
 
 def _mark_pull(ctx: _Context, g: Group, kept: np.ndarray, angle: float) -> float:
@@ -1105,7 +1130,11 @@ def analyze_scan(
     )
     sheet_px = b.mask.size if page.sheet is None else int(np.count_nonzero(page.sheet))
     found = find_prints(
-        b.mask, mm_per_px=s, options=opts, sheet_area_mm2=area_px_to_mm2(sheet_px, s)
+        b.mask,
+        mm_per_px=s,
+        options=opts,
+        sheet_area_mm2=area_px_to_mm2(sheet_px, s),
+        grey=page.work,
     )
     if not found.groups:
         raise NoInk(no_print_message(found))

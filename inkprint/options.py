@@ -61,6 +61,7 @@ _RULES = {
     "grid_span": (lambda v: 0 < v <= 1, "a fraction of the sheet in (0, 1]"),
     "grid_min_lines": (lambda v: v >= 1 and float(v).is_integer(), "a whole number >= 1"),
     "grid_graze_mm": (lambda v: v >= 0, ">= 0 mm"),
+    "grid_ink_darker": (lambda v: 0 <= v <= 1, "a fraction in [0, 1]"),
     "dot_mm": (lambda v: v >= 0, ">= 0 mm"),
     "edge_uncertainty": (lambda v: 0 <= v < 1, "a relative change in [0, 1)"),
     "grid_aside_share": (lambda v: v >= 0, ">= 0 (a share of the print's hull area)"),
@@ -219,6 +220,13 @@ class AnalysisOptions:
         A gridline taken out grazes a print's edge where they touch over a run at
         least this long (a line leaving the edge at a slant touches it over a
         shorter run; see ``edge_uncertainty``).
+    grid_ink_darker : float [-]
+        A pixel on a gridline darker than this share of the lines' grey (their
+        lower quartile) is ink printed over the line: chart paper's lines are
+        lighter than a print's ink, so a tip sliver lying on a line stays the
+        print's (length -3.5 % when it was taken out with the line), and where the
+        print's ink beside a line is that dark its edge cannot hide under the line
+        by more than its last pixel. 0 turns it off.
     grid_aside_share : float [-]
         On a sheet with gridlines, pen-thin ink set aside touching a print over more
         than this share of its hull area flags it ``mark_on_edge``: tread slivers a
@@ -297,6 +305,7 @@ class AnalysisOptions:
     grid_span: float = 0.7
     grid_min_lines: int = 3
     grid_graze_mm: float = 1.0
+    grid_ink_darker: float = 0.75
     grid_aside_share: float = 0.005
     axis_uncertain_aspect: float = 1.3
     axis_misaligned_deg: float = 1.0

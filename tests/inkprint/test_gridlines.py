@@ -67,3 +67,40 @@ def test_find_gridlines_halo_speck_on_a_line_stays_apart():
     _, labels = cv2.connectedComponents(kept.view(np.uint8), connectivity=8)
     assert labels[116, 404] != labels[200, 404]  # the speck is apart from the print
     assert_array_equal(kept[150:330, 200:650], printed[150:330, 200:650])
+
+
+def _greys(printed, lines, *, ink=30, line=110, paper=240):
+    grey = np.full(printed.shape, paper, np.uint8)
+    grey[lines] = line
+    grey[printed] = ink  # ink over a line is at least as dark as the ink
+    return grey
+
+
+def test_find_gridlines_ink_darker_than_the_line_stays_ink():
+    # a tip sliver 2 x 1 mm lying on a vertical line, 2 mm beyond the print's
+    # body: taken out with the line, the print lost 1 mm of length; darker than
+    # the line (grey 30 on a line of 110), it stays ink with the grey levels given
+    body = np.zeros((600, 800), bool)
+    body[150:330, 200:600] = True
+    sliver = np.zeros_like(body)
+    sliver[230:250, 619:629] = True  # the line at columns 620-622
+    lines = _grid(body.shape)
+    sheet = body | sliver | lines
+    blind = find_gridlines(sheet, mm_per_px=MM_PER_PX)
+    assert (blind.removed & sliver).sum() == 20 * 5  # the line and a fringe column each side
+    seen = find_gridlines(sheet, mm_per_px=MM_PER_PX, grey=_greys(body | sliver, lines))
+    assert not (seen.removed & sliver).any()
+    assert seen.dark_below == 0.75 * 110
+    # the lines themselves still go, and ink as light as the line cannot be told
+    assert_array_equal(seen.removed & ~sliver, blind.removed & ~sliver)
+    faint = find_gridlines(sheet, mm_per_px=MM_PER_PX, grey=_greys(body | sliver, lines, ink=110))
+    assert_array_equal(faint.removed, blind.removed)
+
+
+def test_find_gridlines_dark_dot_on_a_line_is_not_kept():
+    # a dark speck on a line away from every print is a dot: the line goes whole
+    lines = _grid((600, 800))
+    dot = np.zeros_like(lines)
+    dot[219:224, 400:405] = True  # on the line at rows 220-222
+    g = find_gridlines(lines | dot, mm_per_px=MM_PER_PX, grey=_greys(dot, lines))
+    assert g.removed[220:223, 400:405].all()
