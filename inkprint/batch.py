@@ -439,10 +439,10 @@ def write_outputs(rows: list[dict], out) -> list[Path]:
     cols = table_columns(rows, first=FIRST)
     if out.suffix.lower() != ".csv":
         return [write_table(rows, out, columns=cols)]
-    return [
-        write_csv(rows, out, columns=cols, lineterminator="\n"),
-        write_table(rows, out.with_suffix(".json"), columns=cols),
-    ]
+    # the twin first: once the table a re-run resumes from exists, so does the twin
+    # (a batch killed between the two left the CSV without its JSON)
+    twin = write_table(rows, out.with_suffix(".json"), columns=cols)
+    return [write_csv(rows, out, columns=cols, lineterminator="\n"), twin]
 
 
 @dataclass(frozen=True)

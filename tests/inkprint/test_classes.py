@@ -169,9 +169,15 @@ def test_analyze_scan_mark_pulling_a_print_edge_is_flagged(tmp_path, kind, k):
     results, rows = outcomes(tmp_path, kind, 4242 * 100_003 + k, dpi=None)
     assert not [r for r in results if r["outcome"] in SILENT], results
     (row,) = rows
+    if kind == "ruler":
+        # the ruler's own ink beside the edge now reads as paper, so it no longer
+        # pulls the outline out (+1.3 % -> +0.8 %, within the bar); where it crosses
+        # the edge the edge is bounded by the tangents either side (under a pixel),
+        # and its pull (0.4 %) is under mark_pull: measured, unflagged, or flagged
+        assert results[0]["outcome"] in ("pass", "overflagged"), results
+        assert abs(results[0]["err_width"]) < 0.01
+        return
     assert row["status"] == "flagged" and row["flags"] == "mark_on_edge"
-    # the ruler's own ink beside the edge now reads as paper, so it no longer pulls
-    # the outline out; the shallow crossing leaves the edge under the line instead
     assert "touches its edge" in row["warnings"] or "runs along its edge" in row["warnings"]
 
 
@@ -200,7 +206,10 @@ def test_analyze_scan_faint_gridlines_are_taken_out_or_flag_the_prints(tmp_path)
     assert {r["outcome"] for r in results} <= {"overflagged", "pass"}
     flagged = [r for r in rows if r["status"] == "flagged"]
     assert all(r["flags"] == "mark_on_edge" for r in flagged)
-    assert "runs along its edge" in flagged[0]["warnings"]  # the line along print #0's edge
+    # the line along print #0's edge was flagged by its whole width; the ink beside
+    # it is darker than the line, so only a pixel can hide under it: both measure
+    # within the bar (+0.7 % and +0.5 % in width)
+    assert sum(r["outcome"] == "pass" for r in results) >= 1
 
 
 def test_analyze_scan_gridlines_crossing_a_print_leave_it_measured():

@@ -6,6 +6,7 @@ slick print's tip.
 ``python -m inkprint.accuracy``.
 """
 
+import cv2
 import numpy as np
 from numpy.testing import assert_allclose
 
@@ -91,3 +92,30 @@ def test_bump_pull_tick_end_out_of_a_smooth_edge():
     # the points beyond 1 px out: a lower bound of the tick's 2 px on an 81 px width
     assert_allclose(_bump_pull(ticked, aside, 0.0, 40.0, 1.0), 1.0 / 80.0, atol=0.003)
     assert _bump_pull(ticked, aside, 0.0, 40.0, 3.0) == 0.0  # a bump under 3 px is edge
+
+
+def test_tangent_bound_line_crossing_a_round_edge_adds_under_a_pixel():
+    # a disk of radius 60 px crossed by a 5 px line at 50 degrees to its edge: the
+    # line's ink near the edge bounds the hidden edge only within the tangents of
+    # the visible outline either side (the disk's own edge, to half a pixel); a
+    # line running along the edge for 60 px keeps its whole band
+    from inkprint.analyze import _tangent_bound
+
+    yy, xx = np.mgrid[:200, :200]
+    r = np.hypot(yy - 100.0, xx - 100.0)
+    line = np.zeros((200, 200), np.uint8)
+    cv2.line(line, (100, 30), (196, 110), 1, 5)  # crosses the edge near (160, 80)
+    line = line.astype(bool)
+    own = (r <= 60.0) & ~line
+    band = line & (r > 60.0) & (r <= 68.0)
+    kept = _tangent_bound(own, band, 8)
+    assert band.sum() > 60 and kept.any()
+    # the disk's edge under the line, to 2 px (the chords from vertices 8 px back run
+    # out of a 60 px circle by ~0.7 px over the gap, plus the slack): the band reached 8
+    assert r[band].max() > 67.0 and r[kept].max() <= 62.0
+    # a horizontal line over the disk's top (rows 38-45) hides 45 px of its edge:
+    # the vertices beside it need not bound what lies under it, the band stays
+    graze = (yy >= 38) & (yy <= 45) & (r <= 61.0)
+    own2 = (r <= 60.0) & ~graze
+    kept2 = _tangent_bound(own2, graze, 8)
+    assert graze.sum() > 200 and kept2.sum() >= graze.sum() - 2  # (a corner pixel)
