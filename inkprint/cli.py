@@ -405,7 +405,7 @@ def _cmd_analyze(a) -> int:
 
     The imports (numpy, OpenCV, shapely, the analysis: 30 000 objects, made while
     the first file is read and decoded) and one analysis leave no cyclic garbage
-    worth a pass, and every pass over those objects is lost time (15-25 ms of CPU
+    worth a pass, and every pass over those objects is lost time (10-25 ms of CPU
     of a 0.4 s run); the collector runs as usual from the second file on.
     """
     collecting = gc.isenabled()
