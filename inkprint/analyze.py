@@ -1064,7 +1064,9 @@ def _with_paper(ctx: _Context, group: Group) -> Group:
 def _measure_all(ctx: _Context, groups: list, *, sensitivity: bool, threads: int | None):
     """:func:`measure_print` for every group, in order, on up to ``threads`` threads:
     each print's measurement and its two re-measures of the threshold band are
-    separate tasks (so one print uses three threads)."""
+    separate tasks (so one print uses three threads), the measurements first (the
+    longest tasks: on two cores the two re-measures of one print then follow it on
+    the other core and the core it frees, not it them)."""
     n = len(groups)
     threads = min(resolve_threads(threads), 3 * n if sensitivity else n)
     if threads <= 1:
@@ -1076,6 +1078,10 @@ def _measure_all(ctx: _Context, groups: list, *, sensitivity: bool, threads: int
     factors = (1.0 - ctx.opts.sensitivity, 1.0 + ctx.opts.sensitivity) if sensitivity else ()
     shape, s = ctx.page.work.shape, ctx.scan.mm_per_px
     with ThreadPoolExecutor(threads, thread_name_prefix="inkprint-measure") as pool:
+        prints = [
+            pool.submit(measure_print, ctx, g, index=i, sensitivity=False)
+            for i, g in enumerate(groups)
+        ]
         bands = []
         for g in groups:  # each print's window once, its two thresholds as tasks
             win = (
@@ -1084,10 +1090,6 @@ def _measure_all(ctx: _Context, groups: list, *, sensitivity: bool, threads: int
                 else None
             )
             bands.append([pool.submit(_band_at, ctx, win, f) for f in factors])
-        prints = [
-            pool.submit(measure_print, ctx, g, index=i, sensitivity=False)
-            for i, g in enumerate(groups)
-        ]
         out = []
         for p, band in zip(prints, bands, strict=True):
             r = p.result()

@@ -78,6 +78,29 @@ def test_main_quiet_and_verbose_at_top_level(one_scan, tmp_path, capsys):
     assert capsys.readouterr().out == ""
 
 
+def test_analyze_leaves_the_garbage_collector_as_it_was(one_scan, capsys):
+    # `inkprint analyze` pauses the collector while it imports and analyses the
+    # first file, and freezes it at exit only (an exit handler): a caller's
+    # collector is left as it was, enabled or not, and nothing is frozen now
+    import atexit
+    import gc
+
+    scan = str(one_scan / "a.png")
+    frozen = gc.get_freeze_count()
+    try:
+        for enabled in (True, False):
+            (gc.enable if enabled else gc.disable)()
+            assert main(["analyze", scan, scan, "--no-band"]) == 0
+            assert gc.isenabled() == enabled
+            assert main(["analyze", str(one_scan / "missing.png")]) == 1
+            assert gc.isenabled() == enabled
+    finally:
+        gc.enable()
+    assert gc.get_freeze_count() == frozen
+    atexit.unregister(gc.freeze)  # this test process keeps its last collection
+    capsys.readouterr()
+
+
 def test_main_quiet_and_verbose_together_refused(one_scan, capsys):
     assert main(["-q", "analyze", str(one_scan / "a.png"), "-v"]) == 2
     assert "-q and -v" in capsys.readouterr().err

@@ -142,3 +142,92 @@ def test_coords_pixel_to_mm_conversions_only_in_coords():
     assert not hits, hits
     assert binned_mm_per_px(0.1, 4) == pytest.approx(0.4, rel=1e-12)
     assert px_to_mm_length(mm_to_px_length(3.0, 0.0847), 0.0847) == pytest.approx(3.0, rel=1e-12)
+
+
+def _png_chunk(kind: bytes, body: bytes) -> bytes:
+    return struct.pack(">I", len(body)) + kind + body + struct.pack(">I", zlib.crc32(kind + body))
+
+
+def _png_bytes(tmp_path, mode="L", extra=(), **save):
+    """A PNG saved by Pillow, ``extra`` chunks put right after its header."""
+    a = _sheet()
+    im = {
+        "L": lambda: Image.fromarray(a),
+        "RGB": lambda: Image.fromarray(a).convert("RGB"),
+        "P": lambda: Image.fromarray(a).convert("P"),
+        "1": lambda: Image.fromarray(a).convert("1"),
+        "I;16": lambda: Image.fromarray(a.astype(np.uint16) * 257),
+    }[mode]()
+    im.save(tmp_path / "s.png", **save)
+    data = (tmp_path / "s.png").read_bytes()
+    return data[:33] + b"".join(extra) + data[33:]  # signature 8 + IHDR 25 bytes
+
+
+GAMA = _png_chunk(b"gAMA", struct.pack(">I", 45455))
+ASPECT = _png_chunk(b"pHYs", struct.pack(">IIB", 3, 2, 0))
+NOTES = (GAMA, _png_chunk(b"sRGB", b"\0"), _png_chunk(b"tIME", bytes(7)), ASPECT)
+
+
+@pytest.mark.parametrize(
+    ("mode", "extra", "save", "plain"),
+    [
+        ("L", (), {"dpi": (300, 300)}, True),
+        ("L", (), {}, True),
+        ("RGB", (), {"dpi": (200, 200)}, True),
+        ("I;16", (), {"dpi": (600, 600)}, True),
+        ("1", (), {"dpi": (150, 150)}, True),
+        ("L", NOTES, {"dpi": (300, 300)}, True),
+        ("L", (ASPECT,), {}, True),
+        ("L", (), {"dpi": (300, 300), "transparency": 0}, False),
+        ("P", (), {"dpi": (300, 300)}, False),
+        ("L", (_png_chunk(b"tEXt", b"dpi\x0072"),), {}, False),
+        ("L", (_png_chunk(b"iCCP", b"p\0\0" + zlib.compress(b"x")),), {}, False),
+    ],
+)
+def test_plain_png_is_read_as_pillow_reads_it(tmp_path, mode, extra, save, plain):
+    # a plain PNG (grey or RGB, no transparency, text or profile) is read without
+    # Pillow: the same pixels and DPI metadata as through Pillow; any other goes to it
+    from inkprint import read
+    from inkprint.options import resolve_options
+
+    opts = resolve_options(None)
+    buf = _png_bytes(tmp_path, mode, extra, **save)
+    fast = read._decode_plain_png(buf, opts)
+    grey, meta = read._decode_with_pillow(tmp_path / "s.png", buf, opts)
+    assert (fast is not None) == plain
+    if plain:
+        assert fast[0].dtype == grey.dtype and np.array_equal(fast[0], grey)
+        assert fast[1] == meta
+
+
+@pytest.mark.parametrize(
+    "extra",
+    [
+        (GAMA[:-1] + bytes([GAMA[-1] ^ 1]),),  # a wrong checksum
+        (_png_chunk(b"gAMA", b"\0\0"),),  # too short
+        (_png_chunk(b"pHYs", b"\0\0\0\1"),),  # too short
+        (_png_chunk(b"IHDR", bytes(13)),),  # a second header
+    ],
+)
+def test_damaged_plain_png_is_left_to_pillow(tmp_path, extra):
+    from inkprint import read
+    from inkprint.options import resolve_options
+
+    opts = resolve_options(None)
+    buf = _png_bytes(tmp_path, "L", extra, dpi=(300, 300))
+    assert read._decode_plain_png(buf, opts) is None
+    assert read._decode_plain_png(buf[:-12], opts) is None  # no IEND
+    assert read._decode_plain_png(buf[:40], opts) is None
+
+
+def test_plain_png_needs_no_pillow(tmp_path):
+    # the speed of one `inkprint analyze` on a PNG scan: Pillow's imports are 25 ms
+    import subprocess
+    import sys
+
+    (tmp_path / "s.png").write_bytes(_png_bytes(tmp_path, "L", dpi=(300, 300)))
+    code = (
+        "import sys, inkprint as ip; s = ip.read_scan(sys.argv[1]); "
+        "assert round(s.dpi) == 300 and 'PIL' not in sys.modules, sorted(sys.modules)"
+    )
+    subprocess.run([sys.executable, "-c", code, str(tmp_path / "s.png")], check=True)
