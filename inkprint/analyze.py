@@ -246,7 +246,16 @@ class MaskMeasurement:
 
 
 def measure_mask(
-    mask, r0: int, c0: int, *, n_rows: int, mm_per_px: float, field=None, axis=None, hull_px=None
+    mask,
+    r0: int,
+    c0: int,
+    *,
+    n_rows: int,
+    mm_per_px: float,
+    field=None,
+    axis=None,
+    hull_px=None,
+    stations=None,
 ) -> MaskMeasurement:
     """Shared metrics (:func:`contactpatch.measure`) of an ink mask cropped from a sheet.
 
@@ -268,6 +277,8 @@ def measure_mask(
     hull_px : (k, 2) float, optional [px]
         The outline already found for this mask and field (a previous
         :class:`MaskMeasurement`'s ``hull_px``): not traced again.
+    stations : sequence of float, optional
+        Lateral stations of :func:`contactpatch.measure` (its default when None).
 
     Returns
     -------
@@ -290,7 +301,8 @@ def measure_mask(
     )
     hull = shapely.Polygon(np.column_stack([x, y]))
     net = min(area_px_to_mm2(n, mm_per_px), hull.area)
-    m = cp.measure(hull, axis=axis, net_area=net, net_centroid=(float(cx), float(cy)))
+    kw = {} if stations is None else {"stations": stations}
+    m = cp.measure(hull, axis=axis, net_area=net, net_centroid=(float(cx), float(cy)), **kw)
     return MaskMeasurement(m, hull_px)
 
 
@@ -553,11 +565,25 @@ def sensitivity_band(ctx: _Context, group: Group, *, base: dict) -> dict:
         ``{key: (low, high)}`` over the three thresholds.
     """
     values = {k: [v] for k, v in base.items()}
-    win = _band_window(ctx.page.work.shape, group, ctx.found, ctx.scan.mm_per_px, ctx.opts)
-    for f in (1.0 - ctx.opts.sensitivity, 1.0 + ctx.opts.sensitivity):
-        for k, v in _band_at(ctx, win, f).items():
+    for band in _bands(ctx, group, _factors(ctx.opts)):
+        for k, v in band.items():
             values[k].append(v)
     return _band_range(values)
+
+
+def _factors(opts: AnalysisOptions) -> tuple:
+    """The band's thresholds relative to the sheet's: 1 -+ ``sensitivity``."""
+    return (1.0 - opts.sensitivity, 1.0 + opts.sensitivity)
+
+
+def _bands(ctx: _Context, group: Group, factors) -> list:
+    """The print's ``BAND_KEYS`` values at the threshold x each of ``factors``
+    (:func:`_band_at`), in one window: its grey and that grey's local range found
+    once for all."""
+    win = _band_window(ctx.page.work.shape, group, ctx.found, ctx.scan.mm_per_px, ctx.opts)
+    grey = _grey(ctx.scan, ctx.page, win.rows, win.cols)
+    local = []  # the grey's local range, once one threshold needs it
+    return [_band_at(ctx, win, f, grey=grey, local=local) for f in factors]
 
 
 def _band_range(values: dict) -> dict:
@@ -565,9 +591,10 @@ def _band_range(values: dict) -> dict:
     return {k: (float(np.nanmin(v)), float(np.nanmax(v))) for k, v in values.items()}
 
 
-def _band_at(ctx: _Context, win: _BandWindow, factor: float) -> dict:
+def _band_at(ctx: _Context, win: _BandWindow, factor: float, *, grey, local: list) -> dict:
     """The print's ``BAND_KEYS`` values with the sheet's threshold x ``factor`` in
-    its window (:func:`_band_window`; ``{}`` when nothing of it is left there)."""
+    its window (:func:`_band_window`, whose ``grey`` is given; ``{}`` when nothing
+    of it is left there). ``local``: [] or [the grey's local range], filled here."""
     opts, s = ctx.opts, ctx.scan.mm_per_px
     work = ctx.page.work[win.rows, win.cols]
     level = ctx.binarization.level
@@ -577,13 +604,14 @@ def _band_at(ctx: _Context, win: _BandWindow, factor: float) -> dict:
     )
     if not ink.any():
         return {}
-    grey = _grey(ctx.scan, ctx.page, win.rows, win.cols)
     spots = edge_spots(
         Group(win.rows, win.cols, ink), _darkness(grey, ink), mm_per_px=s, options=opts
     )
     if not spots.load_bearing.any():
         return {}
-    fld = edge_field(grey, spots.load_bearing, mm_per_px=s, options=opts)
+    if not local:
+        local.append(_local_range(grey, s, opts))
+    fld = edge_field(grey, spots.load_bearing, mm_per_px=s, options=opts, local=local[0])
     grid = _grid_in(ctx.found.grid, win.rows, win.cols)
     m = measure_mask(
         spots.load_bearing,
@@ -593,6 +621,7 @@ def _band_at(ctx: _Context, win: _BandWindow, factor: float) -> dict:
         mm_per_px=s,
         field=_paper_where_set_apart(fld, grid, spots.load_bearing),
         axis=ctx.rolling_axis,
+        stations=(0.0,),  # the band's values need no station chords
     ).metrics
     return _band_values(m)
 
@@ -1029,8 +1058,9 @@ def _with_paper(ctx: _Context, group: Group) -> Group:
 
 def _measure_all(ctx: _Context, groups: list, *, sensitivity: bool, threads: int | None):
     """:func:`measure_print` for every group, in order, on up to ``threads`` threads:
-    each print's measurement and its two re-measures of the threshold band are
-    separate tasks (so one print uses three threads)."""
+    each print's measurement and its re-measures of the threshold band are separate
+    tasks; the band's two thresholds one task sharing its window's grey (or, with a
+    thread for each, two: one print uses three threads)."""
     n = len(groups)
     threads = min(resolve_threads(threads), 3 * n if sensitivity else n)
     if threads <= 1:
@@ -1039,17 +1069,13 @@ def _measure_all(ctx: _Context, groups: list, *, sensitivity: bool, threads: int
         ]
     from concurrent.futures import ThreadPoolExecutor
 
-    factors = (1.0 - ctx.opts.sensitivity, 1.0 + ctx.opts.sensitivity) if sensitivity else ()
-    shape, s = ctx.page.work.shape, ctx.scan.mm_per_px
+    factors = _factors(ctx.opts) if sensitivity else ()
+    split = [(f,) for f in factors] if threads >= 3 * n else [factors] if factors else []
     with ThreadPoolExecutor(threads, thread_name_prefix="inkprint-measure") as pool:
-        bands = []
-        for g in groups:  # each print's window once, its two thresholds as tasks
-            win = (
-                _band_window(shape, _with_paper(ctx, g), ctx.found, s, ctx.opts)
-                if factors
-                else None
-            )
-            bands.append([pool.submit(_band_at, ctx, win, f) for f in factors])
+        # the bands first: the longer tasks
+        bands = [
+            [pool.submit(_bands, ctx, _with_paper(ctx, g), fs) for fs in split] for g in groups
+        ]
         prints = [
             pool.submit(measure_print, ctx, g, index=i, sensitivity=False)
             for i, g in enumerate(groups)
@@ -1058,8 +1084,8 @@ def _measure_all(ctx: _Context, groups: list, *, sensitivity: bool, threads: int
         for p, band in zip(prints, bands, strict=True):
             r = p.result()
             values = {k: [lo] for k, (lo, _) in r.band.items()}
-            for fut in band:
-                for k, v in fut.result().items():
+            for b in (b for fut in band for b in fut.result()):
+                for k, v in b.items():
                     values[k].append(v)
             out.append(dataclasses.replace(r, band=_band_range(values)) if band else r)
     return out

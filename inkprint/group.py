@@ -166,7 +166,12 @@ def _voronoi_pairs(lab, ink, dist, nearest) -> tuple:
     transform of the paper with the nearest ink pixel's label."""
     lut = np.zeros(int(nearest.max()) + 1, np.int32)
     lut[nearest[ink]] = lab[ink]
-    owner = lut[nearest]
+    return _touching(lut[nearest], dist)
+
+
+def _touching(owner, dist) -> tuple:
+    """``(a, b, gap)`` of :func:`_voronoi_pairs` from each pixel's element (``owner``)
+    and its distance to it."""
     pairs = []
     for sl0, sl1 in (
         ((slice(None), slice(None, -1)), (slice(None), slice(1, None))),
@@ -533,23 +538,21 @@ def _outside_core(blobs: _Blobs, core_mask: np.ndarray) -> np.ndarray:
     )
 
 
-def _core_gaps(blobs: _Blobs, core: np.ndarray) -> tuple:
+def _core_gaps(blobs: _Blobs, core: np.ndarray, core_mask: np.ndarray) -> tuple:
     """Gap [px] from every blob to the nearest core blob, and the core's own tread
     gap [px]: the median over core blobs of the gap to their nearest core neighbour
-    (0 for a one-blob core). ``core`` : (n,) bool, which blobs are the core.
+    (0 for a one-blob core). ``core`` : (n,) bool, which blobs are the core;
+    ``core_mask`` their pixels.
 
     One distance transform serves both: its distances give each blob's gap to the
-    core, its nearest-pixel labels the core's Voronoi neighbours
+    core, its nearest-piece labels the core's Voronoi neighbours
     (:func:`element_graph`'s partition; the core blobs are 8-connected pieces of the
-    group's ink, so they are the core's own pieces)."""
+    group's ink, so OpenCV's 8-connected pieces of the core are the core blobs,
+    numbered in its own order: the median does not depend on it)."""
     import cv2
 
-    lut = np.zeros(len(core) + 1, np.int32)
-    lut[1:][core] = np.arange(1, int(core.sum()) + 1)
-    lab = lut[blobs.labels]  # core blobs 1..k, the rest 0
-    ink = lab > 0
     dt, nearest = cv2.distanceTransformWithLabels(
-        (~ink).view(np.uint8), cv2.DIST_L2, 3, labelType=cv2.DIST_LABEL_PIXEL
+        (~core_mask).view(np.uint8), cv2.DIST_L2, 3, labelType=cv2.DIST_LABEL_CCOMP
     )
     on = np.flatnonzero(blobs.labels > 0)
     gaps = np.full(len(core) + 1, np.inf, np.float32)  # (ufunc.at is fast on one dtype)
@@ -557,7 +560,7 @@ def _core_gaps(blobs: _Blobs, core: np.ndarray) -> tuple:
     gaps = gaps.astype(float)
     if core.sum() <= 1:
         return gaps[1:], 0.0
-    a, b, g = _voronoi_pairs(lab, ink, dt, nearest)
+    a, b, g = _touching(nearest, dt)
     nearest_gap = np.full(int(core.sum()) + 1, np.inf)
     np.minimum.at(nearest_gap, a, g)
     np.minimum.at(nearest_gap, b, g)
@@ -627,10 +630,11 @@ def _thin_parts(
     width_px: float,
     along_px: float = 0.0,
     opts: AnalysisOptions | None = None,
-    comps=None,
 ) -> _ThinParts | None:
-    """The thin ink outside the thick ink's hull (``comps``: the mask's
-    :func:`components_with_stats` if known)."""
+    """The thin ink outside the thick ink's hull. The ink's pieces are labelled
+    (OpenCV's numbering) only when there is thin ink; their statistics (box,
+    centroid) are found only for the pieces that need them: thin ink without thick
+    ink (a foot's thin ink is dropped whatever its piece's size or place)."""
     import cv2
 
     d = max(3, round(width_px) | 1)
@@ -648,12 +652,15 @@ def _thin_parts(
     # only the thin ink of pieces that hold thick ink too (a stroke's foot on the
     # print); a piece thin all through (a sliver of a tip block, a speck) is left to
     # the section 7.1.1 rule
-    n, lab, stats, cent = comps or components_with_stats(mask, connectivity=8)
+    n, lab = cv2.connectedComponents(mask.view(np.uint8), connectivity=8)
     foot = np.zeros(n, bool)
     foot[lab[thick.view(bool)]] = True
+    apart = np.zeros(n, bool)  # the pieces thin all through with ink outside the hull
+    apart[lab[thin]] = True
+    apart &= ~foot
+    stats, cent = _piece_stats(lab, apart)
     stroke = np.maximum(stats[:, cv2.CC_STAT_WIDTH], stats[:, cv2.CC_STAT_HEIGHT]) > width_px
-    ends = _at_the_ends(hull_pts.reshape(-1, 2).astype(float), cent)
-    ends[0] = False
+    ends = _at_the_ends(hull_pts.reshape(-1, 2).astype(float), cent) & apart
     if ends.any() and not _block_pattern(
         thick, resolve_options(opts).tip_block_strokes * width_px
     ):
@@ -663,6 +670,32 @@ def _thin_parts(
             thin, lab, stats, (hull_pts, along_px), skip=foot | ends, opts=resolve_options(opts)
         )
     return _ThinParts(thin, lab, foot, stroke, ends)
+
+
+def _piece_stats(labels: np.ndarray, which: np.ndarray) -> tuple:
+    """OpenCV's statistics (left, top, width, height, area) and centroids (x, y) of
+    the labelled pieces ``which`` ((n,) bool), from their pixels only; zeros for
+    the other pieces."""
+    n = len(which)
+    stats, cent = np.zeros((n, 5), np.int32), np.zeros((n, 2))
+    if not which.any():
+        return stats, cent
+    rows, cols = np.nonzero(which[labels])
+    lab = labels[rows, cols]
+    ids = np.flatnonzero(which)
+    area = np.bincount(lab, minlength=n)[ids]
+    big = max(labels.shape)
+    lo_c, lo_r, hi_c, hi_r = np.full(n, big), np.full(n, big), np.full(n, -1), np.full(n, -1)
+    np.minimum.at(lo_c, lab, cols)
+    np.minimum.at(lo_r, lab, rows)
+    np.maximum.at(hi_c, lab, cols)
+    np.maximum.at(hi_r, lab, rows)
+    stats[ids] = np.column_stack(
+        [lo_c[ids], lo_r[ids], hi_c[ids] - lo_c[ids] + 1, hi_r[ids] - lo_r[ids] + 1, area]
+    )
+    cent[ids, 0] = np.bincount(lab, cols, minlength=n)[ids] / area
+    cent[ids, 1] = np.bincount(lab, rows, minlength=n)[ids] / area
+    return stats, cent
 
 
 def _along_outline(thin, lab, stats, hull, *, skip, opts: AnalysisOptions) -> np.ndarray:
@@ -785,9 +818,8 @@ def edge_spots(
     width = mm_to_px_length(opts.stroke_width_mm, mm_per_px)
     # the rule is off when no blob can be faint and no distance too far (1 m)
     rule_on = opts.edge_spot_faintness > 0 or opts.edge_spot_distance_mm < 1e3
-    comps = components_with_stats(group.mask, connectivity=8)
     along = mm_to_px_length(opts.mark_overhang_mm, mm_per_px)
-    parts = _thin_parts(group.mask, width, along, opts, comps)  # thin_protrusions, both ways
+    parts = _thin_parts(group.mask, width, along, opts)  # thin_protrusions, both ways
     kept = _drop_thin(group.mask, parts, dots=rule_on)
     thin = group.mask & ~kept if kept.any() else np.zeros_like(group.mask)
     strokes = thin & ~_drop_thin(group.mask, parts, dots=False)
@@ -800,7 +832,7 @@ def edge_spots(
             n_spots=spots.n_spots + n_dots,
             spot_pixels=spots.spot_pixels + int(np.count_nonzero(thin & ~strokes)),
         )
-    return _spots(group, darkness, mm_per_px, opts, comps)
+    return _spots(group, darkness, mm_per_px, opts)
 
 
 def _spots(
@@ -823,7 +855,7 @@ def _spots(
     core_mask = np.concatenate([[False], core])[blobs.labels]
     outside = _outside_core(blobs, core_mask) & ~core
     small = outside & ~faint & (blobs.areas < opts.edge_spot_area_mm2)
-    gaps, pattern = _core_gaps(blobs, core)
+    gaps, pattern = _core_gaps(blobs, core, core_mask)
     reach = max(
         mm_to_px_length(opts.edge_spot_distance_mm, mm_per_px),
         opts.edge_spot_pattern_factor * pattern,

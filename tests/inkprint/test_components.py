@@ -12,6 +12,7 @@ from numpy.testing import assert_allclose, assert_array_equal
 from inkprint.analyze import _crossings, _Level
 from inkprint.binarize import remove_specks
 from inkprint.components import DENSE, components_with_stats
+from inkprint.group import _piece_stats
 
 
 def _random_mask(seed: int, shape, share: float, blur: float) -> np.ndarray:
@@ -43,6 +44,27 @@ def test_components_with_stats_equals_opencv(seed, h, w, share, blur, connectivi
     assert_array_equal(st1, st0)
     assert st1.dtype == np.int32
     assert_allclose(c1, c0, rtol=1e-12, atol=1e-9)
+
+
+@settings(max_examples=40, deadline=None)
+@given(
+    seed=st.integers(0, 2**31),
+    share=st.sampled_from([0.01, 0.1, 0.3, 0.6]),
+    blur=st.sampled_from([0.0, 1.5]),
+)
+def test_piece_stats_equal_opencv_for_the_pieces_asked(seed, share, blur):
+    # the labels of the plain labelling, the statistics of the pieces asked for
+    mask = _random_mask(seed, (70, 90), share, blur)
+    n0, lab0, st0, c0 = cv2.connectedComponentsWithStats(mask.view(np.uint8), connectivity=8)
+    n, lab = cv2.connectedComponents(mask.view(np.uint8), connectivity=8)
+    assert n == n0
+    assert_array_equal(lab, lab0)
+    which = np.random.default_rng(seed).random(n) < 0.5
+    which[0] = False
+    stats, cent = _piece_stats(lab, which)
+    assert_array_equal(stats[which], st0[which])
+    assert_array_equal(cent[which], c0[which])
+    assert not stats[~which].any()
 
 
 def test_components_with_stats_sparse_sheet_with_specks():
