@@ -119,22 +119,21 @@ def _crossings(level: _Level) -> np.ndarray:
     inside the hull). A pixel is above the level when it is > 0 (marching squares'
     convention); the crossing is linearly interpolated."""
     below = level.below()
-    out = []
+    r0, c0, r1, c1 = [], [], [], []  # the pixels on either side of each crossing
     for axis in (1, 0):  # along rows, then along columns
-        lines = np.flatnonzero(below.any(axis=axis))
-        if not lines.size:
-            continue
-        sub = below[lines] if axis == 1 else below[:, lines].T
+        lines = np.flatnonzero(below.any(axis=axis)) + 1  # framed
+        sub = below[lines - 1] if axis == 1 else below[:, lines - 1].T
         first = sub.argmax(axis=1)  # the frame is above: the crossing before
         last = sub.shape[1] - 1 - sub[:, ::-1].argmax(axis=1)  # and after
         for k in (first, last + 1):  # the framed index of the pixel before
-            if axis == 1:
-                f0, f1 = level.at(lines + 1, k), level.at(lines + 1, k + 1)
-            else:
-                f0, f1 = level.at(k, lines + 1), level.at(k + 1, lines + 1)
-            t = -f0 / (f1 - f0)  # f0 <= 0 < f1 or f1 <= 0 < f0: never 0 / 0
-            out.append(np.column_stack([lines + 1, k + t] if axis == 1 else [k + t, lines + 1]))
-    return np.concatenate(out) if out else np.zeros((0, 2))
+            r0.append(lines if axis == 1 else k)
+            c0.append(k if axis == 1 else lines)
+            r1.append(lines if axis == 1 else k + 1)
+            c1.append(k + 1 if axis == 1 else lines)
+    r0, c0, r1, c1 = (np.concatenate(v) for v in (r0, c0, r1, c1))
+    f0, f1 = level.at(r0, c0), level.at(r1, c1)
+    t = -f0 / (f1 - f0)  # f0 <= 0 < f1 or f1 <= 0 < f0: never 0 / 0
+    return np.column_stack([np.where(r1 > r0, r0 + t, r0), np.where(c1 > c0, c0 + t, c0)])
 
 
 def edge_field(

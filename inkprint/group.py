@@ -618,11 +618,19 @@ def thin_protrusions(
 class _ThinParts:
     """What :func:`thin_protrusions` drops, for either ``dots`` (computed once)."""
 
-    thin: np.ndarray  # (h, w) bool: thin ink outside the thick ink's hull
-    labels: np.ndarray  # (h, w) int32: the ink's 8-connected pieces
+    at: np.ndarray  # (k,) int: the thin ink outside the thick ink's hull, flat indices
+    ids: np.ndarray  # (k,) int32: its pieces (the ink's 8-connected pieces)
     foot: np.ndarray  # (n,) bool: pieces holding thick ink too
     stroke: np.ndarray  # (n,) bool: pieces longer than a stroke is wide
     ends: np.ndarray  # (n,) bool: pieces off the print's ends or along its outline
+
+    def dropped(self, *, dots: bool) -> np.ndarray:
+        """Which of the thin pixels are dropped, (k,) bool: apart from the print,
+        beside it: a stroke (longer than a stroke is wide) or, with ``dots``, a dot
+        (a letter's bit, a halo speck)."""
+        drop = self.foot | ((self.stroke | dots) & ~self.ends)
+        drop[0] = False
+        return drop[self.ids]
 
 
 def _thin_parts(
@@ -655,8 +663,10 @@ def _thin_parts(
     n, lab = cv2.connectedComponents(mask.view(np.uint8), connectivity=8)
     foot = np.zeros(n, bool)
     foot[lab[thick.view(bool)]] = True
+    at = np.flatnonzero(thin)
+    ids = lab.ravel()[at]
     apart = np.zeros(n, bool)  # the pieces thin all through with ink outside the hull
-    apart[lab[thin]] = True
+    apart[ids] = True
     apart &= ~foot
     stats, cent = _piece_stats(lab, apart)
     stroke = np.maximum(stats[:, cv2.CC_STAT_WIDTH], stats[:, cv2.CC_STAT_HEIGHT]) > width_px
@@ -667,9 +677,14 @@ def _thin_parts(
         ends[:] = False
     if along_px > 0:
         ends |= _along_outline(
-            thin, lab, stats, (hull_pts, along_px), skip=foot | ends, opts=resolve_options(opts)
+            (at, ids),
+            lab,
+            stats,
+            (hull_pts, along_px),
+            skip=foot | ends,
+            opts=resolve_options(opts),
         )
-    return _ThinParts(thin, lab, foot, stroke, ends)
+    return _ThinParts(at, ids, foot, stroke, ends)
 
 
 def _piece_stats(labels: np.ndarray, which: np.ndarray) -> tuple:
@@ -698,20 +713,20 @@ def _piece_stats(labels: np.ndarray, which: np.ndarray) -> tuple:
     return stats, cent
 
 
-def _along_outline(thin, lab, stats, hull, *, skip, opts: AnalysisOptions) -> np.ndarray:
+def _along_outline(thin: tuple, lab, stats, hull, *, skip, opts: AnalysisOptions) -> np.ndarray:
     """Per piece: convex (``sliver_solidity``), apart from the print and lying along
     the outline of ``hull`` (its points and ``along_px``), its thin ink no thicker
     across the outline than ``along_px`` [px] (the farthest minus the nearest
     distance out of the hull) and ``sliver_elongation`` times longer than that: a
     tread block the outline cut to a thin bar, not a stroke sticking out or a
-    letter's foot."""
+    letter's foot. ``thin``: the thin pixels (flat indices) and their pieces."""
     import cv2
 
     hull_pts, along_px = hull
     n = len(stats)
     out = np.zeros(n, bool)
-    ys, xs = np.nonzero(thin)
-    ids = lab[ys, xs]
+    at, ids = thin
+    ys, xs = np.divmod(at, lab.shape[1])
     sel = ~skip[ids]
     if not sel.any():
         return out
@@ -752,11 +767,14 @@ def _outside_distance(points: np.ndarray, polygon: np.ndarray) -> np.ndarray:
 def _drop_thin(mask: np.ndarray, parts: _ThinParts | None, *, dots: bool) -> np.ndarray:
     if parts is None:
         return mask
-    # apart from the print, beside it: a stroke (longer than a stroke is wide) or,
-    # with ``dots``, a dot (a letter's bit, a halo speck)
-    drop = parts.foot | ((parts.stroke | dots) & ~parts.ends)
-    drop[0] = False
-    return mask & ~(parts.thin & drop[parts.labels])
+    return _without(mask, parts.at[parts.dropped(dots=dots)])
+
+
+def _without(mask: np.ndarray, flat: np.ndarray) -> np.ndarray:
+    """A copy of ``mask`` (bool) without the pixels at ``flat`` (flat indices)."""
+    out = np.array(mask, dtype=bool, order="C")
+    out.ravel()[flat] = False
+    return out
 
 
 def _block_pattern(thick: np.ndarray, side_px: float) -> bool:
@@ -783,12 +801,18 @@ def _at_the_ends(hull_xy: np.ndarray, points: np.ndarray, *, end: float = 0.8) -
     return np.abs((points - c) @ axis) > end * half
 
 
-def _count_pieces(mask: np.ndarray) -> int:
+def _count_pieces(flat: np.ndarray, shape) -> int:
+    """8-connected pieces of the pixels at ``flat`` (flat indices in ``shape``),
+    counted in their box."""
     import cv2
 
-    if not mask.any():
+    if not len(flat):
         return 0
-    return cv2.connectedComponents(mask.view(np.uint8), connectivity=8)[0] - 1
+    rows, cols = np.divmod(flat, shape[1])
+    r0, c0 = rows.min(), cols.min()
+    box = np.zeros((rows.max() - r0 + 1, cols.max() - c0 + 1), np.uint8)
+    box[rows - r0, cols - c0] = 1
+    return cv2.connectedComponents(box, connectivity=8)[0] - 1
 
 
 def edge_spots(
@@ -820,17 +844,19 @@ def edge_spots(
     rule_on = opts.edge_spot_faintness > 0 or opts.edge_spot_distance_mm < 1e3
     along = mm_to_px_length(opts.mark_overhang_mm, mm_per_px)
     parts = _thin_parts(group.mask, width, along, opts)  # thin_protrusions, both ways
-    kept = _drop_thin(group.mask, parts, dots=rule_on)
-    thin = group.mask & ~kept if kept.any() else np.zeros_like(group.mask)
-    strokes = thin & ~_drop_thin(group.mask, parts, dots=False)
-    n_thin, n_dots = _count_pieces(thin), _count_pieces(thin & ~strokes)
+    if parts is None:
+        return _spots(group, darkness, mm_per_px, opts)
+    gone = parts.dropped(dots=rule_on)  # of the thin pixels; with dots=False a subset
+    kept = _without(group.mask, parts.at[gone])
+    dots = parts.at[gone & ~parts.dropped(dots=False)]
+    n_thin = _count_pieces(parts.at[gone], group.mask.shape) if kept.any() else 0
     if n_thin:  # pen-thin ink beside the print: strokes are marks, dots edge spots
         spots = _spots(replace(group, mask=kept), darkness, mm_per_px, opts)
         return replace(
             spots,
             n_blobs=spots.n_blobs + n_thin,
-            n_spots=spots.n_spots + n_dots,
-            spot_pixels=spots.spot_pixels + int(np.count_nonzero(thin & ~strokes)),
+            n_spots=spots.n_spots + _count_pieces(dots, group.mask.shape),
+            spot_pixels=spots.spot_pixels + len(dots),
         )
     return _spots(group, darkness, mm_per_px, opts)
 
