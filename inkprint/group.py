@@ -887,6 +887,8 @@ def _spots(
         opts.edge_spot_pattern_factor * pattern,
     )
     spot = outside & (faint | (small & (gaps > reach)))
+    if not spot.any():
+        return EdgeSpots(group.mask.copy(), n_blobs, 0, 0, pattern)
     is_spot = np.concatenate([[False], spot])[blobs.labels]
     return EdgeSpots(group.mask & ~is_spot, n_blobs, int(spot.sum()), int(is_spot.sum()), pattern)
 
