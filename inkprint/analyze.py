@@ -65,7 +65,7 @@ def _hull_px(mask, field, r0: int, c0: int) -> np.ndarray:
     its convex hull is the hull of those crossings, found here directly, without
     tracing the line (:func:`_crossings`: of each row's and column's crossings only
     the first and the last, the others lying between them; the hull of the same
-    points as ``skimage.measure.find_contours``, at a tenth of the cost).
+    points as ``skimage.measure.find_contours``, at a fraction of the cost).
     """
     import cv2
 
