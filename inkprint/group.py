@@ -51,7 +51,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from .components import components_with_stats
+from .components import components_with_stats, reduce_at
 from .coords import area_px_to_mm2, binned_mm_per_px, mm_to_px_length, px_to_mm_length
 from .options import AnalysisOptions, resolve_options
 
@@ -478,12 +478,15 @@ class EdgeSpots:
 @dataclass(frozen=True)
 class _Blobs:
     """8-connected blobs of a group: labels (0 = paper), areas [mm^2], centroids
-    (x = col, y = row) [px] and peak darkness, per blob 1..n."""
+    (x = col, y = row) [px] and peak darkness, per blob 1..n; the ink pixels (flat
+    indices, raster order) and their labels."""
 
     labels: np.ndarray
     areas: np.ndarray
     centroids: np.ndarray
     peak: np.ndarray
+    at: np.ndarray
+    ids: np.ndarray
 
 
 def _blobs(group: Group, darkness, mm_per_px: float, comps=None) -> _Blobs:
@@ -492,10 +495,11 @@ def _blobs(group: Group, darkness, mm_per_px: float, comps=None) -> _Blobs:
 
     n, lab, stats, cent = comps or components_with_stats(group.mask, connectivity=8)
     on = np.flatnonzero(group.mask)
+    ids = lab.ravel()[on]
     peak = np.zeros(n, np.float32)
-    np.maximum.at(peak, lab.ravel()[on], np.asarray(darkness, np.float32).ravel()[on])
+    reduce_at(np.maximum, peak, ids, np.asarray(darkness, np.float32).ravel()[on])
     areas = area_px_to_mm2(stats[1:, cv2.CC_STAT_AREA], mm_per_px)
-    return _Blobs(lab, areas, cent[1:], peak[1:].astype(float))
+    return _Blobs(lab, areas, cent[1:], peak[1:].astype(float), on, ids)
 
 
 def outline_points(mask: np.ndarray) -> np.ndarray | None:
@@ -554,9 +558,8 @@ def _core_gaps(blobs: _Blobs, core: np.ndarray, core_mask: np.ndarray) -> tuple:
     dt, nearest = cv2.distanceTransformWithLabels(
         (~core_mask).view(np.uint8), cv2.DIST_L2, 3, labelType=cv2.DIST_LABEL_CCOMP
     )
-    on = np.flatnonzero(blobs.labels > 0)
     gaps = np.full(len(core) + 1, np.inf, np.float32)  # (ufunc.at is fast on one dtype)
-    np.minimum.at(gaps, blobs.labels.ravel()[on], dt.ravel()[on])
+    reduce_at(np.minimum, gaps, blobs.ids, dt.ravel()[blobs.at])
     gaps = gaps.astype(float)
     if core.sum() <= 1:
         return gaps[1:], 0.0
