@@ -61,10 +61,10 @@ def components_with_stats(mask, *, connectivity: int = 8):
     if n > 1:
         lo_c, hi_c = np.full(n, w), np.full(n, -1)
         lo_r, hi_r = np.full(n, h), np.full(n, -1)
-        reduce_at(np.minimum, lo_c, lab, col)
-        reduce_at(np.maximum, hi_c, lab, col)
-        reduce_at(np.minimum, lo_r, lab, row)
-        reduce_at(np.maximum, hi_r, lab, row)
+        reduce_at(np.minimum, lo_c, lab, values=col)
+        reduce_at(np.maximum, hi_c, lab, values=col)
+        reduce_at(np.minimum, lo_r, lab, values=row)
+        reduce_at(np.maximum, hi_r, lab, values=row)
         stats[1:] = np.column_stack(
             [lo_c[1:], lo_r[1:], hi_c[1:] - lo_c[1:] + 1, hi_r[1:] - lo_r[1:] + 1, area[1:]]
         )
@@ -75,7 +75,7 @@ def components_with_stats(mask, *, connectivity: int = 8):
     return n, labels, stats.astype(np.int32), cent
 
 
-def reduce_at(ufunc, out: np.ndarray, labels: np.ndarray, values: np.ndarray) -> None:
+def reduce_at(ufunc, out: np.ndarray, labels: np.ndarray, *, values: np.ndarray) -> None:
     """``ufunc.at(out, labels, values)`` for a minimum or maximum, reduced over each
     run of equal labels first: on pixels in raster order (a piece's row segments)
     a few times faster, the same result whatever the order.

@@ -497,7 +497,7 @@ def _blobs(group: Group, darkness, mm_per_px: float, comps=None) -> _Blobs:
     on = np.flatnonzero(group.mask)
     ids = lab.ravel()[on]
     peak = np.zeros(n, np.float32)
-    reduce_at(np.maximum, peak, ids, np.asarray(darkness, np.float32).ravel()[on])
+    reduce_at(np.maximum, peak, ids, values=np.asarray(darkness, np.float32).ravel()[on])
     areas = area_px_to_mm2(stats[1:, cv2.CC_STAT_AREA], mm_per_px)
     return _Blobs(lab, areas, cent[1:], peak[1:].astype(float), on, ids)
 
@@ -559,7 +559,7 @@ def _core_gaps(blobs: _Blobs, core: np.ndarray, core_mask: np.ndarray) -> tuple:
         (~core_mask).view(np.uint8), cv2.DIST_L2, 3, labelType=cv2.DIST_LABEL_CCOMP
     )
     gaps = np.full(len(core) + 1, np.inf, np.float32)  # (ufunc.at is fast on one dtype)
-    reduce_at(np.minimum, gaps, blobs.ids, dt.ravel()[blobs.at])
+    reduce_at(np.minimum, gaps, blobs.ids, values=dt.ravel()[blobs.at])
     gaps = gaps.astype(float)
     if core.sum() <= 1:
         return gaps[1:], 0.0
