@@ -63,22 +63,20 @@ def _hull_px(mask, field, r0: int, c0: int) -> np.ndarray:
     count. The iso-line's vertices are the zero crossings of the field along the
     pixel rows and columns (marching squares places them by linear interpolation);
     its convex hull is the hull of those crossings, found here directly, without
-    tracing the line (:func:`_crossings`; the same points as
-    ``skimage.measure.find_contours``, at a fifth of the cost).
+    tracing the line (:func:`_crossings`: of each row's and column's crossings only
+    the first and the last, the others lying between them; the hull of the same
+    points as ``skimage.measure.find_contours``, at a fraction of the cost).
     """
     import cv2
 
     m8 = mask.astype(np.uint8)
-    near = cv2.dilate(m8, np.ones((3, 3), np.uint8)).astype(bool)
-    f = np.where(near, field, 1.0)
+    near = cv2.dilate(m8, np.ones((3, 3), np.uint8)).view(bool)
     # only a band along the pixel hull can hold hull points: fill the interior
     contours, _ = cv2.findContours(m8, cv2.RETR_EXTERNAL, cv2.CHAIN_APPROX_SIMPLE)
     inner = np.zeros_like(m8)
     cv2.fillPoly(inner, [cv2.convexHull(np.concatenate(contours))], 1)
-    inner = cv2.erode(inner, np.ones((7, 7), np.uint8)).astype(bool)
-    f = np.where(inner, -1.0, f)
-    f = np.pad(f, 1, constant_values=1.0)  # close the outline at the box edge
-    rc = _crossings(f)
+    inner = cv2.erode(inner, np.ones((7, 7), np.uint8)).view(bool)
+    rc = _crossings(_Level(field, near, inner))
     if not len(rc):
         rr, cc = np.nonzero(mask)
         rc = np.column_stack([rr + 1.0, cc + 1.0])
@@ -87,25 +85,59 @@ def _hull_px(mask, field, r0: int, c0: int) -> np.ndarray:
     return np.column_stack([hull[:, 0] + r0, hull[:, 1] + c0])
 
 
-def _crossings(f: np.ndarray) -> np.ndarray:
-    """Where ``f`` crosses 0 between 4-neighbour pixels, (row, col) [px]: the
-    vertices of its zero iso-line. A pixel is above the level when ``f > 0``
-    (marching squares' convention); the crossing is linearly interpolated."""
-    hi = f > 0
-    out = []
+@dataclass(frozen=True)
+class _Level:
+    """The level whose zero line :func:`_hull_px` follows: ``field`` near the ink
+    (``near``), 1 (paper) away from it and around the box (a one-pixel frame that
+    closes the outline), -1 (ink) in the hull's interior (``inner``); indexed in
+    the framed box's (row, col) [px]."""
+
+    field: np.ndarray
+    near: np.ndarray
+    inner: np.ndarray
+
+    def below(self) -> np.ndarray:
+        """Where the level is not above 0, in the box without its frame."""
+        return self.inner | (self.near & ~(self.field > 0))
+
+    def at(self, r: np.ndarray, c: np.ndarray) -> np.ndarray:
+        """The level (float) at framed-box pixels (``r``, ``c``)."""
+        h, w = self.field.shape
+        r, c = r - 1, c - 1
+        frame = (r < 0) | (r >= h) | (c < 0) | (c >= w)
+        r, c = np.clip(r, 0, h - 1), np.clip(c, 0, w - 1)
+        v = self.field[r, c].astype(float)
+        v[~self.near[r, c] | frame] = 1.0
+        v[self.inner[r, c] & ~frame] = -1.0
+        return v
+
+
+def _crossings(level: _Level) -> np.ndarray:
+    """Where the level crosses 0 between 4-neighbour pixels, (row, col) in the
+    framed box [px]: of the vertices of its zero iso-line, the first and the last
+    along every row and every column (the others lie on the segment between them,
+    inside the hull). A pixel is above the level when it is > 0 (marching squares'
+    convention); the crossing is linearly interpolated."""
+    below = level.below()
+    r0, c0, r1, c1 = [], [], [], []  # the pixels on either side of each crossing
     for axis in (1, 0):  # along rows, then along columns
-        a = (slice(None), slice(None, -1)) if axis == 1 else (slice(None, -1), slice(None))
-        b = (slice(None), slice(1, None)) if axis == 1 else (slice(1, None), slice(None))
-        r, c = np.nonzero(hi[a] != hi[b])
-        f0 = f[r, c].astype(float)
-        f1 = (f[r, c + 1] if axis == 1 else f[r + 1, c]).astype(float)
-        t = -f0 / (f1 - f0)  # f0 <= 0 < f1 or f1 <= 0 < f0: never 0 / 0
-        out.append(np.column_stack([r, c + t] if axis == 1 else [r + t, c]))
-    return np.concatenate(out)
+        lines = np.flatnonzero(below.any(axis=axis)) + 1  # framed
+        sub = below[lines - 1] if axis == 1 else below[:, lines - 1].T
+        first = sub.argmax(axis=1)  # the frame is above: the crossing before
+        last = sub.shape[1] - 1 - sub[:, ::-1].argmax(axis=1)  # and after
+        for k in (first, last + 1):  # the framed index of the pixel before
+            r0.append(lines if axis == 1 else k)
+            c0.append(k if axis == 1 else lines)
+            r1.append(lines if axis == 1 else k + 1)
+            c1.append(k + 1 if axis == 1 else lines)
+    r0, c0, r1, c1 = (np.concatenate(v) for v in (r0, c0, r1, c1))
+    f0, f1 = level.at(r0, c0), level.at(r1, c1)
+    t = -f0 / (f1 - f0)  # f0 <= 0 < f1 or f1 <= 0 < f0: never 0 / 0
+    return np.column_stack([np.where(r1 > r0, r0 + t, r0), np.where(c1 > c0, c0 + t, c0)])
 
 
 def edge_field(
-    grey, mask, *, mm_per_px: float, options: AnalysisOptions | None = None
+    grey, mask, *, mm_per_px: float, options: AnalysisOptions | None = None, local=None
 ) -> np.ndarray:
     """Signed field whose zero line is the print's edge at half contrast.
 
@@ -131,18 +163,17 @@ def edge_field(
     mm_per_px : float [mm / px]
     options : AnalysisOptions, optional
         Uses ``edge_window_mm`` and ``edge_pip_jump`` (defaults when None).
+    local : (lo, hi) of (h, w) float32, optional
+        The grey's local ink and paper levels if already known (the same grey's
+        for another mask): its minimum and maximum over ``edge_window_mm``.
 
     Returns
     -------
     (h, w) float32
         Negative on ink, positive on paper.
     """
-    import cv2
-
     opts = resolve_options(options)
-    k = max(3, round(mm_to_px_length(opts.edge_window_mm, mm_per_px)) | 1)
-    kernel = np.ones((k, k), np.uint8)
-    lo, hi = cv2.erode(grey, kernel), cv2.dilate(grey, kernel)
+    lo, hi = local or _local_range(grey, mm_per_px, opts)
     # levels from a subsample (every 3rd row and column is plenty for two medians)
     sub_g, sub_m = grey[::3, ::3], mask[::3, ::3]
     if sub_m.any() and (~sub_m).any():
@@ -151,8 +182,19 @@ def edge_field(
         ink, paper = 0.0, 1.0
     lo = np.minimum(lo, np.float32(ink))
     sharp = (hi - lo) > 0.5 * max(paper - ink, 1e-6)
-    f = np.where(sharp, grey - 0.5 * (lo + hi), np.where(mask, -0.5, 0.5)).astype(np.float32)
+    level = np.where(mask, np.float32(-0.5), np.float32(0.5))
+    f = np.where(sharp, grey - 0.5 * (lo + hi), level).astype(np.float32, copy=False)
     return _smooth_pips(f, mask, opts.edge_pip_jump * max(paper - ink, 1e-6))
+
+
+def _local_range(grey, mm_per_px: float, opts: AnalysisOptions) -> tuple:
+    """The darkest and lightest grey within ``opts.edge_window_mm`` of every pixel
+    (the local ink and paper levels of :func:`edge_field`)."""
+    import cv2
+
+    k = max(3, round(mm_to_px_length(opts.edge_window_mm, mm_per_px)) | 1)
+    kernel = np.ones((k, k), np.uint8)
+    return cv2.erode(grey, kernel), cv2.dilate(grey, kernel)
 
 
 def _smooth_pips(f: np.ndarray, mask: np.ndarray, jump: float) -> np.ndarray:
@@ -203,7 +245,16 @@ class MaskMeasurement:
 
 
 def measure_mask(
-    mask, r0: int, c0: int, *, n_rows: int, mm_per_px: float, field=None, axis=None, hull_px=None
+    mask,
+    r0: int,
+    c0: int,
+    *,
+    n_rows: int,
+    mm_per_px: float,
+    field=None,
+    axis=None,
+    hull_px=None,
+    stations=None,
 ) -> MaskMeasurement:
     """Shared metrics (:func:`contactpatch.measure`) of an ink mask cropped from a sheet.
 
@@ -225,6 +276,8 @@ def measure_mask(
     hull_px : (k, 2) float, optional [px]
         The outline already found for this mask and field (a previous
         :class:`MaskMeasurement`'s ``hull_px``): not traced again.
+    stations : sequence of float, optional
+        Lateral stations of :func:`contactpatch.measure` (its default when None).
 
     Returns
     -------
@@ -247,7 +300,8 @@ def measure_mask(
     )
     hull = shapely.Polygon(np.column_stack([x, y]))
     net = min(area_px_to_mm2(n, mm_per_px), hull.area)
-    m = cp.measure(hull, axis=axis, net_area=net, net_centroid=(float(cx), float(cy)))
+    kw = {} if stations is None else {"stations": stations}
+    m = cp.measure(hull, axis=axis, net_area=net, net_centroid=(float(cx), float(cy)), **kw)
     return MaskMeasurement(m, hull_px)
 
 
@@ -514,11 +568,25 @@ def sensitivity_band(ctx: _Context, group: Group, *, base: dict) -> dict:
         ``{key: (low, high)}`` over the three thresholds.
     """
     values = {k: [v] for k, v in base.items()}
-    win = _band_window(ctx.page.work.shape, group, ctx.found, ctx.scan.mm_per_px, ctx.opts)
-    for f in (1.0 - ctx.opts.sensitivity, 1.0 + ctx.opts.sensitivity):
-        for k, v in _band_at(ctx, win, f).items():
+    for band in _bands(ctx, group, _factors(ctx.opts)):
+        for k, v in band.items():
             values[k].append(v)
     return _band_range(values)
+
+
+def _factors(opts: AnalysisOptions) -> tuple:
+    """The band's thresholds relative to the sheet's: 1 -+ ``sensitivity``."""
+    return (1.0 - opts.sensitivity, 1.0 + opts.sensitivity)
+
+
+def _bands(ctx: _Context, group: Group, factors) -> list:
+    """The print's ``BAND_KEYS`` values at the threshold x each of ``factors``
+    (:func:`_band_at`), in one window: its grey and that grey's local range found
+    once for all."""
+    win = _band_window(ctx.page.work.shape, group, ctx.found, ctx.scan.mm_per_px, ctx.opts)
+    grey = _grey(ctx.scan, ctx.page, win.rows, win.cols)
+    local = []  # the grey's local range, once one threshold needs it
+    return [_band_at(ctx, win, f, grey=grey, local=local) for f in factors]
 
 
 def _band_range(values: dict) -> dict:
@@ -526,9 +594,10 @@ def _band_range(values: dict) -> dict:
     return {k: (float(np.nanmin(v)), float(np.nanmax(v))) for k, v in values.items()}
 
 
-def _band_at(ctx: _Context, win: _BandWindow, factor: float) -> dict:
+def _band_at(ctx: _Context, win: _BandWindow, factor: float, *, grey, local: list) -> dict:
     """The print's ``BAND_KEYS`` values with the sheet's threshold x ``factor`` in
-    its window (:func:`_band_window`; ``{}`` when nothing of it is left there)."""
+    its window (:func:`_band_window`, whose ``grey`` is given; ``{}`` when nothing
+    of it is left there). ``local``: [] or [the grey's local range], filled here."""
     opts, s = ctx.opts, ctx.scan.mm_per_px
     work = ctx.page.work[win.rows, win.cols]
     level = ctx.binarization.level
@@ -538,13 +607,14 @@ def _band_at(ctx: _Context, win: _BandWindow, factor: float) -> dict:
     )
     if not ink.any():
         return {}
-    grey = _grey(ctx.scan, ctx.page, win.rows, win.cols)
     spots = edge_spots(
         Group(win.rows, win.cols, ink), _darkness(grey, ink), mm_per_px=s, options=opts
     )
     if not spots.load_bearing.any():
         return {}
-    fld = edge_field(grey, spots.load_bearing, mm_per_px=s, options=opts)
+    if not local:
+        local.append(_local_range(grey, s, opts))
+    fld = edge_field(grey, spots.load_bearing, mm_per_px=s, options=opts, local=local[0])
     grid = _grid_in(ctx.found.grid, win.rows, win.cols)
     m = measure_mask(
         spots.load_bearing,
@@ -554,6 +624,7 @@ def _band_at(ctx: _Context, win: _BandWindow, factor: float) -> dict:
         mm_per_px=s,
         field=_paper_where_set_apart(fld, grid, spots.load_bearing),
         axis=ctx.rolling_axis,
+        stations=(0.0,),  # the band's values need no station chords
     ).metrics
     return _band_values(m)
 
@@ -625,9 +696,14 @@ def measure_print(ctx: _Context, group: Group, *, index: int = 0, sensitivity: b
     grey = _grey(ctx.scan, ctx.page, g.rows, g.cols)
     spots = edge_spots(g, _darkness(grey, g.mask), mm_per_px=s, options=opts)
     kw = dict(n_rows=n_rows, mm_per_px=s, axis=ctx.rolling_axis)
-    fld_all = edge_field(grey, g.mask, mm_per_px=s, options=opts)
+    local = _local_range(grey, s, opts)
+    fld_all = edge_field(grey, g.mask, mm_per_px=s, options=opts, local=local)
     same = np.array_equal(spots.load_bearing, g.mask)  # nothing set apart: one outline
-    fld = fld_all if same else edge_field(grey, spots.load_bearing, mm_per_px=s, options=opts)
+    fld = (
+        fld_all
+        if same
+        else edge_field(grey, spots.load_bearing, mm_per_px=s, options=opts, local=local)
+    )
     # ink set aside beside the print (a ruler or a label touching it, gridlines) is
     # not its edge: next to it the field reads paper (a ruler's grey pulled the
     # outline a pixel out where it crossed the edge, width +2.9 % at 200 dpi)
@@ -1063,10 +1139,9 @@ def _with_paper(ctx: _Context, group: Group) -> Group:
 
 def _measure_all(ctx: _Context, groups: list, *, sensitivity: bool, threads: int | None):
     """:func:`measure_print` for every group, in order, on up to ``threads`` threads:
-    each print's measurement and its two re-measures of the threshold band are
-    separate tasks (so one print uses three threads), the measurements first (the
-    longest tasks: on two cores the two re-measures of one print then follow it on
-    the other core and the core it frees, not it them)."""
+    each print's measurement and its re-measures of the threshold band are separate
+    tasks; the band's two thresholds one task sharing its window's grey (or, with a
+    thread for each, two: one print uses three threads)."""
     n = len(groups)
     threads = min(resolve_threads(threads), 3 * n if sensitivity else n)
     if threads <= 1:
@@ -1075,27 +1150,23 @@ def _measure_all(ctx: _Context, groups: list, *, sensitivity: bool, threads: int
         ]
     from concurrent.futures import ThreadPoolExecutor
 
-    factors = (1.0 - ctx.opts.sensitivity, 1.0 + ctx.opts.sensitivity) if sensitivity else ()
-    shape, s = ctx.page.work.shape, ctx.scan.mm_per_px
+    factors = _factors(ctx.opts) if sensitivity else ()
+    split = [(f,) for f in factors] if threads >= 3 * n else [factors] if factors else []
     with ThreadPoolExecutor(threads, thread_name_prefix="inkprint-measure") as pool:
+        # the bands first: the longer tasks
+        bands = [
+            [pool.submit(_bands, ctx, _with_paper(ctx, g), fs) for fs in split] for g in groups
+        ]
         prints = [
             pool.submit(measure_print, ctx, g, index=i, sensitivity=False)
             for i, g in enumerate(groups)
         ]
-        bands = []
-        for g in groups:  # each print's window once, its two thresholds as tasks
-            win = (
-                _band_window(shape, _with_paper(ctx, g), ctx.found, s, ctx.opts)
-                if factors
-                else None
-            )
-            bands.append([pool.submit(_band_at, ctx, win, f) for f in factors])
         out = []
         for p, band in zip(prints, bands, strict=True):
             r = p.result()
             values = {k: [lo] for k, (lo, _) in r.band.items()}
-            for fut in band:
-                for k, v in fut.result().items():
+            for b in (b for fut in band for b in fut.result()):
+                for k, v in b.items():
                     values[k].append(v)
             out.append(dataclasses.replace(r, band=_band_range(values)) if band else r)
     return out

@@ -14,7 +14,7 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["components_with_stats", "pixel_sums", "row_counts"]
+__all__ = ["components_with_stats", "pixel_sums", "reduce_at", "row_counts"]
 
 #: above this share of ink, OpenCV's own statistics are the faster (a print's box:
 #: 60-75 % ink, 0.85 ms against 2.2 ms for the ink-only sums on 0.14 Mpx)
@@ -61,10 +61,10 @@ def components_with_stats(mask, *, connectivity: int = 8):
     if n > 1:
         lo_c, hi_c = np.full(n, w), np.full(n, -1)
         lo_r, hi_r = np.full(n, h), np.full(n, -1)
-        np.minimum.at(lo_c, lab, col)
-        np.maximum.at(hi_c, lab, col)
-        np.minimum.at(lo_r, lab, row)
-        np.maximum.at(hi_r, lab, row)
+        reduce_at(np.minimum, lo_c, lab, values=col)
+        reduce_at(np.maximum, hi_c, lab, values=col)
+        reduce_at(np.minimum, lo_r, lab, values=row)
+        reduce_at(np.maximum, hi_r, lab, values=row)
         stats[1:] = np.column_stack(
             [lo_c[1:], lo_r[1:], hi_c[1:] - lo_c[1:] + 1, hi_r[1:] - lo_r[1:] + 1, area[1:]]
         )
@@ -73,6 +73,30 @@ def components_with_stats(mask, *, connectivity: int = 8):
             cent[1:, 1] = np.bincount(lab, row, minlength=n)[1:] / area[1:]
     stats[0], cent[0] = _background(h, w, row, col)
     return n, labels, stats.astype(np.int32), cent
+
+
+def reduce_at(ufunc, out: np.ndarray, labels: np.ndarray, *, values: np.ndarray) -> None:
+    """``ufunc.at(out, labels, values)`` for a minimum or maximum, reduced over each
+    run of equal labels first: on pixels in raster order (a piece's row segments)
+    a few times faster, the same result whatever the order.
+
+    Parameters
+    ----------
+    ufunc : np.minimum or np.maximum
+    out : (n,) array
+        Updated in place.
+    labels : (k,) int
+        Indices into ``out``.
+    values : (k,) array
+
+    Returns
+    -------
+    None
+    """
+    if not len(labels):
+        return
+    starts = np.flatnonzero(np.r_[True, labels[1:] != labels[:-1]])
+    ufunc.at(out, labels[starts], ufunc.reduceat(values, starts))
 
 
 def _background(h: int, w: int, row: np.ndarray, col: np.ndarray):

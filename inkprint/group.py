@@ -51,7 +51,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from .components import components_with_stats
+from .components import components_with_stats, reduce_at
 from .coords import area_px_to_mm2, binned_mm_per_px, mm_to_px_length, px_to_mm_length
 from .options import AnalysisOptions, resolve_options
 
@@ -166,7 +166,12 @@ def _voronoi_pairs(lab, ink, dist, nearest) -> tuple:
     transform of the paper with the nearest ink pixel's label."""
     lut = np.zeros(int(nearest.max()) + 1, np.int32)
     lut[nearest[ink]] = lab[ink]
-    owner = lut[nearest]
+    return _touching(lut[nearest], dist)
+
+
+def _touching(owner, dist) -> tuple:
+    """``(a, b, gap)`` of :func:`_voronoi_pairs` from each pixel's element (``owner``)
+    and its distance to it."""
     pairs = []
     for sl0, sl1 in (
         ((slice(None), slice(None, -1)), (slice(None), slice(1, None))),
@@ -473,12 +478,15 @@ class EdgeSpots:
 @dataclass(frozen=True)
 class _Blobs:
     """8-connected blobs of a group: labels (0 = paper), areas [mm^2], centroids
-    (x = col, y = row) [px] and peak darkness, per blob 1..n."""
+    (x = col, y = row) [px] and peak darkness, per blob 1..n; the ink pixels (flat
+    indices, raster order) and their labels."""
 
     labels: np.ndarray
     areas: np.ndarray
     centroids: np.ndarray
     peak: np.ndarray
+    at: np.ndarray
+    ids: np.ndarray
 
 
 def _blobs(group: Group, darkness, mm_per_px: float, comps=None) -> _Blobs:
@@ -487,10 +495,11 @@ def _blobs(group: Group, darkness, mm_per_px: float, comps=None) -> _Blobs:
 
     n, lab, stats, cent = comps or components_with_stats(group.mask, connectivity=8)
     on = np.flatnonzero(group.mask)
+    ids = lab.ravel()[on]
     peak = np.zeros(n, np.float32)
-    np.maximum.at(peak, lab.ravel()[on], np.asarray(darkness, np.float32).ravel()[on])
+    reduce_at(np.maximum, peak, ids, values=np.asarray(darkness, np.float32).ravel()[on])
     areas = area_px_to_mm2(stats[1:, cv2.CC_STAT_AREA], mm_per_px)
-    return _Blobs(lab, areas, cent[1:], peak[1:].astype(float))
+    return _Blobs(lab, areas, cent[1:], peak[1:].astype(float), on, ids)
 
 
 def outline_points(mask: np.ndarray) -> np.ndarray | None:
@@ -541,31 +550,28 @@ def _outside_core(blobs: _Blobs, core_mask: np.ndarray, faint: np.ndarray) -> np
     return out
 
 
-def _core_gaps(blobs: _Blobs, core: np.ndarray) -> tuple:
+def _core_gaps(blobs: _Blobs, core: np.ndarray, core_mask: np.ndarray) -> tuple:
     """Gap [px] from every blob to the nearest core blob, and the core's own tread
     gap [px]: the median over core blobs of the gap to their nearest core neighbour
-    (0 for a one-blob core). ``core`` : (n,) bool, which blobs are the core.
+    (0 for a one-blob core). ``core`` : (n,) bool, which blobs are the core;
+    ``core_mask`` their pixels.
 
     One distance transform serves both: its distances give each blob's gap to the
-    core, its nearest-pixel labels the core's Voronoi neighbours
+    core, its nearest-piece labels the core's Voronoi neighbours
     (:func:`element_graph`'s partition; the core blobs are 8-connected pieces of the
-    group's ink, so they are the core's own pieces)."""
+    group's ink, so OpenCV's 8-connected pieces of the core are the core blobs,
+    numbered in its own order: the median does not depend on it)."""
     import cv2
 
-    lut = np.zeros(len(core) + 1, np.int32)
-    lut[1:][core] = np.arange(1, int(core.sum()) + 1)
-    lab = lut[blobs.labels]  # core blobs 1..k, the rest 0
-    ink = lab > 0
     dt, nearest = cv2.distanceTransformWithLabels(
-        (~ink).view(np.uint8), cv2.DIST_L2, 3, labelType=cv2.DIST_LABEL_PIXEL
+        (~core_mask).view(np.uint8), cv2.DIST_L2, 3, labelType=cv2.DIST_LABEL_CCOMP
     )
-    on = np.flatnonzero(blobs.labels > 0)
     gaps = np.full(len(core) + 1, np.inf, np.float32)  # (ufunc.at is fast on one dtype)
-    np.minimum.at(gaps, blobs.labels.ravel()[on], dt.ravel()[on])
+    reduce_at(np.minimum, gaps, blobs.ids, values=dt.ravel()[blobs.at])
     gaps = gaps.astype(float)
     if core.sum() <= 1:
         return gaps[1:], 0.0
-    a, b, g = _voronoi_pairs(lab, ink, dt, nearest)
+    a, b, g = _touching(nearest, dt)
     nearest_gap = np.full(int(core.sum()) + 1, np.inf)
     np.minimum.at(nearest_gap, a, g)
     np.minimum.at(nearest_gap, b, g)
@@ -623,11 +629,19 @@ def thin_protrusions(
 class _ThinParts:
     """What :func:`thin_protrusions` drops, for either ``dots`` (computed once)."""
 
-    thin: np.ndarray  # (h, w) bool: thin ink outside the thick ink's hull
-    labels: np.ndarray  # (h, w) int32: the ink's 8-connected pieces
+    at: np.ndarray  # (k,) int: the thin ink outside the thick ink's hull, flat indices
+    ids: np.ndarray  # (k,) int32: its pieces (the ink's 8-connected pieces)
     foot: np.ndarray  # (n,) bool: pieces holding thick ink too
     stroke: np.ndarray  # (n,) bool: pieces longer than a stroke is wide
     ends: np.ndarray  # (n,) bool: pieces off the print's ends or along its outline
+
+    def dropped(self, *, dots: bool) -> np.ndarray:
+        """Which of the thin pixels are dropped, (k,) bool: apart from the print,
+        beside it: a stroke (longer than a stroke is wide) or, with ``dots``, a dot
+        (a letter's bit, a halo speck)."""
+        drop = self.foot | ((self.stroke | dots) & ~self.ends)
+        drop[0] = False
+        return drop[self.ids]
 
 
 def _thin_parts(
@@ -635,10 +649,11 @@ def _thin_parts(
     width_px: float,
     along_px: float = 0.0,
     opts: AnalysisOptions | None = None,
-    comps=None,
 ) -> _ThinParts | None:
-    """The thin ink outside the thick ink's hull (``comps``: the mask's
-    :func:`components_with_stats` if known)."""
+    """The thin ink outside the thick ink's hull. The ink's pieces are labelled
+    (OpenCV's numbering) only when there is thin ink; their statistics (box,
+    centroid) are found only for the pieces that need them: thin ink without thick
+    ink (a foot's thin ink is dropped whatever its piece's size or place)."""
     import cv2
 
     d = max(3, round(width_px) | 1)
@@ -656,37 +671,73 @@ def _thin_parts(
     # only the thin ink of pieces that hold thick ink too (a stroke's foot on the
     # print); a piece thin all through (a sliver of a tip block, a speck) is left to
     # the section 7.1.1 rule
-    n, lab, stats, cent = comps or components_with_stats(mask, connectivity=8)
+    n, lab = cv2.connectedComponents(mask.view(np.uint8), connectivity=8)
     foot = np.zeros(n, bool)
     foot[lab[thick.view(bool)]] = True
+    at = np.flatnonzero(thin)
+    ids = lab.ravel()[at]
+    apart = np.zeros(n, bool)  # the pieces thin all through with ink outside the hull
+    apart[ids] = True
+    apart &= ~foot
+    stats, cent = _piece_stats(lab, apart)
     stroke = np.maximum(stats[:, cv2.CC_STAT_WIDTH], stats[:, cv2.CC_STAT_HEIGHT]) > width_px
-    ends = _at_the_ends(hull_pts.reshape(-1, 2).astype(float), cent)
-    ends[0] = False
+    ends = _at_the_ends(hull_pts.reshape(-1, 2).astype(float), cent) & apart
     if ends.any() and not _block_pattern(
         thick, resolve_options(opts).tip_block_strokes * width_px
     ):
         ends[:] = False
     if along_px > 0:
         ends |= _along_outline(
-            thin, lab, stats, (hull_pts, along_px), skip=foot | ends, opts=resolve_options(opts)
+            (at, ids),
+            lab,
+            stats,
+            (hull_pts, along_px),
+            skip=foot | ends,
+            opts=resolve_options(opts),
         )
-    return _ThinParts(thin, lab, foot, stroke, ends)
+    return _ThinParts(at, ids, foot, stroke, ends)
 
 
-def _along_outline(thin, lab, stats, hull, *, skip, opts: AnalysisOptions) -> np.ndarray:
+def _piece_stats(labels: np.ndarray, which: np.ndarray) -> tuple:
+    """OpenCV's statistics (left, top, width, height, area) and centroids (x, y) of
+    the labelled pieces ``which`` ((n,) bool), from their pixels only; zeros for
+    the other pieces."""
+    n = len(which)
+    stats, cent = np.zeros((n, 5), np.int32), np.zeros((n, 2))
+    if not which.any():
+        return stats, cent
+    rows, cols = np.nonzero(which[labels])
+    lab = labels[rows, cols]
+    ids = np.flatnonzero(which)
+    area = np.bincount(lab, minlength=n)[ids]
+    big = max(labels.shape)
+    lo_c, lo_r, hi_c, hi_r = np.full(n, big), np.full(n, big), np.full(n, -1), np.full(n, -1)
+    np.minimum.at(lo_c, lab, cols)
+    np.minimum.at(lo_r, lab, rows)
+    np.maximum.at(hi_c, lab, cols)
+    np.maximum.at(hi_r, lab, rows)
+    stats[ids] = np.column_stack(
+        [lo_c[ids], lo_r[ids], hi_c[ids] - lo_c[ids] + 1, hi_r[ids] - lo_r[ids] + 1, area]
+    )
+    cent[ids, 0] = np.bincount(lab, cols, minlength=n)[ids] / area
+    cent[ids, 1] = np.bincount(lab, rows, minlength=n)[ids] / area
+    return stats, cent
+
+
+def _along_outline(thin: tuple, lab, stats, hull, *, skip, opts: AnalysisOptions) -> np.ndarray:
     """Per piece: convex (``sliver_solidity``), apart from the print and lying along
     the outline of ``hull`` (its points and ``along_px``), its thin ink no thicker
     across the outline than ``along_px`` [px] (the farthest minus the nearest
     distance out of the hull) and ``sliver_elongation`` times longer than that: a
     tread block the outline cut to a thin bar, not a stroke sticking out or a
-    letter's foot."""
+    letter's foot. ``thin``: the thin pixels (flat indices) and their pieces."""
     import cv2
 
     hull_pts, along_px = hull
     n = len(stats)
     out = np.zeros(n, bool)
-    ys, xs = np.nonzero(thin)
-    ids = lab[ys, xs]
+    at, ids = thin
+    ys, xs = np.divmod(at, lab.shape[1])
     sel = ~skip[ids]
     if not sel.any():
         return out
@@ -727,11 +778,14 @@ def _outside_distance(points: np.ndarray, polygon: np.ndarray) -> np.ndarray:
 def _drop_thin(mask: np.ndarray, parts: _ThinParts | None, *, dots: bool) -> np.ndarray:
     if parts is None:
         return mask
-    # apart from the print, beside it: a stroke (longer than a stroke is wide) or,
-    # with ``dots``, a dot (a letter's bit, a halo speck)
-    drop = parts.foot | ((parts.stroke | dots) & ~parts.ends)
-    drop[0] = False
-    return mask & ~(parts.thin & drop[parts.labels])
+    return _without(mask, parts.at[parts.dropped(dots=dots)])
+
+
+def _without(mask: np.ndarray, flat: np.ndarray) -> np.ndarray:
+    """A copy of ``mask`` (bool) without the pixels at ``flat`` (flat indices)."""
+    out = np.array(mask, dtype=bool, order="C")
+    out.ravel()[flat] = False
+    return out
 
 
 def _block_pattern(thick: np.ndarray, side_px: float) -> bool:
@@ -758,12 +812,18 @@ def _at_the_ends(hull_xy: np.ndarray, points: np.ndarray, *, end: float = 0.8) -
     return np.abs((points - c) @ axis) > end * half
 
 
-def _count_pieces(mask: np.ndarray) -> int:
+def _count_pieces(flat: np.ndarray, shape) -> int:
+    """8-connected pieces of the pixels at ``flat`` (flat indices in ``shape``),
+    counted in their box."""
     import cv2
 
-    if not mask.any():
+    if not len(flat):
         return 0
-    return cv2.connectedComponents(mask.view(np.uint8), connectivity=8)[0] - 1
+    rows, cols = np.divmod(flat, shape[1])
+    r0, c0 = rows.min(), cols.min()
+    box = np.zeros((rows.max() - r0 + 1, cols.max() - c0 + 1), np.uint8)
+    box[rows - r0, cols - c0] = 1
+    return cv2.connectedComponents(box, connectivity=8)[0] - 1
 
 
 def edge_spots(
@@ -793,22 +853,23 @@ def edge_spots(
     width = mm_to_px_length(opts.stroke_width_mm, mm_per_px)
     # the rule is off when no blob can be faint and no distance too far (1 m)
     rule_on = opts.edge_spot_faintness > 0 or opts.edge_spot_distance_mm < 1e3
-    comps = components_with_stats(group.mask, connectivity=8)
     along = mm_to_px_length(opts.mark_overhang_mm, mm_per_px)
-    parts = _thin_parts(group.mask, width, along, opts, comps)  # thin_protrusions, both ways
-    kept = _drop_thin(group.mask, parts, dots=rule_on)
-    thin = group.mask & ~kept if kept.any() else np.zeros_like(group.mask)
-    strokes = thin & ~_drop_thin(group.mask, parts, dots=False)
-    n_thin, n_dots = _count_pieces(thin), _count_pieces(thin & ~strokes)
+    parts = _thin_parts(group.mask, width, along, opts)  # thin_protrusions, both ways
+    if parts is None:
+        return _spots(group, darkness, mm_per_px, opts)
+    gone = parts.dropped(dots=rule_on)  # of the thin pixels; with dots=False a subset
+    kept = _without(group.mask, parts.at[gone])
+    dots = parts.at[gone & ~parts.dropped(dots=False)]
+    n_thin = _count_pieces(parts.at[gone], group.mask.shape) if kept.any() else 0
     if n_thin:  # pen-thin ink beside the print: strokes are marks, dots edge spots
         spots = _spots(replace(group, mask=kept), darkness, mm_per_px, opts)
         return replace(
             spots,
             n_blobs=spots.n_blobs + n_thin,
-            n_spots=spots.n_spots + n_dots,
-            spot_pixels=spots.spot_pixels + int(np.count_nonzero(thin & ~strokes)),
+            n_spots=spots.n_spots + _count_pieces(dots, group.mask.shape),
+            spot_pixels=spots.spot_pixels + len(dots),
         )
-    return _spots(group, darkness, mm_per_px, opts, comps)
+    return _spots(group, darkness, mm_per_px, opts)
 
 
 def _spots(
@@ -831,12 +892,14 @@ def _spots(
     core_mask = np.concatenate([[False], core])[blobs.labels]
     outside = _outside_core(blobs, core_mask, faint) & ~core
     small = outside & ~faint & (blobs.areas < opts.edge_spot_area_mm2)
-    gaps, pattern = _core_gaps(blobs, core)
+    gaps, pattern = _core_gaps(blobs, core, core_mask)
     reach = max(
         mm_to_px_length(opts.edge_spot_distance_mm, mm_per_px),
         opts.edge_spot_pattern_factor * pattern,
     )
     spot = outside & (faint | (small & (gaps > reach)))
+    if not spot.any():
+        return EdgeSpots(group.mask.copy(), n_blobs, 0, 0, pattern)
     is_spot = np.concatenate([[False], spot])[blobs.labels]
     return EdgeSpots(group.mask & ~is_spot, n_blobs, int(spot.sum()), int(is_spot.sum()), pattern)
 

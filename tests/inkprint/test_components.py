@@ -9,9 +9,10 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from numpy.testing import assert_allclose, assert_array_equal
 
-from inkprint.analyze import _crossings
+from inkprint.analyze import _crossings, _Level
 from inkprint.binarize import remove_specks
 from inkprint.components import DENSE, components_with_stats
+from inkprint.group import _piece_stats
 
 
 def _random_mask(seed: int, shape, share: float, blur: float) -> np.ndarray:
@@ -45,6 +46,27 @@ def test_components_with_stats_equals_opencv(seed, h, w, share, blur, connectivi
     assert_allclose(c1, c0, rtol=1e-12, atol=1e-9)
 
 
+@settings(max_examples=40, deadline=None)
+@given(
+    seed=st.integers(0, 2**31),
+    share=st.sampled_from([0.01, 0.1, 0.3, 0.6]),
+    blur=st.sampled_from([0.0, 1.5]),
+)
+def test_piece_stats_equal_opencv_for_the_pieces_asked(seed, share, blur):
+    # the labels of the plain labelling, the statistics of the pieces asked for
+    mask = _random_mask(seed, (70, 90), share, blur)
+    n0, lab0, st0, c0 = cv2.connectedComponentsWithStats(mask.view(np.uint8), connectivity=8)
+    n, lab = cv2.connectedComponents(mask.view(np.uint8), connectivity=8)
+    assert n == n0
+    assert_array_equal(lab, lab0)
+    which = np.random.default_rng(seed).random(n) < 0.5
+    which[0] = False
+    stats, cent = _piece_stats(lab, which)
+    assert_array_equal(stats[which], st0[which])
+    assert_array_equal(cent[which], c0[which])
+    assert not stats[~which].any()
+
+
 def test_components_with_stats_sparse_sheet_with_specks():
     # a sheet-sized sparse mask: the ink-only path (below DENSE), many pieces
     mask = _random_mask(3, (400, 300), 0.03, 0.0)
@@ -75,11 +97,11 @@ def test_crossings_hull_equals_marching_squares(seed, h, w):
     from skimage.measure import find_contours
 
     rng = np.random.default_rng(seed)
-    f = cv2.GaussianBlur(rng.normal(size=(h, w)).astype(np.float32), (0, 0), 1.5)
-    f = np.pad(f, 1, constant_values=1.0)
-    f[f == 0] = 1e-6
+    field = cv2.GaussianBlur(rng.normal(size=(h, w)).astype(np.float32), (0, 0), 1.5)
+    field[field == 0] = 1e-6
+    f = np.pad(field, 1, constant_values=1.0)  # the frame _crossings puts around the box
     lines = [c for c in find_contours(f, 0.0) if len(c) >= 2]
-    pts = _crossings(f)
+    pts = _crossings(_plain_level(field))
     if not lines:
         assert len(pts) == 0
         return
@@ -88,8 +110,20 @@ def test_crossings_hull_equals_marching_squares(seed, h, w):
     assert_array_equal(np.sort(got, axis=0), np.sort(ref, axis=0))
 
 
+def _plain_level(field: np.ndarray) -> _Level:
+    """The field itself as the level, framed by 1 (paper)."""
+    return _Level(field, np.ones(field.shape, bool), np.zeros(field.shape, bool))
+
+
 def test_crossings_interpolate_linearly():
-    f = np.array([[1.0, 1.0, 1.0], [1.0, -1.0, 3.0], [1.0, 1.0, 1.0]])
-    pts = {tuple(p) for p in np.round(_crossings(f), 12)}
-    # from the centre: half-way up, down and left; a quarter of the way right
+    # framed: [[1, 1, 1, 1], [1, -1, 3, 1], [1, 1, 1, 1]]
+    pts = {tuple(p) for p in np.round(_crossings(_plain_level(np.array([[-1.0, 3.0]]))), 12)}
+    # from the -1: half-way up, down and left; a quarter of the way right
     assert pts == {(0.5, 1.0), (1.5, 1.0), (1.0, 0.5), (1.0, 1.25)}
+
+
+def test_crossings_keep_each_lines_first_and_last():
+    # a row crossing 0 four times: only its first and last crossing are kept (the
+    # hull's), every column's both
+    pts = {tuple(p) for p in np.round(_crossings(_plain_level(np.array([[-1.0, 1.0, -1.0]]))), 12)}
+    assert pts == {(1.0, 0.5), (1.0, 3.5), (0.5, 1.0), (1.5, 1.0), (0.5, 3.0), (1.5, 3.0)}
