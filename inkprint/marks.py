@@ -53,6 +53,8 @@ from .group import (
 )
 from .options import AnalysisOptions, resolve_options
 
+#: a line is fitted to at most about this many of a piece's pixels (a subsample)
+LINE_FIT_POINTS = 2000
 #: the pooled grid has this many pixels across a stroke (``stroke_width_mm``)
 POOL_STROKES = 5.0
 #: the Voronoi partition of the elements is sampled every this many mm
@@ -265,19 +267,23 @@ def _straight_skinny(skinny: np.ndarray, pooled: _Pooled, opts: AnalysisOptions)
 
 def _line_run(piece: np.ndarray, px_mm: float, opts: AnalysisOptions) -> np.ndarray:
     """The pixels of ``piece`` (uint8 crop) on a straight line through it: within a
-    stroke of the line fitted to the piece (Huber, refitted once to the pixels near
-    it), when they hold at least half the piece, lie no wider than two strokes and
-    run for ``line_length_mm`` with no gap over a stroke; else none."""
+    stroke of the line fitted to the piece (least squares on up to
+    :data:`LINE_FIT_POINTS` of its pixels, refitted twice to the pixels near it),
+    when they hold at least half the piece, lie no wider than two strokes and run
+    for ``line_length_mm`` with no gap over a stroke; else none."""
     import cv2
 
     ys, xs = np.nonzero(piece)
     pts = np.column_stack([xs, ys]).astype(np.float32)
     reach = mm_to_px_length(opts.stroke_width_mm, px_mm)
     near = np.ones(len(pts), bool)
-    for _ in range(2):
-        vx, vy, x0, y0 = cv2.fitLine(pts[near], cv2.DIST_HUBER, 0, 0.01, 0.01).ravel()
+    for _ in range(3):  # least squares, then on the pixels near the line, twice
+        use = pts[near][:: max(1, int(near.sum()) // LINE_FIT_POINTS)]  # a subsample
+        vx, vy, x0, y0 = cv2.fitLine(use, cv2.DIST_L2, 0, 0.01, 0.01).ravel()
         off = (pts - [x0, y0]) @ np.array([-vy, vx])
         near = np.abs(off) <= reach
+        if not near.any():
+            return np.zeros(piece.shape, np.uint8)
     out = np.zeros(piece.shape, np.uint8)
     if near.sum() < 0.5 * len(pts) or np.ptp(off[near]) + 1 > 2.0 * reach:
         return out
