@@ -42,7 +42,7 @@ from .components import components_with_stats, pixel_sums
 from .coords import area_mm2_to_px, area_px_to_mm2, mm_to_px_length, px_to_mm, px_to_mm_length
 from .errors import InvalidInput, NoInk
 from .gridlines import Gridlines, find_gridlines, stroke_px
-from .group import Group, PrintCheck, edge_spots, is_print
+from .group import Group, PrintCheck, _sides, edge_spots, is_print
 from .light import Page, prepare_page
 from .marks import Mark, SortedInk, sort_ink
 from .options import AnalysisOptions, resolve_options, resolve_threads
@@ -482,10 +482,14 @@ def find_prints(
             kept.append(g)
         else:
             marks.append(_group_mark(g, check.kind, check.reason, mm_per_px))
+    kept = _without_texture_bits(kept, marks, shape, mm_per_px)
     biggest = max((g.n_pixels for g in kept), default=0)
     groups = []
     for g in kept:
-        if g.n_pixels < opts.min_patch_fraction * biggest:
+        # a small piece cut by the image's edge is a print running off it (flagged
+        # clipped), not a fragment: a print 97 % off the sheet went missing
+        cut = _sides(g, shape, near=False) > 0
+        if g.n_pixels < opts.min_patch_fraction * biggest and not cut:
             why = (
                 f"a fragment beside the prints ({100 * g.n_pixels / biggest:.1f} % of the largest)"
             )
@@ -493,6 +497,25 @@ def find_prints(
         else:
             groups.append(g)
     return FoundPrints(groups, marks, ink, grid)
+
+
+def _without_texture_bits(kept: list, marks: list, shape, mm_per_px: float) -> list:
+    """The candidate prints less the small ones (under ``SMALL_PRINT_MM2`` of ink)
+    cut by the image's edge amid noise or texture set aside over the sheet: there a
+    blob of the texture cannot be told from a print's last piece (a texture page
+    gave a 6 x 4 mm "print" at its corner instead of "no print found"); they are
+    set aside as texture (in ``marks``)."""
+    from .group import SMALL_PRINT_MM2
+
+    out = []
+    for g in kept:
+        small = area_px_to_mm2(g.n_pixels, mm_per_px) < SMALL_PRINT_MM2
+        if small and _sides(g, shape, near=False) and _spread_marks_over(marks, g):
+            why = "a small blob cut by the image's edge amid texture or noise set aside"
+            marks.append(_group_mark(g, "texture", why, mm_per_px))
+        else:
+            out.append(g)
+    return out
 
 
 def _grid_mark(grid: np.ndarray, mm_per_px: float) -> Mark:

@@ -395,6 +395,11 @@ def process_file(
         return _analyze_job(job, data, digest, key, opts)
     except (InkPrintError, ValueError, OSError, MemoryError) as exc:
         return [_error_row(job, exc, digest=digest, key=key)]
+    except Exception as exc:  # a bug: this file's row says so, the batch goes on
+        why = (
+            f"internal error ({type(exc).__name__}: {exc}): a bug, please report it with the file"
+        )
+        return [_error_row(job, why, digest=digest, key=key)]
 
 
 def _sort_key(r):

@@ -621,8 +621,12 @@ def _line_pixels(crop: np.ndarray, px_mm: float) -> tuple[np.ndarray, list, floa
     segs = cv2.HoughLinesP(m, 1, np.pi / 360, threshold=n // 2, minLineLength=n, maxLineGap=2)
     if segs is None:
         return np.zeros(crop.shape, bool), [], 0.0
-    dt = cv2.distanceTransform(m, cv2.DIST_L2, 3)
-    width = float(np.ceil(2.0 * np.percentile(dt[crop], 95))) + 1.0
+    # paper around the crop: a straight line that fills its own box (one along the
+    # image's edge) has no paper in it, and its distances would be unbounded
+    dt = cv2.distanceTransform(
+        cv2.copyMakeBorder(m, 1, 1, 1, 1, cv2.BORDER_CONSTANT), cv2.DIST_L2, 3
+    )
+    width = float(np.ceil(2.0 * np.percentile(dt[1:-1, 1:-1][crop], 95))) + 1.0
     ys, xs = np.nonzero(crop)
     pts = np.column_stack([xs, ys]).astype(np.float32)
     lines, on = [], np.zeros(len(pts), bool)

@@ -112,7 +112,8 @@ class AnalysisOptions:
         letter sheet, 0.7 mm^2 on a 10 x 7 cm card).
     min_patch_fraction : float [-]
         A group with less ink than this fraction of the largest print's is a
-        fragment or a mark beside the prints.
+        fragment or a mark beside the prints (unless the image's edge cuts it: a
+        print running off the sheet, measured and flagged ``clipped``).
     min_patch_width_mm : float [mm]
         A group narrower than this across its axis is a line or a mark.
     min_net_to_gross : float [-]

@@ -233,3 +233,29 @@ def test_cli_analyze_and_batch(folder, tmp_path):
     )
     assert b.returncode == 1, b.stderr  # some files failed
     assert "6 error row(s)" in b.stderr and not b.stdout and (tmp_path / "b.json").is_file()
+
+
+def test_run_batch_records_an_unexpected_failure_and_goes_on(tmp_path, monkeypatch):
+    # a bug on one file (an OverflowError in the line sorting once) aborted the whole
+    # batch; now that file's row says so and the other files are analysed
+    import inkprint.analyze
+
+    src = tmp_path / "src"
+    src.mkdir()
+    files = sorted(SAMPLES.glob("*.jpg"))[:2]
+    for f in files:
+        shutil.copy(f, src / f.name)
+    real = inkprint.analyze.analyze_scan
+
+    def flaky(scan, **kw):
+        if str(scan.path).endswith(files[0].name):
+            raise OverflowError("cannot convert float infinity to integer")
+        return real(scan, **kw)
+
+    monkeypatch.setattr(inkprint.analyze, "analyze_scan", flaky)
+    res = run_batch(src, tmp_path / "out.csv", options=Options(sensitivity=False), workers=1)
+    bad = [r for r in res.rows if r["status"] == "error"]
+    assert [Path(r["file"]).name for r in bad] == [files[0].name]
+    assert bad[0]["error"].startswith("internal error (OverflowError: cannot convert")
+    good = [r for r in res.rows if Path(r["file"]).name == files[1].name]
+    assert good and all(r["status"] in ("ok", "flagged") for r in good)

@@ -421,3 +421,28 @@ def test_analyze_scan_edge_beside_a_line_bounded_by_its_last_pixel(tmp_path, see
     assert not [r for r in results if r["outcome"] in SILENT], results
     if seed == 10:
         assert sum(r["outcome"] == "pass" for r in results) >= 1
+
+
+def test_analyze_scan_print_almost_off_the_sheet_is_flagged_not_missing(tmp_path):
+    # 4254/0020 (200 dpi): a print 97 % off the sheet left a 60 x 2.5 mm strip at
+    # the top edge, 4.6 % of the other print's ink: dropped as a fragment, so the
+    # print went missing; cut by the image's edge it is kept, flagged clipped
+    results, rows = outcomes(tmp_path, "clipped", 4254 * 100_003 + 20, dpi=None)
+    assert not [r for r in results if r["outcome"] in SILENT], results
+    assert sum("clipped" in r["flags"] for r in rows) == 1
+
+
+def test_analyze_scan_texture_blob_at_the_image_edge_is_not_a_print(tmp_path):
+    # 4254/0063: on a texture page a 6 x 4 mm blob cut by the image's corner was
+    # kept as a (flagged) print instead of "no print found"
+    results, rows = outcomes(tmp_path, "noise", 4254 * 100_003 + 63, dpi=None)
+    assert [r["outcome"] for r in results] == ["error_ok"], results
+    assert rows[0]["status"] == "error" and "texture" in rows[0]["error"]
+
+
+def test_sort_ink_line_filling_its_own_box_is_measured(tmp_path):
+    # clipped seed 6 at 150 dpi: a straight line piece filling its own box had no
+    # paper in it; its distance transform was unbounded and the width inf crashed
+    # the sheet (OverflowError); now measured and flagged clipped
+    results, _ = outcomes(tmp_path, "clipped", 6)
+    assert_passes(results)
