@@ -631,7 +631,11 @@ def _band_at(ctx: _Context, win: _BandWindow, factor: float, *, grey, local: lis
     if not ink.any():
         return {}
     spots = edge_spots(
-        Group(win.rows, win.cols, ink), _darkness(grey, ink), mm_per_px=s, options=opts
+        Group(win.rows, win.cols, ink),
+        _darkness(grey, ink),
+        mm_per_px=s,
+        options=opts,
+        tread_gap=False,
     )
     if not spots.load_bearing.any():
         return {}

@@ -832,6 +832,7 @@ def edge_spots(
     *,
     mm_per_px: float,
     options: AnalysisOptions | None = None,
+    tread_gap: bool = True,
 ) -> EdgeSpots:
     """Apply the section 7.1.1 rule to one group.
 
@@ -844,6 +845,10 @@ def edge_spots(
     options : AnalysisOptions, optional
         Uses ``edge_spot_area_mm2``, ``edge_spot_faintness``,
         ``edge_spot_distance_mm`` and ``stroke_width_mm`` (defaults when None).
+    tread_gap : bool
+        Find the core's tread gap even when no blob's fate needs it (else the
+        result's ``tread_gap`` is 0 then: a re-measure of the threshold band, which
+        reports none of it, skips a distance transform of the print).
 
     Returns
     -------
@@ -856,27 +861,28 @@ def edge_spots(
     along = mm_to_px_length(opts.mark_overhang_mm, mm_per_px)
     parts = _thin_parts(group.mask, width, along, opts)  # thin_protrusions, both ways
     if parts is None:
-        return _spots(group, darkness, mm_per_px, opts)
+        return _spots(group, darkness, mm_per_px, opts, gap=tread_gap)
     gone = parts.dropped(dots=rule_on)  # of the thin pixels; with dots=False a subset
     kept = _without(group.mask, parts.at[gone])
     dots = parts.at[gone & ~parts.dropped(dots=False)]
     n_thin = _count_pieces(parts.at[gone], group.mask.shape) if kept.any() else 0
     if n_thin:  # pen-thin ink beside the print: strokes are marks, dots edge spots
-        spots = _spots(replace(group, mask=kept), darkness, mm_per_px, opts)
+        spots = _spots(replace(group, mask=kept), darkness, mm_per_px, opts, gap=tread_gap)
         return replace(
             spots,
             n_blobs=spots.n_blobs + n_thin,
             n_spots=spots.n_spots + _count_pieces(dots, group.mask.shape),
             spot_pixels=spots.spot_pixels + len(dots),
         )
-    return _spots(group, darkness, mm_per_px, opts)
+    return _spots(group, darkness, mm_per_px, opts, gap=tread_gap)
 
 
 def _spots(
-    group: Group, darkness, mm_per_px: float, opts: AnalysisOptions, comps=None
+    group: Group, darkness, mm_per_px: float, opts: AnalysisOptions, comps=None, *, gap=True
 ) -> EdgeSpots:
     """The section 7.1.1 rule on the blobs of ``group`` (see :func:`edge_spots`;
-    ``comps``: the group mask's :func:`components_with_stats` if known)."""
+    ``comps``: the group mask's :func:`components_with_stats` if known; ``gap``:
+    find the tread gap even when no small dark blob outside the core needs it)."""
     blobs = _blobs(group, darkness, mm_per_px, comps)
     n_blobs = len(blobs.areas)
     if n_blobs <= 1:
@@ -892,7 +898,10 @@ def _spots(
     core_mask = np.concatenate([[False], core])[blobs.labels]
     outside = _outside_core(blobs, core_mask, faint) & ~core
     small = outside & ~faint & (blobs.areas < opts.edge_spot_area_mm2)
-    gaps, pattern = _core_gaps(blobs, core, core_mask)
+    if not (gap or small.any()):  # only the faint ones can be spots: no gaps needed
+        gaps, pattern = np.zeros(n_blobs), 0.0
+    else:
+        gaps, pattern = _core_gaps(blobs, core, core_mask)
     reach = max(
         mm_to_px_length(opts.edge_spot_distance_mm, mm_per_px),
         opts.edge_spot_pattern_factor * pattern,
