@@ -160,3 +160,23 @@ def test_edge_spots_faint_speck_on_the_core_outline_is_a_spot():
     dark[dot] = 0.9
     kept = edge_spots(g, dark, mm_per_px=25.4 / 150)
     assert kept.n_spots == 0 and kept.load_bearing[dot].all()
+
+
+def test_edge_spots_without_tread_gap_same_spots():
+    # the band's re-measures skip the tread gap when no small dark blob outside the
+    # core needs it: the same load-bearing ink, tread_gap 0
+    from inkprint.group import Group, edge_spots
+
+    mask = np.zeros((80, 80), bool)
+    dark = np.zeros((80, 80))
+    for r, c in ((10, 10), (10, 50), (40, 10), (40, 50)):
+        mask[r : r + 20, c : c + 20] = True
+        dark[r : r + 20, c : c + 20] = 0.9
+    mask[70:73, 40:43] = True  # a faint speck below: a spot either way
+    dark[70:73, 40:43] = 0.2
+    g = Group(slice(0, 80), slice(0, 80), mask)
+    full = edge_spots(g, dark, mm_per_px=25.4 / 150)
+    lean = edge_spots(g, dark, mm_per_px=25.4 / 150, tread_gap=False)
+    assert_allclose(full.tread_gap, 10.0, atol=1.5)  # the 10 px gaps between rows
+    assert lean.tread_gap == 0.0 and lean.n_spots == full.n_spots == 1
+    assert (lean.load_bearing == full.load_bearing).all()
