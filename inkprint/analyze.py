@@ -1052,11 +1052,14 @@ def _mark_pull(ctx: _Context, g: Group, kept: np.ndarray, angle: float) -> float
         ink &= ~ctx.found.grid.removed[r0:r1, c0:c1]
     own = np.zeros(ink.shape, bool)
     own[g.rows.start - r0 : g.rows.stop - r0, g.cols.start - c0 : g.cols.stop - c0] = kept
-    aside = remove_specks(ink & ~own, area_mm2_to_px(ctx.opts.speck_area_mm2, ctx.scan.mm_per_px))
+    disk = cv2.getStructuringElement(cv2.MORPH_ELLIPSE, (2 * near_px + 1,) * 2)
+    other = ink & ~own
+    if not (own & cv2.dilate(other.view(np.uint8), disk).view(bool)).any():
+        return 0.0  # no ink near the print's, specks or not (the common case: cheap)
+    aside = remove_specks(other, area_mm2_to_px(ctx.opts.speck_area_mm2, ctx.scan.mm_per_px))
     if not aside.any():
         return 0.0
-    k = 2 * near_px + 1
-    near = cv2.dilate(aside.view(np.uint8), cv2.getStructuringElement(cv2.MORPH_ELLIPSE, (k, k)))
+    near = cv2.dilate(aside.view(np.uint8), disk)
     core = own & ~near.view(bool)
     if not (own & near.view(bool)).any() or not core.any():
         return 0.0
