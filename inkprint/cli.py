@@ -163,6 +163,13 @@ THRESHOLDS = (
         "chart-paper gridlines run unbroken over at least this share of the sheet",
     ),
     (
+        "--grid-ink-darker",
+        "grid_ink_darker",
+        "FRACTION",
+        "a gridline pixel darker than this share of the lines' grey is print ink over "
+        "the line (0: off)",
+    ),
+    (
         "--axis-tolerance",
         "axis_misaligned_deg",
         "DEG",
