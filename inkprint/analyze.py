@@ -950,16 +950,19 @@ def _edge_uncertainty(ctx: _Context, g: Group, kept: np.ndarray, angle: float) -
         band |= lines[big.rows, big.cols] & near.view(bool)
     if not band.any():
         return 0.0
-    band = _tangent_bound(own, band, t)
-    pts = [outline_points(x).reshape(-1, 2).astype(float) for x in (own, own | band)]
+    own_pts = outline_points(own)
+    band = _tangent_bound(own_pts, band, t)
+    pts = [p.reshape(-1, 2).astype(float) for p in (own_pts, outline_points(own | band))]
     flip = np.array([1.0, -1.0])
     ext = _extents(pts[1] * flip, angle) / _extents(pts[0] * flip, angle)
     area = [cv2.contourArea(cv2.convexHull(p.astype(np.float32))) for p in pts]
     return float(max(np.max(ext) - 1.0, 0.5 * (area[1] / area[0] - 1.0)))
 
 
-def _tangent_bound(own: np.ndarray, band: np.ndarray, t: int) -> np.ndarray:
-    """The pixels of a line's ``band`` that can hold the print's edge hidden under it,
+def _tangent_bound(own_pts: np.ndarray, band: np.ndarray, t: int) -> np.ndarray:
+    """The pixels of a line's ``band`` that can hold the print's edge hidden under it
+    (``own_pts``: the print's ink's :func:`inkprint.group.outline_points` in the
+    band's box),
     where the line crosses the edge: the print's outline is convex, so the stretch
     hidden between two visible hull vertices lies inside the lines through each of
     them and a hull vertex at least ``t`` [px] farther along the visible outline
@@ -971,11 +974,9 @@ def _tangent_bound(own: np.ndarray, band: np.ndarray, t: int) -> np.ndarray:
     the edge under it can move it by a fraction of a pixel."""
     import cv2
 
-    from .group import outline_points
-
-    hull = cv2.convexHull(outline_points(own)).reshape(-1, 2).astype(float)  # (x, y)
+    hull = cv2.convexHull(own_pts).reshape(-1, 2).astype(float)  # (x, y)
     n = len(hull)
-    inside = cv2.fillConvexPoly(np.zeros(own.shape, np.uint8), hull.astype(np.int32), 1)
+    inside = cv2.fillConvexPoly(np.zeros(band.shape, np.uint8), hull.astype(np.int32), 1)
     ys, xs = np.nonzero(band & ~inside.view(bool))
     if n < 4 or not len(xs):
         return band
@@ -1052,14 +1053,11 @@ def _mark_pull(ctx: _Context, g: Group, kept: np.ndarray, angle: float) -> float
         ink &= ~ctx.found.grid.removed[r0:r1, c0:c1]
     own = np.zeros(ink.shape, bool)
     own[g.rows.start - r0 : g.rows.stop - r0, g.cols.start - c0 : g.cols.stop - c0] = kept
-    disk = cv2.getStructuringElement(cv2.MORPH_ELLIPSE, (2 * near_px + 1,) * 2)
-    other = ink & ~own
-    if not (own & cv2.dilate(other.view(np.uint8), disk).view(bool)).any():
-        return 0.0  # no ink near the print's, specks or not (the common case: cheap)
-    aside = remove_specks(other, area_mm2_to_px(ctx.opts.speck_area_mm2, ctx.scan.mm_per_px))
+    aside = remove_specks(ink & ~own, area_mm2_to_px(ctx.opts.speck_area_mm2, ctx.scan.mm_per_px))
     if not aside.any():
         return 0.0
-    near = cv2.dilate(aside.view(np.uint8), disk)
+    k = 2 * near_px + 1
+    near = cv2.dilate(aside.view(np.uint8), cv2.getStructuringElement(cv2.MORPH_ELLIPSE, (k, k)))
     core = own & ~near.view(bool)
     if not (own & near.view(bool)).any() or not core.any():
         return 0.0

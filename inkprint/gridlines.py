@@ -10,8 +10,8 @@ right across the line on both sides (a line crossing a print or a tread block);
 elsewhere it is taken out, so it no longer joins a print, its grooves or a halo
 speck (dots, ``dot_mm``, do not count as ink across). A line's pixel darker than
 the line itself (``grid_ink_darker`` of its grey) is ink printed over it and stays
-ink too (chart paper's lines are lighter than a print's ink). Where a line runs along a
-print's edge the edge cannot be told from the line: the print is flagged
+ink too (chart paper's lines are lighter than a print's ink). Where a line runs
+along a print's edge the edge cannot be told from the line: the print is flagged
 ``mark_on_edge`` when the line's far side would move its length, width or area
 by more than ``edge_uncertainty`` (:meth:`Gridlines.grazed`). A grid
 that does not come out this way (turned on the scanner, broken by a faint scan)
@@ -207,10 +207,10 @@ def _touching(removed: np.ndarray, kept: np.ndarray, *, vertical: bool) -> np.nd
 def _dark_on_line(grey, dark_below: float, lines, rest, dot_px: float) -> np.ndarray:
     """The lines' pixels darker than ``dark_below`` (``grid_ink_darker`` of their
     lower quartile: the line's core, not its fringe), in pieces, with the ink
-    beside them, longer than a dot: ink printed over a line. Chart paper's lines are printed lighter
-    than a print's ink, so a tread block the outline cut to a sliver lying on a
-    line keeps its ink (a tip sliver on a line was lost: length -3.5 %, unflagged,
-    at 200 dpi); a line as dark as the ink keeps nothing this way."""
+    beside them, longer than a dot: ink printed over a line. Chart paper's lines
+    are printed lighter than a print's ink, so a tread block the outline cut to a
+    sliver lying on a line keeps its ink (a tip sliver on a line was lost: length
+    -3.5 %, unflagged, at 200 dpi); a line as dark as the ink keeps nothing."""
     dark = lines & (grey < dark_below)
     if not dark.any():
         return dark

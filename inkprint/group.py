@@ -489,11 +489,11 @@ class _Blobs:
     ids: np.ndarray
 
 
-def _blobs(group: Group, darkness, mm_per_px: float, comps=None) -> _Blobs:
-    """The blobs of ``group``; ``comps``: its :func:`components_with_stats` if known."""
+def _blobs(group: Group, darkness, mm_per_px: float) -> _Blobs:
+    """The blobs of ``group``."""
     import cv2
 
-    n, lab, stats, cent = comps or components_with_stats(group.mask, connectivity=8)
+    n, lab, stats, cent = components_with_stats(group.mask, connectivity=8)
     on = np.flatnonzero(group.mask)
     ids = lab.ravel()[on]
     peak = np.zeros(n, np.float32)
@@ -878,12 +878,12 @@ def edge_spots(
 
 
 def _spots(
-    group: Group, darkness, mm_per_px: float, opts: AnalysisOptions, comps=None, *, gap=True
+    group: Group, darkness, mm_per_px: float, opts: AnalysisOptions, *, gap: bool = True
 ) -> EdgeSpots:
     """The section 7.1.1 rule on the blobs of ``group`` (see :func:`edge_spots`;
-    ``comps``: the group mask's :func:`components_with_stats` if known; ``gap``:
-    find the tread gap even when no small dark blob outside the core needs it)."""
-    blobs = _blobs(group, darkness, mm_per_px, comps)
+    ``gap``: find the tread gap even when no small dark blob outside the core needs
+    it)."""
+    blobs = _blobs(group, darkness, mm_per_px)
     n_blobs = len(blobs.areas)
     if n_blobs <= 1:
         return EdgeSpots(group.mask, n_blobs, 0, 0)

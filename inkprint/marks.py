@@ -337,7 +337,6 @@ def _bridged(labels: np.ndarray, bridge: np.ndarray, reach: float) -> np.ndarray
     labelled as the nearest one. Computed in the bridge's box grown by the farthest
     a distance of ``reach`` can run (OpenCV's 3x3 L2 distance steps at least 0.955
     px a pixel), which holds every element pixel that near."""
-    import cv2
 
     rows = np.flatnonzero(bridge.any(axis=1))
     cols = np.flatnonzero(bridge.any(axis=0))
@@ -350,14 +349,25 @@ def _bridged(labels: np.ndarray, bridge: np.ndarray, reach: float) -> np.ndarray
     lab = labels[box]
     if not (lab > 0).any():
         return labels
-    dist, nearest = cv2.distanceTransformWithLabels(
-        (lab == 0).view(np.uint8), cv2.DIST_L2, 3, labelType=cv2.DIST_LABEL_PIXEL
-    )
-    lut = np.zeros(int(nearest.max()) + 1, np.int32)
-    lut[nearest[lab > 0]] = lab[lab > 0]
+    dist, nearest, lut = _nearest_label(lab)
     out = labels.copy()
     out[box] = np.where(bridge[box] & (lab == 0) & (dist <= reach), lut[nearest], lab)
     return out
+
+
+def _nearest_label(labels: np.ndarray) -> tuple:
+    """Distance [px] of every pixel to the nearest labelled one (``labels`` > 0),
+    the index of that pixel (OpenCV's Voronoi cells) and the table from index to
+    its label: ``lut[nearest]`` labels every pixel as its nearest labelled one."""
+    import cv2
+
+    dist, nearest = cv2.distanceTransformWithLabels(
+        (labels == 0).view(np.uint8), cv2.DIST_L2, 3, labelType=cv2.DIST_LABEL_PIXEL
+    )
+    on = labels > 0
+    lut = np.zeros(int(nearest.max()) + 1, np.int32)
+    lut[nearest[on]] = labels[on]
+    return dist, nearest, lut
 
 
 def _hulls(labels: np.ndarray, comp: np.ndarray, core=None) -> list:
@@ -535,7 +545,6 @@ def _nearest_hull(
     """Distance [pooled px] to the nearest print hull and that print's map id, up to
     ``reach_px`` from the hulls (beyond: inf and 0; computed on the hulls' box only),
     at the pixels ``at`` (flat indices into the map)."""
-    import cv2
 
     dist = np.full(len(at), np.inf, np.float32)
     ids = np.zeros(len(at), np.int32)
@@ -552,12 +561,7 @@ def _nearest_hull(
     inside = (r >= r0) & (r < r1) & (c >= c0) & (c < c1)
     if not inside.any():
         return dist, ids
-    sub = hull_map[r0:r1, c0:c1]
-    d, nearest = cv2.distanceTransformWithLabels(
-        (sub == 0).view(np.uint8), cv2.DIST_L2, 3, labelType=cv2.DIST_LABEL_PIXEL
-    )
-    lut = np.zeros(int(nearest.max()) + 1, np.int32)
-    lut[nearest[sub > 0]] = sub[sub > 0]
+    d, nearest, lut = _nearest_label(hull_map[r0:r1, c0:c1])
     rr, cc = r[inside] - r0, c[inside] - c0
     d_at, id_at = d[rr, cc], lut[nearest[rr, cc]]
     far = d_at > reach_px

@@ -100,6 +100,7 @@ def test_tangent_bound_line_crossing_a_round_edge_adds_under_a_pixel():
     # the visible outline either side (the disk's own edge, to half a pixel); a
     # line running along the edge for 60 px keeps its whole band
     from inkprint.analyze import _tangent_bound
+    from inkprint.group import outline_points
 
     yy, xx = np.mgrid[:200, :200]
     r = np.hypot(yy - 100.0, xx - 100.0)
@@ -108,7 +109,7 @@ def test_tangent_bound_line_crossing_a_round_edge_adds_under_a_pixel():
     line = line.astype(bool)
     own = (r <= 60.0) & ~line
     band = line & (r > 60.0) & (r <= 68.0)
-    kept = _tangent_bound(own, band, 8)
+    kept = _tangent_bound(outline_points(own), band, 8)
     assert band.sum() > 60 and kept.any()
     # the disk's edge under the line, to 2 px (the chords from vertices 8 px back run
     # out of a 60 px circle by ~0.7 px over the gap, plus the slack): the band reached 8
@@ -117,5 +118,5 @@ def test_tangent_bound_line_crossing_a_round_edge_adds_under_a_pixel():
     # the vertices beside it need not bound what lies under it, the band stays
     graze = (yy >= 38) & (yy <= 45) & (r <= 61.0)
     own2 = (r <= 60.0) & ~graze
-    kept2 = _tangent_bound(own2, graze, 8)
+    kept2 = _tangent_bound(outline_points(own2), graze, 8)
     assert graze.sum() > 200 and kept2.sum() >= graze.sum() - 2  # (a corner pixel)

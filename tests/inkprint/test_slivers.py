@@ -136,6 +136,17 @@ def test_analyze_scan_knob_pattern_taped_square_is_not_misaligned(tmp_path):
     assert all(r["flags"] == "" for r in rows)
 
 
+def _four_blocks() -> tuple:
+    """Ink and darkness of four dark 20 x 20 px blocks, 20 px apart across and 10 px
+    along, on an 80 x 80 px box."""
+    mask = np.zeros((80, 80), bool)
+    dark = np.zeros((80, 80))
+    for r, c in ((10, 10), (10, 50), (40, 10), (40, 50)):
+        mask[r : r + 20, c : c + 20] = True
+        dark[r : r + 20, c : c + 20] = 0.9
+    return mask, dark
+
+
 def test_edge_spots_faint_speck_on_the_core_outline_is_a_spot():
     # four dark 20 x 20 px blocks; a faint dot (a third of their darkness) whose
     # centre lies just inside the hull's bottom side but which pokes 3 px out of it.
@@ -143,11 +154,7 @@ def test_edge_spots_faint_speck_on_the_core_outline_is_a_spot():
     # and widened the print (knobby print at 150 dpi: width +2.3 %, unflagged)
     from inkprint.group import Group, edge_spots
 
-    mask = np.zeros((80, 80), bool)
-    dark = np.zeros((80, 80))
-    for r, c in ((10, 10), (10, 50), (40, 10), (40, 50)):
-        mask[r : r + 20, c : c + 20] = True
-        dark[r : r + 20, c : c + 20] = 0.9
+    mask, dark = _four_blocks()
     yy, xx = np.mgrid[:80, :80]
     dot = (yy - 58.5) ** 2 + (xx - 40) ** 2 <= 3.5**2  # hull bottom: row 59
     mask |= dot
@@ -167,11 +174,7 @@ def test_edge_spots_without_tread_gap_same_spots():
     # core needs it: the same load-bearing ink, tread_gap 0
     from inkprint.group import Group, edge_spots
 
-    mask = np.zeros((80, 80), bool)
-    dark = np.zeros((80, 80))
-    for r, c in ((10, 10), (10, 50), (40, 10), (40, 50)):
-        mask[r : r + 20, c : c + 20] = True
-        dark[r : r + 20, c : c + 20] = 0.9
+    mask, dark = _four_blocks()
     mask[70:73, 40:43] = True  # a faint speck below: a spot either way
     dark[70:73, 40:43] = 0.2
     g = Group(slice(0, 80), slice(0, 80), mask)
