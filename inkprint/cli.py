@@ -118,6 +118,13 @@ THRESHOLDS = (
     ),
     ("--edge-spot-area", "edge_spot_area_mm2", "MM2", "blobs this large form the print's core"),
     (
+        "--edge-spot-faintness",
+        "edge_spot_faintness",
+        "FRACTION",
+        "blobs outside the core lighter than this share of its darkness bore no load "
+        "(0 keeps every blob; a tread-sized one left out flags the print faint_edge)",
+    ),
+    (
         "--edge-spot-distance",
         "edge_spot_distance_mm",
         "MM",

@@ -47,7 +47,7 @@ touching a print).
 
 from __future__ import annotations
 
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
@@ -466,6 +466,10 @@ class EdgeSpots:
         Ink pixels of the edge spots.
     tread_gap : float [px]
         The core's typical gap between its blobs (0 for a one-blob core).
+    faint_blocks : (h, w) bool or None
+        The faint edge spots larger than a dot (extent over ``dot_mm``): lightly
+        inked tread blocks or light touches, the rule's judgement call (None when
+        there is none).
     """
 
     load_bearing: np.ndarray
@@ -473,13 +477,15 @@ class EdgeSpots:
     n_spots: int
     spot_pixels: int
     tread_gap: float = 0.0
+    faint_blocks: np.ndarray | None = field(default=None, repr=False)
 
 
 @dataclass(frozen=True)
 class _Blobs:
     """8-connected blobs of a group: labels (0 = paper), areas [mm^2], centroids
     (x = col, y = row) [px] and peak darkness, per blob 1..n; the ink pixels (flat
-    indices, raster order) and their labels."""
+    indices, raster order) and their labels; per blob its extent (the longer side
+    of its box) [mm]."""
 
     labels: np.ndarray
     areas: np.ndarray
@@ -487,6 +493,7 @@ class _Blobs:
     peak: np.ndarray
     at: np.ndarray
     ids: np.ndarray
+    extents: np.ndarray
 
 
 def _blobs(group: Group, darkness, mm_per_px: float) -> _Blobs:
@@ -499,7 +506,9 @@ def _blobs(group: Group, darkness, mm_per_px: float) -> _Blobs:
     peak = np.zeros(n, np.float32)
     reduce_at(np.maximum, peak, ids, values=np.asarray(darkness, np.float32).ravel()[on])
     areas = area_px_to_mm2(stats[1:, cv2.CC_STAT_AREA], mm_per_px)
-    return _Blobs(lab, areas, cent[1:], peak[1:].astype(float), on, ids)
+    side = np.maximum(stats[1:, cv2.CC_STAT_WIDTH], stats[1:, cv2.CC_STAT_HEIGHT])
+    extents = px_to_mm_length(side.astype(float), mm_per_px)
+    return _Blobs(lab, areas, cent[1:], peak[1:].astype(float), on, ids, extents)
 
 
 def outline_points(mask: np.ndarray) -> np.ndarray | None:
@@ -910,7 +919,10 @@ def _spots(
     if not spot.any():
         return EdgeSpots(group.mask.copy(), n_blobs, 0, 0, pattern)
     is_spot = np.concatenate([[False], spot])[blobs.labels]
-    return EdgeSpots(group.mask & ~is_spot, n_blobs, int(spot.sum()), int(is_spot.sum()), pattern)
+    blocks = spot & faint & (blobs.extents > opts.dot_mm)  # not a halo dot: a block?
+    faint_blocks = np.concatenate([[False], blocks])[blobs.labels] if blocks.any() else None
+    n_spots, n_px = int(spot.sum()), int(is_spot.sum())
+    return EdgeSpots(group.mask & ~is_spot, n_blobs, n_spots, n_px, pattern, faint_blocks)
 
 
 __all__ = [

@@ -483,7 +483,15 @@ def _compact(parts: _Parts, k: int, aspect: float | None = None, *, along: float
     one too: a tread block the outline cut to a thin bar along the edge."""
     import cv2
 
-    pts = cv2.findNonZero(_crop(parts.thin, parts.thin_stats, k).view(np.uint8))
+    crop = _crop(parts.thin, parts.thin_stats, k).view(np.uint8)
+    # pinholes and one-pixel notches closed first: a tread block inked near the
+    # threshold binarizes ragged (dpi72 seed 6 at 150 dpi: solidity 0.79 as is,
+    # set aside as a pen mark, length -1.2 %); a letter's counter (the hole of an
+    # 'o') is several pixels across and stays open
+    crop = cv2.morphologyEx(
+        np.pad(crop, 1), cv2.MORPH_CLOSE, np.ones((3, 3), np.uint8), borderValue=0
+    )
+    pts = cv2.findNonZero(crop)
     (_, _), (a, b), _ = cv2.minAreaRect(pts)
     a, b = max(a, b) + 1.0, min(a, b) + 1.0
     hull = cv2.convexHull(pts)

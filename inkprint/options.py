@@ -143,7 +143,11 @@ class AnalysisOptions:
         core.
     edge_spot_faintness : float [-]
         A blob outside the core whose peak darkness is below this fraction of the
-        core's was not pressed: it bore no load.
+        core's was not pressed: it bore no load. When one larger than a dot (extent
+        over ``dot_mm``) left out this way would make the print's length,
+        width or half its hull area larger by more than ``edge_uncertainty``, the print is
+        flagged ``faint_edge``: a lightly inked tread block and a light touch look
+        alike (the difficulty of section 7.1.1).
     edge_spot_distance_mm : float [mm]
         A small blob outside the core farther than this from it bore no load ...
     edge_spot_pattern_factor : float [-]
