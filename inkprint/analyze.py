@@ -1128,6 +1128,8 @@ def _bump_pull(own: np.ndarray, aside: np.ndarray, angle: float, reach: float, b
     start = int(np.argmin(inz))  # begin outside every stretch
     c, inz = np.roll(c, -start, axis=0), np.roll(inz, -start)
     cuts = np.flatnonzero(np.diff(inz.astype(np.int8))) + 1
+    if inz[-1]:  # a stretch running to the contour's end closes there (it was lost:
+        cuts = np.r_[cuts, len(c)]  # a label's period on a slick edge, width +1.7 %)
     drop, n, centre = np.zeros(len(c), bool), max(int(reach), 8), c.mean(axis=0)
     for a, b in zip(cuts[::2], cuts[1::2], strict=False):
         side = np.r_[np.arange(a - n, a), np.arange(b, b + n)] % len(c)

@@ -94,6 +94,34 @@ def test_bump_pull_tick_end_out_of_a_smooth_edge():
     assert _bump_pull(ticked, aside, 0.0, 40.0, 3.0) == 0.0  # a bump under 3 px is edge
 
 
+def test_bump_pull_stretch_across_the_contours_start():
+    # a label over the print's top: the stretch of outline near it holds the
+    # contour's first point (its top-left pixel), so it runs to the contour's end;
+    # it was dropped and a period on the edge went unjudged (label 4259/6: width
+    # +1.7 %, unflagged)
+    from inkprint.analyze import _bump_pull
+
+    yy, xx = np.mgrid[:120, :400]
+    own = ((xx - 200) / 180.0) ** 2 + ((yy - 60) / 40.0) ** 2 <= 1.0
+    top = np.flatnonzero(own.any(axis=1))[0]
+    first = np.flatnonzero(own[top])[0]  # where findContours starts
+    aside = np.zeros_like(own)
+    aside[top - 12 : top - 2, first - 30 : first + 40] = True  # the label's letters
+    assert _bump_pull(own, aside, 0.0, 40.0, 1.0) == 0.0
+    dotted = own.copy()
+    dotted[top - 2 : top, first - 1 : first + 2] = True  # a period on the edge, 2 px
+    assert_allclose(_bump_pull(dotted, aside, 0.0, 40.0, 1.0), 2.0 / 81.0, atol=0.004)
+
+
+def test_mark_pull_label_period_on_a_slick_edge_is_flagged(tmp_path):
+    # mixed set 4259, file 6: a label written on a slick print's edge, its period
+    # kept as the print's own (a dot) on the edge at the print's widest point: width
+    # +1.7 %, unflagged while the outline's stretch near the label was lost
+    results, rows = outcomes(tmp_path, "label", mixed_file(4259, 6), dpi=None)
+    assert not [r for r in results if r["outcome"] in SILENT], results
+    assert "mark_on_edge" in rows[0]["flags"]
+
+
 def test_tangent_bound_line_crossing_a_round_edge_adds_under_a_pixel():
     # a disk of radius 60 px crossed by a 5 px line at 50 degrees to its edge: the
     # line's ink near the edge bounds the hidden edge only within the tangents of
