@@ -73,6 +73,9 @@ LINE_COMPACT_ASPECT = 2.5
 COMPACT_SOLIDITY = 0.85
 #: straight segments at least this long are a line's (Hough, on the long marks)
 LINE_SEGMENT_MM = 5.0
+#: a line fitted to them is inked along at least this share of its course across
+#: the piece's box
+LINE_SUPPORT = 0.5
 #: a line crossing a print is bridged where ink lies this close [mm] on both sides
 BRIDGE_MM = 1.0
 
@@ -619,8 +622,9 @@ class _Band:
 
 def _line_pixels(crop: np.ndarray, px_mm: float) -> tuple[np.ndarray, list, float]:
     """The straight lines of a thin network (rulers, gridlines): their pixels (a bool
-    crop), the lines themselves fitted to all their pixels (direction and a point,
-    crop pixels), and their width [px].
+    crop), the lines themselves fitted to all their pixels (direction, a point and
+    the range along the direction from it where the line is inked, crop pixels),
+    and their width [px].
 
     Hough finds segments at least :data:`LINE_SEGMENT_MM` long; segments of one
     direction are split by their offset into lines, and each line is refitted to
@@ -641,7 +645,7 @@ def _line_pixels(crop: np.ndarray, px_mm: float) -> tuple[np.ndarray, list, floa
     width = float(np.ceil(2.0 * np.percentile(dt[1:-1, 1:-1][crop], 95))) + 1.0
     ys, xs = np.nonzero(crop)
     pts = np.column_stack([xs, ys]).astype(np.float32)
-    lines, on = [], np.zeros(len(pts), bool)
+    fits = []  # (support [px], line, its pixels)
     for ang in _directions(segs.reshape(-1, 4).astype(float)):
         nrm = np.array([-np.sin(ang), np.cos(ang)])
         rho = pts @ nrm
@@ -650,12 +654,40 @@ def _line_pixels(crop: np.ndarray, px_mm: float) -> tuple[np.ndarray, list, floa
             if near.sum() < n:
                 continue
             vx, vy, x0, y0 = cv2.fitLine(pts[near], cv2.DIST_HUBER, 0, 0.01, 0.01).ravel()
-            lines.append((np.array([vx, vy]), (float(x0), float(y0))))
             d = np.abs((pts - [x0, y0]) @ np.array([-vy, vx]))
-            on |= d <= 0.5 * width + 1.0
+            sup = d <= 0.5 * width + 1.0
+            along = pts[sup] @ np.array([vx, vy]) - (x0 * vx + y0 * vy)
+            line = (np.array([vx, vy]), (float(x0), float(y0)), (along.min(), along.max()))
+            fits.append((len(np.unique(np.round(along))), line, sup))
+    # a line is inked along most of the piece (a ruler's tick tips, or a short
+    # stretch of the ruler, fit lines a few degrees off it: extended across the
+    # box, five such bands took a 35 px swath out of a print the ruler crossed
+    # and split it); one already taken is not taken again
+    lines, on = [], np.zeros(len(pts), bool)
+    span = float(max(crop.shape))
+    for support, line, sup in sorted(fits, key=lambda f: -f[0]):
+        if support < max(n, LINE_SUPPORT * min(span, _chord(crop.shape, line))):
+            continue
+        if np.count_nonzero(sup & ~on) < 0.5 * np.count_nonzero(sup):
+            continue
+        lines.append(line)
+        on |= sup
     out = np.zeros(crop.shape, bool)
     out[ys[on], xs[on]] = True
     return out, lines, width
+
+
+def _chord(shape, line) -> float:
+    """Length [px] of a line (direction, point, ...) within a box of ``shape``."""
+    (vx, vy), (x0, y0) = line[:2]
+    h, w = shape
+    ts = []
+    for v, p, hi in ((vx, x0, w), (vy, y0, h)):
+        if abs(v) > 1e-9:
+            ts.append(sorted(((-0.5 - p) / v, (hi - 0.5 - p) / v)))
+    lo = max(t[0] for t in ts)
+    hi_ = min(t[1] for t in ts)
+    return max(hi_ - lo, 0.0)
 
 
 def _directions(segs: np.ndarray) -> list[float]:
@@ -683,14 +715,17 @@ def _offsets(segs: np.ndarray, nrm: np.ndarray, width: float) -> list[float]:
 
 
 def _bands(lines: list, width: float, box, pooled: _Pooled) -> list:
-    """Lines (crop coordinates) extended across the box, in sheet pixels."""
+    """Lines (crop coordinates) extended beyond their inked range by half its length
+    on either side (their course under a print they cross; for a line spanning its
+    piece's box, as far as the box's diagonal from its middle), in sheet pixels.
+    Not by the box's diagonal whatever the line: a ruler's 5 mm tick extended over
+    the ruler's length crossed the sheet."""
     q = pooled.q
-    h, w = box[0].stop - box[0].start, box[1].stop - box[1].start
     out = []
-    for d, (x0, y0) in lines:
-        t = float(np.hypot(h, w))
-        a = (np.array([x0, y0]) - t * d + 0.5) * q - 0.5
-        b = (np.array([x0, y0]) + t * d + 0.5) * q - 0.5
+    for d, (x0, y0), (t0, t1) in lines:
+        reach = 0.5 * (t1 - t0)
+        a = (np.array([x0, y0]) + (t0 - reach) * d + 0.5) * q - 0.5
+        b = (np.array([x0, y0]) + (t1 + reach) * d + 0.5) * q - 0.5
         off = np.array([box[1].start, box[0].start]) * q
         out.append(_Band(tuple(a + off), tuple(b + off), width * q))
     return out

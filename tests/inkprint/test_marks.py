@@ -51,3 +51,56 @@ def test_sort_ink_ruler_touching_edge_slivers_is_still_a_line(tmp_path):
     # measured within the bar (flagged too: the line grazes the edge, bound 2.5 %)
     assert r["outcome"] in ("pass", "overflagged"), r
     assert abs(r["err_width"]) <= 0.01 and abs(r["err_length"]) <= 0.01
+
+
+def _ruler_piece(long_every: int = 3) -> np.ndarray:
+    # a ruler's line, 3 px wide and 480 px (81 mm) long, ticks every 59 px (10 mm)
+    # to its left, 14 px long and every third one 30 px (5 mm): each long tick is a
+    # straight segment Hough finds
+    img = np.zeros((500, 60), np.uint8)
+    cv2.line(img, (45, 10), (48, 490), 1, 3)
+    for k, y in enumerate(range(20, 490, 59)):
+        cv2.line(img, (45 - (30 if k % long_every == 0 else 14), y), (45, y), 1, 2)
+    return img.astype(bool)
+
+
+def test_line_pixels_ruler_with_ticks_is_one_line():
+    # mixed set 4260, file 30: lines fitted to the tick tips and to short
+    # stretches of the ruler (1-12 degrees off it), extended across the box, took a
+    # 35 px swath out of a ribbed print the ruler crossed and split it (length
+    # -37.5 %); each line now must be inked along half its course, once
+    from inkprint.marks import _line_pixels
+
+    px, lines, _ = _line_pixels(_ruler_piece(), PX_MM)
+    steep = [line for line in lines if abs(line[0][1]) > 0.99]
+    assert len(steep) == 1  # the ruler, once
+    ((d, _, (t0, t1)),) = steep
+    assert_allclose(abs(d[0] / d[1]), 3.0 / 480.0, atol=0.006)  # within 0.35 degrees
+    assert t1 - t0 > 400  # inked along its length
+    for d, _, (t0, t1) in lines:  # the long ticks, if taken, are short lines
+        if abs(d[1]) <= 0.99:
+            assert t1 - t0 < 40
+    assert px[200, 46] and not px[200, 10]
+
+
+def test_bands_reach_as_far_as_the_line_is_inked():
+    # a band goes past its line's inked stretch by half that stretch's length, not
+    # by the box's diagonal: a 5 mm tick's band crossed the sheet
+    from inkprint.marks import _bands, _line_pixels, _pool
+
+    _, lines, width = _line_pixels(_ruler_piece(long_every=1), PX_MM)
+    pooled = _pool(np.zeros((10, 10), bool), PX_MM, AnalysisOptions())
+    box = (slice(0, 500), slice(0, 60))
+    for band, (_, _, (t0, t1)) in zip(_bands(lines, width, box, pooled), lines, strict=True):
+        length = np.hypot(*np.subtract(band.p1, band.p0)) / pooled.q
+        assert_allclose(length, 2 * (t1 - t0), rtol=0.02)
+
+
+def test_sort_ink_ruler_across_a_ribbed_print_keeps_it_whole(tmp_path):
+    # mixed set 4260, file 30 (150 dpi): the ruler's spurious bands split the print
+    # and its 23 mm end went aside as "a letter" (length -37.5 %, flagged only by
+    # the pull of the marks, "up to 1.6 %")
+    results, rows = outcomes(tmp_path, "ruler", 4260 * 100_003 + 30, dpi=None)
+    (r,) = results
+    assert r["outcome"] == "pass", r
+    assert "writing" not in rows[0]["set_aside"]
