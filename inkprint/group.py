@@ -192,7 +192,7 @@ def _element_widths(labels: np.ndarray, n: int, px_mm: float) -> np.ndarray:
     dt = cv2.distanceTransform((labels > 0).astype(np.uint8), cv2.DIST_L2, 3)
     best = np.zeros(n + 1, np.float32)
     ink = labels > 0
-    np.maximum.at(best, labels[ink], dt[ink])
+    reduce_at(np.maximum, best, labels[ink], values=dt[ink])
     return px_to_mm_length(2.0 * best[1:].astype(float), px_mm)
 
 

@@ -748,7 +748,8 @@ def sort_ink(mask, *, mm_per_px: float, options: AnalysisOptions | None = None) 
     thin_lut[0] = 0
     on = parts.thin > 0
     group_map[on] = thin_lut[parts.thin[on]]
-    group_map[lines & ~pooled.mask] = -1
+    if bands:  # (without lines there are no line pixels)
+        group_map[lines & ~pooled.mask] = -1
     shape = mask.shape
     marks = line_marks + _thin_marks(parts, st, owner, sorted_.kind, pooled, shape, opts)
     marks = [_clip_mark(m, shape) for m in marks]
