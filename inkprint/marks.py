@@ -196,6 +196,7 @@ class _Parts:
     n_thin: int
     thin_stats: np.ndarray
     core: np.ndarray
+    thick_stats: np.ndarray
 
 
 def _split(pooled: _Pooled, opts: AnalysisOptions) -> _Parts:
@@ -230,10 +231,10 @@ def _split(pooled: _Pooled, opts: AnalysisOptions) -> _Parts:
         keep[0] = True
         new = np.cumsum(keep, dtype=np.int32) - 1
         new[~keep] = 0
-        l1, n1 = new[l1], int(keep.sum())
+        l1, n1, s1 = new[l1], int(keep.sum()), s1[keep]
     thin = m & (l1 == 0).view(np.uint8)
     n2, l2, s2, _ = components_with_stats(thin, connectivity=8)
-    return _Parts(l1, n1 - 1, l2, n2 - 1, s2, core.view(bool) & (l1 > 0))
+    return _Parts(l1, n1 - 1, l2, n2 - 1, s2, core.view(bool) & (l1 > 0), s1)
 
 
 def _straight_skinny(skinny: np.ndarray, pooled: _Pooled, opts: AnalysisOptions) -> np.ndarray:
@@ -742,14 +743,11 @@ def sort_ink(mask, *, mm_per_px: float, options: AnalysisOptions | None = None) 
         pooled = _pool(mask, mm_per_px, opts)
         sorted_ = _sort_pooled(pooled, opts, network & ~lines & pooled.mask, lines & ~pooled.mask)
     parts, st, owner = sorted_.parts, sorted_.stats, sorted_.owner
-    # group map: k + 1 for print k; -1 a line mark; -2 another mark; 0 paper
-    group_map = np.concatenate([[0], sorted_.comp + 1])[parts.thick]
     thin_lut = np.where(owner >= 0, owner + 1, np.where(st.extent >= opts.line_length_mm, -1, -2))
     thin_lut[0] = 0
-    on = parts.thin > 0
-    group_map[on] = thin_lut[parts.thin[on]]
-    if bands:  # (without lines there are no line pixels)
-        group_map[lines & ~pooled.mask] = -1
+    # (without lines there are no line pixels)
+    line_px = (lines & ~pooled.mask) if bands else None
+    group_map = _GroupMap(parts, np.r_[0, sorted_.comp + 1], thin_lut, line_px)
     shape = mask.shape
     marks = line_marks + _thin_marks(parts, st, owner, sorted_.kind, pooled, shape, opts)
     marks = [_clip_mark(m, shape) for m in marks]
@@ -757,12 +755,14 @@ def sort_ink(mask, *, mm_per_px: float, options: AnalysisOptions | None = None) 
     groups = [
         dataclasses.replace(_lost_on_edge(g, lost) if lost is not None else g, aside_mm2=a)
         for g, a in zip(
-            _full_groups(mask, group_map, sorted_.hulls, pooled, opts), aside, strict=True
+            _full_groups(mask, group_map, (sorted_.comp, owner), sorted_.hulls, pooled, opts),
+            aside,
+            strict=True,
         )
         if g
     ]
     groups.sort(key=lambda g: (g.rows.start + g.rows.stop, g.cols.start))
-    return SortedInk(groups, marks, group_map < 0, pooled.q, grazed)
+    return SortedInk(groups, marks, group_map.marks(), pooled.q, grazed)
 
 
 def _aside_ink(st: _ThinStats, owner: np.ndarray, n: int, opts: AnalysisOptions) -> np.ndarray:
@@ -911,24 +911,67 @@ def _clip_mark(m: Mark, shape) -> Mark:
     return Mark(m.kind, (r0, c0, min(r1, shape[0]), min(c1, shape[1])), m.area_mm2, m.reason)
 
 
-def _full_groups(mask, group_map, hulls: list, pooled: _Pooled, opts: AnalysisOptions):
-    """Each print's ink at full resolution (None for one without ink)."""
+@dataclass(frozen=True)
+class _GroupMap:
+    """The sheet's pooled group map, cropped on demand: k + 1 on print k's pixels,
+    -1 on a line mark's, -2 on another mark's, 0 on paper. ``thick_lut`` and
+    ``thin_lut`` give those values of the thick elements and thin pieces of
+    ``parts``; ``lines``: the lines' pixels beside the ink (-1), or None.
+
+    (Built whole, the map is a gather over every pixel of the sheet, and finding the
+    prints' boxes in it a scan of the whole map: the prints need it in their boxes
+    only, their boxes are their pieces', and the marks are thin pixels.)"""
+
+    parts: _Parts
+    thick_lut: np.ndarray
+    thin_lut: np.ndarray
+    lines: np.ndarray | None
+
+    @property
+    def shape(self) -> tuple:
+        """(H, W) of the pooled grid."""
+        return self.parts.thick.shape
+
+    def crop(self, rows: slice, cols: slice) -> np.ndarray:
+        """The map over a box, (h, w) int."""
+        out = self.thick_lut[self.parts.thick[rows, cols]]
+        thin = self.parts.thin[rows, cols]
+        on = thin > 0
+        out[on] = self.thin_lut[thin[on]]
+        if self.lines is not None:
+            out[self.lines[rows, cols]] = -1
+        return out
+
+    def marks(self) -> np.ndarray:
+        """Where the map is negative (a mark), (H, W) bool."""
+        on = self.parts.thin > 0
+        out = np.zeros(on.shape, bool)
+        out[on] = (self.thin_lut < 0)[self.parts.thin[on]]
+        if self.lines is not None:
+            out |= self.lines
+        return out
+
+
+def _full_groups(mask, group_map: _GroupMap, owners: tuple, hulls: list, pooled, opts):
+    """Each print's ink at full resolution (None for one without ink). ``owners``:
+    the print of each thick element (0-based) and of each thin piece (1-based, -1:
+    none); a print's box holds its pieces' boxes."""
+    import cv2
+
     n_groups = len(hulls)
-    on = group_map > 0
-    rows, cols = np.flatnonzero(on.any(axis=1)), np.flatnonzero(on.any(axis=0))
-    ids = ys = xs = np.zeros(0, np.intp)
-    if len(rows):  # in the groups' box only: the same pixels, fewer to scan
-        box = (slice(rows[0], rows[-1] + 1), slice(cols[0], cols[-1] + 1))
-        ids = group_map[box][on[box]] - 1
-        ys, xs = np.nonzero(on[box])
-        ys, xs = ys + rows[0], xs + cols[0]
+    comp, owner = owners
+    parts = group_map.parts
+    ids = np.r_[comp, owner[1:]].astype(np.intp)
+    st = np.concatenate([parts.thick_stats[1:], parts.thin_stats[1:]])[ids >= 0]
+    ids = ids[ids >= 0]
     big = np.iinfo(np.int64).max
     r0, c0 = np.full(n_groups, big), np.full(n_groups, big)
     r1, c1 = np.full(n_groups, -1), np.full(n_groups, -1)
-    np.minimum.at(r0, ids, ys)
-    np.minimum.at(c0, ids, xs)
-    np.maximum.at(r1, ids, ys)
-    np.maximum.at(c1, ids, xs)
+    top, left = st[:, cv2.CC_STAT_TOP], st[:, cv2.CC_STAT_LEFT]
+    np.minimum.at(r0, ids, top)
+    np.minimum.at(c0, ids, left)
+    np.maximum.at(r1, ids, top + st[:, cv2.CC_STAT_HEIGHT] - 1)
+    np.maximum.at(c1, ids, left + st[:, cv2.CC_STAT_WIDTH] - 1)
     for k in range(n_groups):
         if r1[k] < 0:
             yield None
@@ -945,7 +988,7 @@ def _full_group(mask, group_map, gid: int, box, hull, pooled: _Pooled, opts: Ana
     y0, x0, y1, x1 = box
     r0, r1 = max(y0 - 1, 0), min(y1 + 2, group_map.shape[0])
     c0, c1 = max(x0 - 1, 0), min(x1 + 2, group_map.shape[1])
-    local = group_map[r0:r1, c0:c1]
+    local = group_map.crop(slice(r0, r1), slice(c0, c1))
     region = cv2.dilate((local == gid).astype(np.uint8), np.ones((3, 3), np.uint8))
     region &= ((local == 0) | (local == gid)).astype(np.uint8)  # not a mark, not another print
     rows = slice(r0 * q, min(r1 * q, h))
