@@ -493,13 +493,24 @@ def _blobs(group: Group, darkness, mm_per_px: float) -> _Blobs:
     """The blobs of ``group``."""
     import cv2
 
-    n, lab, stats, cent = components_with_stats(group.mask, connectivity=8)
-    on = np.flatnonzero(group.mask)
+    mask = group.mask if group.mask.dtype == bool else group.mask.astype(bool)
+    n, lab = cv2.connectedComponents(mask.view(np.uint8), connectivity=8)
+    on = np.flatnonzero(mask)
     ids = lab.ravel()[on]
     peak = np.zeros(n, np.float32)
     reduce_at(np.maximum, peak, ids, values=np.asarray(darkness, np.float32).ravel()[on])
-    areas = area_px_to_mm2(stats[1:, cv2.CC_STAT_AREA], mm_per_px)
-    return _Blobs(lab, areas, cent[1:], peak[1:].astype(float), on, ids)
+    # areas and centroids from the ink pixels (OpenCV's statistics sum over every
+    # pixel of the box): exact integer sums, as OpenCV's, over each run of equal
+    # labels first (pixels in raster order: a blob's row segments)
+    area = np.bincount(ids, minlength=n)
+    sums = np.zeros((n, 2), np.int64)
+    if len(ids):
+        row, col = np.divmod(on, mask.shape[1])
+        starts = np.flatnonzero(np.r_[True, ids[1:] != ids[:-1]])
+        for j, v in enumerate((col, row)):
+            np.add.at(sums[:, j], ids[starts], np.add.reduceat(v, starts))
+    cent = sums[1:] / area[1:, None]
+    return _Blobs(lab, area_px_to_mm2(area[1:], mm_per_px), cent, peak[1:].astype(float), on, ids)
 
 
 def outline_points(mask: np.ndarray) -> np.ndarray | None:
@@ -797,8 +808,9 @@ def _block_pattern(thick: np.ndarray, side_px: float) -> bool:
     +2.5 %)."""
     import cv2
 
-    _, _, stats, _ = cv2.connectedComponentsWithStats(thick, connectivity=8)
-    return int(np.count_nonzero(stats[1:, cv2.CC_STAT_AREA] >= side_px**2)) >= 2
+    n, lab = cv2.connectedComponents(thick, connectivity=8)
+    area = np.bincount(lab.ravel()[np.flatnonzero(thick)], minlength=n)  # (ink only)
+    return int(np.count_nonzero(area[1:] >= side_px**2)) >= 2
 
 
 def _at_the_ends(hull_xy: np.ndarray, points: np.ndarray, *, end: float = 0.8) -> np.ndarray:
