@@ -171,10 +171,12 @@ def remove_specks(mask, min_pixels: int) -> np.ndarray:
     if n <= 1:
         return np.zeros(mb.shape, bool)
     # areas from the ink pixels only (OpenCV's statistics sum over every pixel)
-    area = np.bincount(labels.ravel()[np.flatnonzero(mb)], minlength=n)
-    keep = area >= min_pixels
-    keep[0] = False
-    return keep[labels]
+    flat = np.flatnonzero(mb)
+    lab = labels.ravel()[flat]
+    keep = np.bincount(lab, minlength=n) >= min_pixels
+    out = np.array(mb, order="C")  # the specks cleared at their pixels, not a gather
+    out.ravel()[flat[~keep[lab]]] = False  # over the whole box
+    return out
 
 
 def binarize(

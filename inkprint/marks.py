@@ -49,6 +49,7 @@ from .group import (
     element_graph,
     linked_edges,
     merge_overlapping,
+    outline_points,
     union_labels,
 )
 from .options import AnalysisOptions, resolve_options
@@ -257,7 +258,7 @@ def _straight_skinny(skinny: np.ndarray, pooled: _Pooled, opts: AnalysisOptions)
             continue
         x, y, w, h = stats[k, :4]
         piece = (lab[y : y + h, x : x + w] == k).view(np.uint8)
-        (_, _), (a, b), _ = cv2.minAreaRect(cv2.findNonZero(piece))
+        (_, _), (a, b), _ = cv2.minAreaRect(outline_points(piece))  # (the hull's points)
         narrow = px_to_mm_length(min(a, b) + 1, pooled.px_mm) <= 2.0 * opts.stroke_width_mm
         if narrow and px_to_mm_length(max(a, b) + 1, pooled.px_mm) >= opts.line_length_mm:
             out[y : y + h, x : x + w] |= piece
