@@ -421,6 +421,15 @@ def _line_kind(crop: np.ndarray, extent_mm: float, px_mm: float) -> tuple[str, s
     return "text", f"writing or a pen stroke {size} long"
 
 
+def _hull_box(hull, shape) -> tuple | None:
+    """Box (row0, row1, col0, col1, ends included) holding the pixels
+    :func:`_hull_map` fills for a hull (its rounded vertices' box; None: no hull)."""
+    if hull is None:
+        return None
+    p = np.round(hull).astype(np.int32).reshape(-1, 2)
+    return (int(p[:, 1].min()), int(p[:, 1].max()), int(p[:, 0].min()), int(p[:, 0].max()))
+
+
 def _hull_map(hulls: list, shape) -> np.ndarray:
     """Pooled map of the prints' hulls (0: none, k + 1: print k)."""
     import cv2
@@ -542,11 +551,13 @@ def _short_reason(kind: str, t: _ThinStats, k: int, opts: AnalysisOptions) -> st
 
 
 def _nearest_hull(
-    hull_map: np.ndarray, reach_px: float, at: np.ndarray
+    hull_map: np.ndarray, reach_px: float, at: np.ndarray, boxes: list
 ) -> tuple[np.ndarray, np.ndarray]:
     """Distance [pooled px] to the nearest print hull and that print's map id, up to
-    ``reach_px`` from the hulls (beyond: inf and 0; computed on the hulls' box only),
-    at the pixels ``at`` (flat indices into the map)."""
+    ``reach_px`` from the hulls (beyond: inf and 0; computed on the hulls' box only,
+    and there around each cluster of hulls, :func:`_hull_clusters`), at the pixels
+    ``at`` (flat indices into the map). ``boxes``: each hull's box in the map
+    (:func:`_hull_box`)."""
 
     dist = np.full(len(at), np.inf, np.float32)
     ids = np.zeros(len(at), np.int32)
@@ -563,13 +574,58 @@ def _nearest_hull(
     inside = (r >= r0) & (r < r1) & (c >= c0) & (c < c1)
     if not inside.any():
         return dist, ids
-    d, nearest, lut = _nearest_label(hull_map[r0:r1, c0:c1])
-    rr, cc = r[inside] - r0, c[inside] - c0
-    d_at, id_at = d[rr, cc], lut[nearest[rr, cc]]
+    rr, cc = r[inside], c[inside]
+    d_at, id_at = np.full(len(rr), np.inf, np.float32), np.zeros(len(rr), np.int32)
+    for br0, br1, bc0, bc1 in _hull_clusters(boxes, reach_px, (r0, r1, c0, c1)):
+        sel = np.flatnonzero((rr >= br0) & (rr < br1) & (cc >= bc0) & (cc < bc1))
+        if not len(sel):
+            continue
+        d, nearest, lut = _nearest_label(hull_map[br0:br1, bc0:bc1])
+        d_k = d[rr[sel] - br0, cc[sel] - bc0]
+        near = d_k <= reach_px  # (within the reach of one cluster only)
+        d_at[sel[near]] = d_k[near]
+        id_at[sel[near]] = lut[nearest[rr[sel[near]] - br0, cc[sel[near]] - bc0]]
     far = d_at > reach_px
     dist[inside] = np.where(far, np.inf, d_at)
     ids[inside] = np.where(far, 0, id_at)
     return dist, ids
+
+
+def _hull_clusters(boxes: list, reach_px: float, box: tuple) -> list:
+    """Boxes (row0, row1, col0, col1, ends excluded) of the distance transforms of
+    :func:`_nearest_hull` within ``box``: one per cluster of hulls (``boxes``: each
+    hull's (row0, row1, col0, col1), ends included; None: no hull), grown by the
+    farthest a distance of ``reach_px`` runs (OpenCV's 3x3 L2 steps are at least
+    0.955 px a pixel). Clusters' boxes closer than twice that are merged, so no
+    other hull lies within ``reach_px`` of a cluster's grown box: there the
+    transform of that box equals that of the whole map, the nearest labels
+    included (every path from a hull within the reach stays in the box). Apart are
+    only a sheet's separate prints (on the 8-print sheet a third fewer pixels)."""
+    pad = int(np.ceil(reach_px / 0.955)) + 2
+    out = [list(b) for b in boxes if b is not None]
+    merged = True
+    while merged:  # (a handful of prints: pairs checked until none is close)
+        merged = False
+        for i in range(len(out)):
+            for j in range(i):
+                a, b = out[i], out[j]
+                if max(a[0] - b[1], b[0] - a[1], a[2] - b[3], b[2] - a[3]) <= 2 * pad:
+                    out[j] = [min(a[0], b[0]), max(a[1], b[1]), min(a[2], b[2]), max(a[3], b[3])]
+                    del out[i]
+                    merged = True
+                    break
+            if merged:
+                break
+    r0, r1, c0, c1 = box
+    return [
+        (
+            max(a[0] - pad, r0),
+            min(a[1] + pad + 1, r1),
+            max(a[2] - pad, c0),
+            min(a[3] + pad + 1, c1),
+        )
+        for a in out
+    ]
 
 
 @dataclass(frozen=True)
@@ -591,7 +647,8 @@ def _sort_pooled(pooled: _Pooled, opts: AnalysisOptions, network=None, bridge=No
     hulls = _hulls(parts.thick, comp, parts.core) if len(comp) else []
     hull_map = _hull_map(hulls, pooled.mask.shape)
     on = np.flatnonzero(parts.thin > 0)  # the thin pixels, flat
-    near = _nearest_hull(hull_map, mm_to_px_length(opts.line_length_mm, pooled.px_mm), on)
+    reach = mm_to_px_length(opts.line_length_mm, pooled.px_mm)
+    near = _nearest_hull(hull_map, reach, on, [_hull_box(h, hull_map.shape) for h in hulls])
     stats = _thin_stats(parts, hull_map, near, on, pooled)
     owner, kind = _judge_thin(stats, parts, opts, network)
     owner[0] = -1
