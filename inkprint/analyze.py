@@ -37,7 +37,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .binarize import Binarization, binarize, remove_specks
+from .binarize import Binarization, below, binarize, remove_specks
 from .components import components_with_stats, pixel_sums
 from .coords import area_mm2_to_px, area_px_to_mm2, mm_to_px_length, px_to_mm, px_to_mm_length
 from .errors import InvalidInput, NoInk
@@ -626,7 +626,7 @@ def _band_at(ctx: _Context, win: _BandWindow, factor: float, *, grey, local: lis
     level = ctx.binarization.level
     level = level if np.ndim(level) == 0 else level[win.rows, win.cols]
     ink = remove_specks(
-        (work < level * factor) & win.region, area_mm2_to_px(opts.speck_area_mm2, s)
+        below(work, level * factor) & win.region, area_mm2_to_px(opts.speck_area_mm2, s)
     )
     if not ink.any():
         return {}
@@ -738,11 +738,13 @@ def measure_print(ctx: _Context, group: Group, *, index: int = 0, sensitivity: b
         ctx.found.grid, g.rows, g.cols
     )
     fld = _paper_where_set_apart(fld, (g.mask & ~spots.load_bearing) | aside, spots.load_bearing)
-    fld_all = _paper_where_set_apart(fld_all, aside, g.mask)
     m = measure_mask(spots.load_bearing, g.rows.start, g.cols.start, field=fld, **kw)
-    kw["axis"] = m.metrics.orientation  # all ink measured along the same direction
-    kw["hull_px"] = m.hull_px if same else None
-    m_all = measure_mask(g.mask, g.rows.start, g.cols.start, field=fld_all, **kw)
+    if same:  # the same ink, field, outline and direction: the same numbers
+        m_all = m
+    else:
+        fld_all = _paper_where_set_apart(fld_all, aside, g.mask)
+        kw["axis"] = m.metrics.orientation  # all ink measured along the same direction
+        m_all = measure_mask(g.mask, g.rows.start, g.cols.start, field=fld_all, **kw)
     base = _band_values(m.metrics)
     band = (
         sensitivity_band(ctx, g, base=base)

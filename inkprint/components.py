@@ -5,9 +5,11 @@ the cost.
 the image for its statistics, paper included: 13 ms on a 2 Mpx pooled letter sheet,
 where the labelling alone (``cv2.connectedComponents``) takes 1.5 ms. Ink is sparse
 on a print sheet (a few % of the pixels), so :func:`components_with_stats` labels
-with OpenCV and computes the same statistics from the ink pixels only (on a sparse
-mask; a dense one, such as a print's own box, goes to OpenCV whole). The result is
-identical to OpenCV's (tested on random masks), in the same layout.
+with OpenCV and computes the same statistics from the ink pixels only, by row
+segments (:func:`_segment_stats`: 3.2 ms in all on that sheet; 0.55 against
+0.85 ms on a print's own box, 70-85 % ink; an almost all-ink mask goes to OpenCV
+whole). The result is identical to OpenCV's (tested on random masks), in the same
+layout.
 """
 
 from __future__ import annotations
@@ -16,9 +18,9 @@ import numpy as np
 
 __all__ = ["components_with_stats", "pixel_sums", "reduce_at", "row_counts"]
 
-#: above this share of ink, OpenCV's own statistics are the faster (a print's box:
-#: 60-75 % ink, 0.85 ms against 2.2 ms for the ink-only sums on 0.14 Mpx)
-DENSE = 0.25
+#: above this share of ink, OpenCV's own statistics are used (the row segments are
+#: faster up to 85 % ink at least: a print's box, 0.55 against 0.85 ms on 0.13 Mpx)
+DENSE = 0.9
 
 
 def components_with_stats(mask, *, connectivity: int = 8):
@@ -51,28 +53,53 @@ def components_with_stats(mask, *, connectivity: int = 8):
     if cv2.countNonZero(mb.view(np.uint8)) > DENSE * mb.size:  # OpenCV's is faster
         return cv2.connectedComponentsWithStats(mb.view(np.uint8), connectivity=connectivity)
     n, labels = cv2.connectedComponents(mb.view(np.uint8), connectivity=connectivity)
-    h, w = labels.shape
+    w = labels.shape[1]
     flat = np.flatnonzero(mb)  # (numpy's nonzero is ~8x faster on bool than on uint8)
-    lab = labels.ravel()[flat]
-    row, col = np.divmod(flat, w)
-    area = np.bincount(lab, minlength=n)
     stats = np.zeros((n, 5), np.int64)
     cent = np.zeros((n, 2))
+    sums = (0, 0)
     if n > 1:
-        lo_c, hi_c = np.full(n, w), np.full(n, -1)
-        lo_r, hi_r = np.full(n, h), np.full(n, -1)
-        reduce_at(np.minimum, lo_c, lab, values=col)
-        reduce_at(np.maximum, hi_c, lab, values=col)
-        reduce_at(np.minimum, lo_r, lab, values=row)
-        reduce_at(np.maximum, hi_r, lab, values=row)
-        stats[1:] = np.column_stack(
-            [lo_c[1:], lo_r[1:], hi_c[1:] - lo_c[1:] + 1, hi_r[1:] - lo_r[1:] + 1, area[1:]]
-        )
-        with np.errstate(invalid="ignore", divide="ignore"):
-            cent[1:, 0] = np.bincount(lab, col, minlength=n)[1:] / area[1:]
-            cent[1:, 1] = np.bincount(lab, row, minlength=n)[1:] / area[1:]
-    stats[0], cent[0] = _background(h, w, row, col)
+        seg_stats, seg_cent, sums = _segment_stats(flat, labels.ravel()[flat], n, w)
+        stats[1:], cent[1:] = seg_stats[1:], seg_cent[1:]
+    stats[0], cent[0] = _background(mb, len(flat), sums)
     return n, labels, stats.astype(np.int32), cent
+
+
+def _segment_stats(flat: np.ndarray, lab: np.ndarray, n: int, w: int):
+    """Per label 0..n-1 (label 0: zeros): OpenCV's statistics (left, top, width,
+    height, area) and centroid of the pixels at ``flat`` (flat indices, ascending)
+    labelled ``lab``, in an image ``w`` wide; and the sums of all the pixels'
+    columns and rows.
+
+    The pixels are taken by *segments*: runs of one label on one row (raster order).
+    A segment's first and last pixels are its leftmost and rightmost, its columns
+    sum from its flat indices: a few passes over the pixels, the rest over the
+    segments (a few % of them). The sums are exact integers, so the centroids are
+    OpenCV's to the last bit."""
+    row = flat // w
+    cut = np.flatnonzero((lab[1:] != lab[:-1]) | (row[1:] != row[:-1])) + 1
+    first = np.r_[0, cut]
+    last = np.r_[cut - 1, len(flat) - 1]
+    s_lab, s_row = lab[first], row[first]
+    s_n = last - first + 1
+    s_c0, s_c1 = flat[first] - s_row * w, flat[last] - s_row * w
+    s_sum = np.add.reduceat(flat, first) - s_row * w * s_n  # the columns' sum
+    area = np.bincount(s_lab, s_n, minlength=n).astype(np.int64)
+    lo_c, hi_c = np.full(n, w, np.int64), np.full(n, -1, np.int64)
+    lo_r, hi_r = np.full(n, 1 << 62, np.int64), np.full(n, -1, np.int64)
+    reduce_at(np.minimum, lo_c, s_lab, values=s_c0)
+    reduce_at(np.maximum, hi_c, s_lab, values=s_c1)
+    reduce_at(np.minimum, lo_r, s_lab, values=s_row)
+    reduce_at(np.maximum, hi_r, s_lab, values=s_row)
+    stats = np.column_stack([lo_c, lo_r, hi_c - lo_c + 1, hi_r - lo_r + 1, area])
+    stats[0] = 0
+    sum_c = np.bincount(s_lab, s_sum, minlength=n)  # (exact: integers below 2**53)
+    sum_r = np.bincount(s_lab, s_row * s_n, minlength=n)
+    cent = np.zeros((n, 2))
+    with np.errstate(invalid="ignore", divide="ignore"):
+        cent[1:, 0] = sum_c[1:] / area[1:]
+        cent[1:, 1] = sum_r[1:] / area[1:]
+    return stats, cent, (int(s_sum.sum()), int((s_row * s_n).sum()))
 
 
 def reduce_at(ufunc, out: np.ndarray, labels: np.ndarray, *, values: np.ndarray) -> None:
@@ -99,21 +126,30 @@ def reduce_at(ufunc, out: np.ndarray, labels: np.ndarray, *, values: np.ndarray)
     ufunc.at(out, labels[starts], ufunc.reduceat(values, starts))
 
 
-def _background(h: int, w: int, row: np.ndarray, col: np.ndarray):
-    """Statistics and centroid of the zero pixels, from the ink's (row, col)."""
-    n0 = h * w - len(row)
+def _background(mb: np.ndarray, n_ink: int, sums: tuple):
+    """Statistics and centroid of the zero pixels of ``mb`` (bool), from its ink's
+    count and the sums of the ink's columns and rows (``sums``)."""
+    h, w = mb.shape
+    n0 = h * w - n_ink
     if n0 == 0:
         return np.zeros(5, np.int64), np.zeros(2)
-    rows = np.flatnonzero(np.bincount(row, minlength=h) < w)  # rows with paper
-    cols = np.flatnonzero(np.bincount(col, minlength=w) < h)
-    r0, r1, c0, c1 = rows[0], rows[-1], cols[0], cols[-1]
+    (r0, r1), (c0, c1) = _paper_span(mb), _paper_span(mb.T)
     # sums over all pixels less the ink's
-    sum_c = h * (w - 1) * w / 2.0 - col.sum()
-    sum_r = w * (h - 1) * h / 2.0 - row.sum()
+    sum_c = h * (w - 1) * w / 2.0 - sums[0]
+    sum_r = w * (h - 1) * h / 2.0 - sums[1]
     return (
         np.array([c0, r0, c1 - c0 + 1, r1 - r0 + 1, n0], np.int64),
         np.array([sum_c / n0, sum_r / n0]),
     )
+
+
+def _paper_span(mb: np.ndarray) -> tuple[int, int]:
+    """The first and last row of ``mb`` (bool, not all ink) holding paper: on a
+    sheet its first and last, checked before scanning every row."""
+    if not (mb[0].all() or mb[-1].all()):
+        return 0, len(mb) - 1
+    rows = np.flatnonzero(~mb.all(axis=1))
+    return int(rows[0]), int(rows[-1])
 
 
 def row_counts(mask: np.ndarray) -> np.ndarray:

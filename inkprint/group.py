@@ -192,7 +192,7 @@ def _element_widths(labels: np.ndarray, n: int, px_mm: float) -> np.ndarray:
     dt = cv2.distanceTransform((labels > 0).astype(np.uint8), cv2.DIST_L2, 3)
     best = np.zeros(n + 1, np.float32)
     ink = labels > 0
-    np.maximum.at(best, labels[ink], dt[ink])
+    reduce_at(np.maximum, best, labels[ink], values=dt[ink])
     return px_to_mm_length(2.0 * best[1:].astype(float), px_mm)
 
 
@@ -484,8 +484,7 @@ class EdgeSpots:
 class _Blobs:
     """8-connected blobs of a group: labels (0 = paper), areas [mm^2], centroids
     (x = col, y = row) [px] and peak darkness, per blob 1..n; the ink pixels (flat
-    indices, raster order) and their labels; per blob its extent (the longer side
-    of its box) [mm]."""
+    indices, raster order) and their labels."""
 
     labels: np.ndarray
     areas: np.ndarray
@@ -493,22 +492,47 @@ class _Blobs:
     peak: np.ndarray
     at: np.ndarray
     ids: np.ndarray
-    extents: np.ndarray
+
+    def extents(self, which: np.ndarray, mm_per_px: float) -> np.ndarray:
+        """Extent [mm] (the longer side of its box) of each blob, 0 for those not
+        in ``which`` ((n,) bool: only these are measured)."""
+        out = np.zeros(len(which))
+        sel = np.concatenate([[False], which])[self.ids]
+        if not sel.any():
+            return out
+        k = self.ids[sel] - 1
+        row, col = np.divmod(self.at[sel], self.labels.shape[1])
+        side = np.zeros(len(which), np.int64)
+        for v in (row, col):
+            lo, hi = np.full(len(which), v.max()), np.zeros(len(which), np.int64)
+            np.minimum.at(lo, k, v)
+            np.maximum.at(hi, k, v)
+            side = np.maximum(side, hi - lo + 1)
+        return np.where(which, px_to_mm_length(side.astype(float), mm_per_px), 0.0)
 
 
 def _blobs(group: Group, darkness, mm_per_px: float) -> _Blobs:
     """The blobs of ``group``."""
     import cv2
 
-    n, lab, stats, cent = components_with_stats(group.mask, connectivity=8)
-    on = np.flatnonzero(group.mask)
+    mask = group.mask if group.mask.dtype == bool else group.mask.astype(bool)
+    n, lab = cv2.connectedComponents(mask.view(np.uint8), connectivity=8)
+    on = np.flatnonzero(mask)
     ids = lab.ravel()[on]
     peak = np.zeros(n, np.float32)
     reduce_at(np.maximum, peak, ids, values=np.asarray(darkness, np.float32).ravel()[on])
-    areas = area_px_to_mm2(stats[1:, cv2.CC_STAT_AREA], mm_per_px)
-    side = np.maximum(stats[1:, cv2.CC_STAT_WIDTH], stats[1:, cv2.CC_STAT_HEIGHT])
-    extents = px_to_mm_length(side.astype(float), mm_per_px)
-    return _Blobs(lab, areas, cent[1:], peak[1:].astype(float), on, ids, extents)
+    # areas and centroids from the ink pixels (OpenCV's statistics sum over every
+    # pixel of the box): exact integer sums, as OpenCV's, over each run of equal
+    # labels first (pixels in raster order: a blob's row segments)
+    area = np.bincount(ids, minlength=n)
+    sums = np.zeros((n, 2), np.int64)
+    if len(ids):
+        row, col = np.divmod(on, mask.shape[1])
+        starts = np.flatnonzero(np.r_[True, ids[1:] != ids[:-1]])
+        for j, v in enumerate((col, row)):
+            np.add.at(sums[:, j], ids[starts], np.add.reduceat(v, starts))
+    cent = sums[1:] / area[1:, None]
+    return _Blobs(lab, area_px_to_mm2(area[1:], mm_per_px), cent, peak[1:].astype(float), on, ids)
 
 
 def outline_points(mask: np.ndarray) -> np.ndarray | None:
@@ -806,8 +830,9 @@ def _block_pattern(thick: np.ndarray, side_px: float) -> bool:
     +2.5 %)."""
     import cv2
 
-    _, _, stats, _ = cv2.connectedComponentsWithStats(thick, connectivity=8)
-    return int(np.count_nonzero(stats[1:, cv2.CC_STAT_AREA] >= side_px**2)) >= 2
+    n, lab = cv2.connectedComponents(thick, connectivity=8)
+    area = np.bincount(lab.ravel()[np.flatnonzero(thick)], minlength=n)  # (ink only)
+    return int(np.count_nonzero(area[1:] >= side_px**2)) >= 2
 
 
 def _at_the_ends(hull_xy: np.ndarray, points: np.ndarray, *, end: float = 0.8) -> np.ndarray:
@@ -919,7 +944,9 @@ def _spots(
     if not spot.any():
         return EdgeSpots(group.mask.copy(), n_blobs, 0, 0, pattern)
     is_spot = np.concatenate([[False], spot])[blobs.labels]
-    blocks = spot & faint & (blobs.extents > opts.dot_mm)  # not a halo dot: a block?
+    blocks = spot & faint  # larger than a halo dot: a lightly inked block?
+    if blocks.any():
+        blocks &= blobs.extents(blocks, mm_per_px) > opts.dot_mm
     faint_blocks = np.concatenate([[False], blocks])[blobs.labels] if blocks.any() else None
     n_spots, n_px = int(spot.sum()), int(is_spot.sum())
     return EdgeSpots(group.mask & ~is_spot, n_blobs, n_spots, n_px, pattern, faint_blocks)

@@ -49,6 +49,7 @@ from .group import (
     element_graph,
     linked_edges,
     merge_overlapping,
+    outline_points,
     union_labels,
 )
 from .options import AnalysisOptions, resolve_options
@@ -199,6 +200,7 @@ class _Parts:
     n_thin: int
     thin_stats: np.ndarray
     core: np.ndarray
+    thick_stats: np.ndarray
 
 
 def _split(pooled: _Pooled, opts: AnalysisOptions) -> _Parts:
@@ -233,10 +235,10 @@ def _split(pooled: _Pooled, opts: AnalysisOptions) -> _Parts:
         keep[0] = True
         new = np.cumsum(keep, dtype=np.int32) - 1
         new[~keep] = 0
-        l1, n1 = new[l1], int(keep.sum())
+        l1, n1, s1 = new[l1], int(keep.sum()), s1[keep]
     thin = m & (l1 == 0).view(np.uint8)
     n2, l2, s2, _ = components_with_stats(thin, connectivity=8)
-    return _Parts(l1, n1 - 1, l2, n2 - 1, s2, core.view(bool) & (l1 > 0))
+    return _Parts(l1, n1 - 1, l2, n2 - 1, s2, core.view(bool) & (l1 > 0), s1)
 
 
 def _straight_skinny(skinny: np.ndarray, pooled: _Pooled, opts: AnalysisOptions) -> np.ndarray:
@@ -259,7 +261,7 @@ def _straight_skinny(skinny: np.ndarray, pooled: _Pooled, opts: AnalysisOptions)
             continue
         x, y, w, h = stats[k, :4]
         piece = (lab[y : y + h, x : x + w] == k).view(np.uint8)
-        (_, _), (a, b), _ = cv2.minAreaRect(cv2.findNonZero(piece))
+        (_, _), (a, b), _ = cv2.minAreaRect(outline_points(piece))  # (the hull's points)
         narrow = px_to_mm_length(min(a, b) + 1, pooled.px_mm) <= 2.0 * opts.stroke_width_mm
         if narrow and px_to_mm_length(max(a, b) + 1, pooled.px_mm) >= opts.line_length_mm:
             out[y : y + h, x : x + w] |= piece
@@ -422,6 +424,15 @@ def _line_kind(crop: np.ndarray, extent_mm: float, px_mm: float) -> tuple[str, s
     return "text", f"writing or a pen stroke {size} long"
 
 
+def _hull_box(hull, shape) -> tuple | None:
+    """Box (row0, row1, col0, col1, ends included) holding the pixels
+    :func:`_hull_map` fills for a hull (its rounded vertices' box; None: no hull)."""
+    if hull is None:
+        return None
+    p = np.round(hull).astype(np.int32).reshape(-1, 2)
+    return (int(p[:, 1].min()), int(p[:, 1].max()), int(p[:, 0].min()), int(p[:, 0].max()))
+
+
 def _hull_map(hulls: list, shape) -> np.ndarray:
     """Pooled map of the prints' hulls (0: none, k + 1: print k)."""
     import cv2
@@ -551,11 +562,13 @@ def _short_reason(kind: str, t: _ThinStats, k: int, opts: AnalysisOptions) -> st
 
 
 def _nearest_hull(
-    hull_map: np.ndarray, reach_px: float, at: np.ndarray
+    hull_map: np.ndarray, reach_px: float, at: np.ndarray, boxes: list
 ) -> tuple[np.ndarray, np.ndarray]:
     """Distance [pooled px] to the nearest print hull and that print's map id, up to
-    ``reach_px`` from the hulls (beyond: inf and 0; computed on the hulls' box only),
-    at the pixels ``at`` (flat indices into the map)."""
+    ``reach_px`` from the hulls (beyond: inf and 0; computed on the hulls' box only,
+    and there around each cluster of hulls, :func:`_hull_clusters`), at the pixels
+    ``at`` (flat indices into the map). ``boxes``: each hull's box in the map
+    (:func:`_hull_box`)."""
 
     dist = np.full(len(at), np.inf, np.float32)
     ids = np.zeros(len(at), np.int32)
@@ -572,13 +585,58 @@ def _nearest_hull(
     inside = (r >= r0) & (r < r1) & (c >= c0) & (c < c1)
     if not inside.any():
         return dist, ids
-    d, nearest, lut = _nearest_label(hull_map[r0:r1, c0:c1])
-    rr, cc = r[inside] - r0, c[inside] - c0
-    d_at, id_at = d[rr, cc], lut[nearest[rr, cc]]
+    rr, cc = r[inside], c[inside]
+    d_at, id_at = np.full(len(rr), np.inf, np.float32), np.zeros(len(rr), np.int32)
+    for br0, br1, bc0, bc1 in _hull_clusters(boxes, reach_px, (r0, r1, c0, c1)):
+        sel = np.flatnonzero((rr >= br0) & (rr < br1) & (cc >= bc0) & (cc < bc1))
+        if not len(sel):
+            continue
+        d, nearest, lut = _nearest_label(hull_map[br0:br1, bc0:bc1])
+        d_k = d[rr[sel] - br0, cc[sel] - bc0]
+        near = d_k <= reach_px  # (within the reach of one cluster only)
+        d_at[sel[near]] = d_k[near]
+        id_at[sel[near]] = lut[nearest[rr[sel[near]] - br0, cc[sel[near]] - bc0]]
     far = d_at > reach_px
     dist[inside] = np.where(far, np.inf, d_at)
     ids[inside] = np.where(far, 0, id_at)
     return dist, ids
+
+
+def _hull_clusters(boxes: list, reach_px: float, box: tuple) -> list:
+    """Boxes (row0, row1, col0, col1, ends excluded) of the distance transforms of
+    :func:`_nearest_hull` within ``box``: one per cluster of hulls (``boxes``: each
+    hull's (row0, row1, col0, col1), ends included; None: no hull), grown by the
+    farthest a distance of ``reach_px`` runs (OpenCV's 3x3 L2 steps are at least
+    0.955 px a pixel). Clusters' boxes closer than twice that are merged, so no
+    other hull lies within ``reach_px`` of a cluster's grown box: there the
+    transform of that box equals that of the whole map, the nearest labels
+    included (every path from a hull within the reach stays in the box). Apart are
+    only a sheet's separate prints (on the 8-print sheet a third fewer pixels)."""
+    pad = int(np.ceil(reach_px / 0.955)) + 2
+    out = [list(b) for b in boxes if b is not None]
+    merged = True
+    while merged:  # (a handful of prints: pairs checked until none is close)
+        merged = False
+        for i in range(len(out)):
+            for j in range(i):
+                a, b = out[i], out[j]
+                if max(a[0] - b[1], b[0] - a[1], a[2] - b[3], b[2] - a[3]) <= 2 * pad:
+                    out[j] = [min(a[0], b[0]), max(a[1], b[1]), min(a[2], b[2]), max(a[3], b[3])]
+                    del out[i]
+                    merged = True
+                    break
+            if merged:
+                break
+    r0, r1, c0, c1 = box
+    return [
+        (
+            max(a[0] - pad, r0),
+            min(a[1] + pad + 1, r1),
+            max(a[2] - pad, c0),
+            min(a[3] + pad + 1, c1),
+        )
+        for a in out
+    ]
 
 
 @dataclass(frozen=True)
@@ -600,7 +658,8 @@ def _sort_pooled(pooled: _Pooled, opts: AnalysisOptions, network=None, bridge=No
     hulls = _hulls(parts.thick, comp, parts.core) if len(comp) else []
     hull_map = _hull_map(hulls, pooled.mask.shape)
     on = np.flatnonzero(parts.thin > 0)  # the thin pixels, flat
-    near = _nearest_hull(hull_map, mm_to_px_length(opts.line_length_mm, pooled.px_mm), on)
+    reach = mm_to_px_length(opts.line_length_mm, pooled.px_mm)
+    near = _nearest_hull(hull_map, reach, on, [_hull_box(h, hull_map.shape) for h in hulls])
     stats = _thin_stats(parts, hull_map, near, on, pooled)
     owner, kind = _judge_thin(stats, parts, opts, network)
     owner[0] = -1
@@ -785,13 +844,11 @@ def sort_ink(mask, *, mm_per_px: float, options: AnalysisOptions | None = None) 
         pooled = _pool(mask, mm_per_px, opts)
         sorted_ = _sort_pooled(pooled, opts, network & ~lines & pooled.mask, lines & ~pooled.mask)
     parts, st, owner = sorted_.parts, sorted_.stats, sorted_.owner
-    # group map: k + 1 for print k; -1 a line mark; -2 another mark; 0 paper
-    group_map = np.concatenate([[0], sorted_.comp + 1])[parts.thick]
     thin_lut = np.where(owner >= 0, owner + 1, np.where(st.extent >= opts.line_length_mm, -1, -2))
     thin_lut[0] = 0
-    on = parts.thin > 0
-    group_map[on] = thin_lut[parts.thin[on]]
-    group_map[lines & ~pooled.mask] = -1
+    # (without lines there are no line pixels)
+    line_px = (lines & ~pooled.mask) if bands else None
+    group_map = _GroupMap(parts, np.r_[0, sorted_.comp + 1], thin_lut, line_px)
     shape = mask.shape
     marks = line_marks + _thin_marks(parts, st, owner, sorted_.kind, pooled, shape, opts)
     marks = [_clip_mark(m, shape) for m in marks]
@@ -799,12 +856,14 @@ def sort_ink(mask, *, mm_per_px: float, options: AnalysisOptions | None = None) 
     groups = [
         dataclasses.replace(_lost_on_edge(g, lost) if lost is not None else g, aside_mm2=a)
         for g, a in zip(
-            _full_groups(mask, group_map, sorted_.hulls, pooled, opts), aside, strict=True
+            _full_groups(mask, group_map, (sorted_.comp, owner), sorted_.hulls, pooled, opts),
+            aside,
+            strict=True,
         )
         if g
     ]
     groups.sort(key=lambda g: (g.rows.start + g.rows.stop, g.cols.start))
-    return SortedInk(groups, marks, group_map < 0, pooled.q, grazed)
+    return SortedInk(groups, marks, group_map.marks(), pooled.q, grazed)
 
 
 def _aside_ink(st: _ThinStats, owner: np.ndarray, n: int, opts: AnalysisOptions) -> np.ndarray:
@@ -953,24 +1012,67 @@ def _clip_mark(m: Mark, shape) -> Mark:
     return Mark(m.kind, (r0, c0, min(r1, shape[0]), min(c1, shape[1])), m.area_mm2, m.reason)
 
 
-def _full_groups(mask, group_map, hulls: list, pooled: _Pooled, opts: AnalysisOptions):
-    """Each print's ink at full resolution (None for one without ink)."""
+@dataclass(frozen=True)
+class _GroupMap:
+    """The sheet's pooled group map, cropped on demand: k + 1 on print k's pixels,
+    -1 on a line mark's, -2 on another mark's, 0 on paper. ``thick_lut`` and
+    ``thin_lut`` give those values of the thick elements and thin pieces of
+    ``parts``; ``lines``: the lines' pixels beside the ink (-1), or None.
+
+    (Built whole, the map is a gather over every pixel of the sheet, and finding the
+    prints' boxes in it a scan of the whole map: the prints need it in their boxes
+    only, their boxes are their pieces', and the marks are thin pixels.)"""
+
+    parts: _Parts
+    thick_lut: np.ndarray
+    thin_lut: np.ndarray
+    lines: np.ndarray | None
+
+    @property
+    def shape(self) -> tuple:
+        """(H, W) of the pooled grid."""
+        return self.parts.thick.shape
+
+    def crop(self, rows: slice, cols: slice) -> np.ndarray:
+        """The map over a box, (h, w) int."""
+        out = self.thick_lut[self.parts.thick[rows, cols]]
+        thin = self.parts.thin[rows, cols]
+        on = thin > 0
+        out[on] = self.thin_lut[thin[on]]
+        if self.lines is not None:
+            out[self.lines[rows, cols]] = -1
+        return out
+
+    def marks(self) -> np.ndarray:
+        """Where the map is negative (a mark), (H, W) bool."""
+        on = self.parts.thin > 0
+        out = np.zeros(on.shape, bool)
+        out[on] = (self.thin_lut < 0)[self.parts.thin[on]]
+        if self.lines is not None:
+            out |= self.lines
+        return out
+
+
+def _full_groups(mask, group_map: _GroupMap, owners: tuple, hulls: list, pooled, opts):
+    """Each print's ink at full resolution (None for one without ink). ``owners``:
+    the print of each thick element (0-based) and of each thin piece (1-based, -1:
+    none); a print's box holds its pieces' boxes."""
+    import cv2
+
     n_groups = len(hulls)
-    on = group_map > 0
-    rows, cols = np.flatnonzero(on.any(axis=1)), np.flatnonzero(on.any(axis=0))
-    ids = ys = xs = np.zeros(0, np.intp)
-    if len(rows):  # in the groups' box only: the same pixels, fewer to scan
-        box = (slice(rows[0], rows[-1] + 1), slice(cols[0], cols[-1] + 1))
-        ids = group_map[box][on[box]] - 1
-        ys, xs = np.nonzero(on[box])
-        ys, xs = ys + rows[0], xs + cols[0]
+    comp, owner = owners
+    parts = group_map.parts
+    ids = np.r_[comp, owner[1:]].astype(np.intp)
+    st = np.concatenate([parts.thick_stats[1:], parts.thin_stats[1:]])[ids >= 0]
+    ids = ids[ids >= 0]
     big = np.iinfo(np.int64).max
     r0, c0 = np.full(n_groups, big), np.full(n_groups, big)
     r1, c1 = np.full(n_groups, -1), np.full(n_groups, -1)
-    np.minimum.at(r0, ids, ys)
-    np.minimum.at(c0, ids, xs)
-    np.maximum.at(r1, ids, ys)
-    np.maximum.at(c1, ids, xs)
+    top, left = st[:, cv2.CC_STAT_TOP], st[:, cv2.CC_STAT_LEFT]
+    np.minimum.at(r0, ids, top)
+    np.minimum.at(c0, ids, left)
+    np.maximum.at(r1, ids, top + st[:, cv2.CC_STAT_HEIGHT] - 1)
+    np.maximum.at(c1, ids, left + st[:, cv2.CC_STAT_WIDTH] - 1)
     for k in range(n_groups):
         if r1[k] < 0:
             yield None
@@ -987,7 +1089,7 @@ def _full_group(mask, group_map, gid: int, box, hull, pooled: _Pooled, opts: Ana
     y0, x0, y1, x1 = box
     r0, r1 = max(y0 - 1, 0), min(y1 + 2, group_map.shape[0])
     c0, c1 = max(x0 - 1, 0), min(x1 + 2, group_map.shape[1])
-    local = group_map[r0:r1, c0:c1]
+    local = group_map.crop(slice(r0, r1), slice(c0, c1))
     region = cv2.dilate((local == gid).astype(np.uint8), np.ones((3, 3), np.uint8))
     region &= ((local == 0) | (local == gid)).astype(np.uint8)  # not a mark, not another print
     rows = slice(r0 * q, min(r1 * q, h))

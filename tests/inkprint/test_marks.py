@@ -4,7 +4,7 @@ import cv2
 import numpy as np
 from numpy.testing import assert_allclose
 
-from inkprint.marks import _line_run
+from inkprint.marks import _hull_box, _hull_map, _line_run, _nearest_hull, _nearest_label
 from inkprint.options import AnalysisOptions
 from tests.inkprint.test_classes import outcomes
 
@@ -104,3 +104,44 @@ def test_sort_ink_ruler_across_a_ribbed_print_keeps_it_whole(tmp_path):
     (r,) = results
     assert r["outcome"] == "pass", r
     assert "writing" not in rows[0]["set_aside"]
+
+
+def _nearest_hull_whole_box(hull_map, reach_px, at):
+    # the reference: one distance transform over the box of all the hulls
+    dist, ids = np.full(len(at), np.inf, np.float32), np.zeros(len(at), np.int32)
+    ys, xs = np.nonzero(hull_map)
+    if not len(ys):
+        return dist, ids
+    pad = int(np.ceil(reach_px)) + 2
+    h, w = hull_map.shape
+    r0, r1 = max(ys.min() - pad, 0), min(ys.max() + pad + 1, h)
+    c0, c1 = max(xs.min() - pad, 0), min(xs.max() + pad + 1, w)
+    r, c = np.divmod(at, w)
+    inside = (r >= r0) & (r < r1) & (c >= c0) & (c < c1)
+    d, nearest, lut = _nearest_label(hull_map[r0:r1, c0:c1])
+    rr, cc = r[inside] - r0, c[inside] - c0
+    far = d[rr, cc] > reach_px
+    dist[inside] = np.where(far, np.inf, d[rr, cc])
+    ids[inside] = np.where(far, 0, lut[nearest[rr, cc]])
+    return dist, ids
+
+
+def test_nearest_hull_by_clusters_equals_one_transform_over_all_hulls():
+    # the transforms around each cluster of hulls give the distances and nearest
+    # hulls of one transform over them all, on hull maps with hulls near and far
+    rng = np.random.default_rng(7)
+    for _ in range(150):
+        h, w = rng.integers(60, 300, 2)
+        hulls = []
+        for _k in range(int(rng.integers(1, 10))):
+            c = rng.uniform(-20, w + 20), rng.uniform(-20, h + 20)
+            spread = rng.uniform(1, 40), rng.uniform(1, 25)
+            pts = np.column_stack([rng.normal(c[i], spread[i], 12) for i in (0, 1)])
+            hulls.append(cv2.convexHull(pts.astype(np.float32)) if rng.random() > 0.1 else None)
+        hull_map = _hull_map(hulls, (h, w))
+        reach = float(rng.uniform(0.5, 80))
+        at = np.arange(h * w)
+        got = _nearest_hull(hull_map, reach, at, [_hull_box(x, (h, w)) for x in hulls])
+        want = _nearest_hull_whole_box(hull_map, reach, at)
+        np.testing.assert_array_equal(got[0], want[0])
+        np.testing.assert_array_equal(got[1], want[1])
