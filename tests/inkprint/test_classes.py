@@ -60,9 +60,12 @@ def test_group_blobs_wide_groove_knobs_make_one_print(tmp_path, seed):
     assert all(r["n_blobs"] > 10 for r in rows)  # many knobs, one print each
 
 
-def test_group_blobs_keeps_two_wide_groove_prints_apart():
+@pytest.mark.parametrize("apart", [110.0, 72.0])
+def test_group_blobs_keeps_two_wide_groove_prints_apart(apart):
+    # 6.5 mm between knobs: prints 65 mm and 27 mm apart (over 4 x their own gaps;
+    # the pattern rule links gaps up to group_pattern_factor = 3 x)
     p = [
-        PrintSpec(90, 45, (80, 170), 0.0, "mtb", block=5, gap=6.5, unevenness=0.0),
+        PrintSpec(90, 45, (80, 60 + apart), 0.0, "mtb", block=5, gap=6.5, unevenness=0.0),
         PrintSpec(90, 45, (80, 60), 0.0, "mtb", block=5, gap=6.5, unevenness=0.0),
     ]
     scan, truths = scan_of(SheetSpec(tuple(p), size=(160, 230), specks=0))
@@ -76,6 +79,15 @@ def test_group_blobs_car_ribs_make_one_print(tmp_path):
     results, rows = outcomes(tmp_path, "car", 1)
     assert_passes(results)
     assert len(rows) == 1 and rows[0]["axis_source"] == "manifest"
+
+
+def test_group_blobs_car_grooves_as_wide_as_the_pattern_rule_allowed(tmp_path):
+    # mixed set 4265, file 36 (150 dpi): circumferential grooves of 13.9 mm, 2.57 x
+    # the 5.4 mm lateral ones and 0.84 x the blocks: with group_pattern_factor 2.5
+    # the first rib was a print of its own (width -21.7 %, and a spurious print)
+    results, rows = outcomes(tmp_path, "car", 4265 * 100_003 + 36, dpi=None)
+    assert_passes(results)
+    assert len(rows) == 1
 
 
 def test_group_blobs_group_mm_overrides_the_footprint_rule():
