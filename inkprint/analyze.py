@@ -202,12 +202,15 @@ def _smooth_pips(f: np.ndarray, mask: np.ndarray, jump: float) -> np.ndarray:
     ink by one side only) darker than both its neighbours along the edge by more
     than ``jump`` taking their mean: a dust speck touching the edge, not the edge (a
     print's edge changes its coverage from pixel to pixel by 1 / (2 R) for a radius
-    of curvature R [px]; a one-pixel speck at a print's widest point read +1.2 %)."""
+    of curvature R [px]; a one-pixel speck at a print's widest point read +1.2 %).
+    An ink pixel joined by a corner only (a thick print's outline is joined by its
+    sides) darker than all four side neighbours by ``jump`` takes their mean: a pen
+    stroke's last pixel touching the edge (label 4265/6 at 150 dpi: width +1.5 %)."""
     import cv2
 
     m8 = mask.view(np.uint8) if mask.dtype == bool else mask.astype(np.uint8)
     n4 = cv2.filter2D(m8, -1, _CROSS, borderType=cv2.BORDER_CONSTANT)
-    pts = cv2.findNonZero(cv2.compare(n4, 1, cv2.CMP_EQ) & m8)
+    pts = cv2.findNonZero(cv2.compare(n4, 1, cv2.CMP_LE) & m8)
     if pts is None:
         return f
     cc, rr = pts.reshape(-1, 2).T
@@ -217,11 +220,20 @@ def _smooth_pips(f: np.ndarray, mask: np.ndarray, jump: float) -> np.ndarray:
     vertical = ((m8[up, cc] & (rr > 0)) | (m8[down, cc] & (rr < h - 1))).astype(bool)
     a = np.where(vertical, f[rr, left], f[up, cc])
     b = np.where(vertical, f[rr, right], f[down, cc])
+    lone = n4[rr, cc] == 0
+    if lone.any():  # joined by a corner: all four side neighbours
+        ud = np.minimum(f[up, cc], f[down, cc])
+        lr = np.minimum(f[rr, left], f[rr, right])
+        a = np.where(lone, ud, a)
+        b = np.where(lone, lr, b)
     dust = np.minimum(a, b) - f[rr, cc] > jump
     if not dust.any():
         return f
     out = f.copy()
-    out[rr[dust], cc[dust]] = 0.5 * (a[dust] + b[dust])
+    mean = np.where(lone, 0.25, 0.5) * np.where(
+        lone, f[up, cc] + f[down, cc] + f[rr, left] + f[rr, right], a + b
+    )
+    out[rr[dust], cc[dust]] = mean[dust]
     return out
 
 

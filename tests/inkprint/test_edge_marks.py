@@ -48,6 +48,33 @@ def test_edge_field_dust_pip_reads_as_paper_an_edge_run_as_ink():
     assert edge_field(grey, mask, mm_per_px=0.1, options=loose)[9, 20] < 0
 
 
+def test_edge_field_pixel_joined_by_a_corner_reads_as_paper():
+    # a pen stroke's last pixel touching the edge by a corner only (its side
+    # neighbours paper): paper; a corner-joined pixel as light as the edge is kept,
+    # and an edge's own staircase (pixels joined by a side) keeps its ink
+    grey = np.full((20, 40), 0.95, np.float32)
+    grey[10:, :] = 0.05
+    grey[10, 20] = 0.7  # the edge pixel under it partly covered, not ink
+    grey[9, 20] = 0.3  # the stroke's end: joined by the corners at (10, 19), (10, 21)
+    grey[9, 30] = 0.3  # a speck joined by a side: a pip, as before
+    grey[9, 5:8] = 0.3  # a run of the edge
+    mask = grey < 0.5
+    f = edge_field(grey, mask, mm_per_px=0.1)
+    assert f[9, 20] > 0 and f[9, 30] > 0
+    assert (f[9, 5:8] < 0).all()
+    faint = grey.copy()
+    faint[9, 20] = 0.45  # not darker than its side neighbours by the jump
+    assert edge_field(faint, faint < 0.5, mm_per_px=0.1)[9, 20] < 0
+
+
+def test_analyze_scan_label_stroke_end_on_the_edge(tmp_path):
+    # mixed set 4265, file 6 (150 dpi): a faint label's stroke ends in a dark pixel
+    # joined to the print's edge by a corner: width +1.54 %, unflagged
+    results, _ = outcomes(tmp_path, "label", mixed_file(4265, 6), dpi=None)
+    assert not [r for r in results if r["outcome"] in SILENT], results
+    assert abs(results[0]["err_width"]) <= 0.01
+
+
 def test_thin_protrusions_label_stroke_off_a_slick_print_tip(tmp_path):
     # 4246/0060: a label's letter (A) beside a slick print's tip, off its ends along
     # its major axis, was kept as a tip block's sliver: hull area +2.5 %
