@@ -767,6 +767,14 @@ def measure_print(ctx: _Context, group: Group, *, index: int = 0, sensitivity: b
     flags, warnings = _print_flags(
         ctx, group, m, index, int(np.ceil(margin)), padded=g, kept=spots.load_bearing
     )
+    reach = _reach_beyond_body(ctx, spots.load_bearing, m.metrics.orientation)
+    if reach > opts.body_reach and "mark_on_edge" not in flags:
+        flags += ("mark_on_edge",)
+        warnings += (
+            f"print #{index}: its ink reaches {100 * reach:.0f} % beyond the print's body "
+            f"in length or width: a line as wide as a pen stroke (a ruler's edge) taken "
+            f"for tread? See the overlay, remove the line or rescan",
+        )
     faint = _faint_excess(ctx, g, spots, m, grey=grey, local=local, aside=aside)
     if faint > opts.edge_uncertainty:
         flags += ("faint_edge",)
@@ -791,6 +799,47 @@ def measure_print(ctx: _Context, group: Group, *, index: int = 0, sensitivity: b
         warnings=warnings,
         unit=ctx.scan.unit,
     )
+
+
+def _reach_beyond_body(ctx: _Context, ink: np.ndarray, angle: float) -> float:
+    """How far the print's ink reaches beyond its body: the largest relative excess
+    of its length or width (along ``angle`` [rad] and across) over those of its body,
+    the ink closed by a disk a stroke wide (grooves, sipes, a file pattern's pores)
+    and opened by one 2.5 strokes wide (lines and slivers narrower than that go);
+    0 when the body holds under a fifth of the ink (sparse knobs: nothing to judge
+    by) or when no bar at least ``line_length_mm`` long and no wider than 2.5
+    strokes lies outside the body's hull (a tapering tip)."""
+    import cv2
+
+    from .group import outline_points
+
+    stroke = stroke_px(ctx.scan.mm_per_px, ctx.opts)
+    ink8 = ink.view(np.uint8) if ink.dtype == bool else ink.astype(np.uint8)
+    pad = int(np.ceil(2.5 * stroke)) + 2
+    box = cv2.copyMakeBorder(ink8, pad, pad, pad, pad, cv2.BORDER_CONSTANT, value=0)
+    body = box
+    for op, size in ((cv2.MORPH_CLOSE, stroke), (cv2.MORPH_OPEN, 2.5 * stroke)):
+        k = max(3, round(size) | 1)
+        disk = cv2.getStructuringElement(cv2.MORPH_ELLIPSE, (k, k))
+        body = cv2.morphologyEx(body, op, disk)
+    if cv2.countNonZero(body & box) < 0.2 * cv2.countNonZero(box):
+        return 0.0
+    # what lies outside the body's hull must hold a straight bar at least
+    # line_length_mm long (a tip the opening took is short and tapers: slick and
+    # knobby prints reach up to +65 % beyond their bodies so)
+    hull = cv2.fillConvexPoly(np.zeros_like(box), cv2.convexHull(outline_points(body)), 1)
+    out = box & (1 - cv2.dilate(hull, np.ones((3, 3), np.uint8)))
+    _, _, st, _ = cv2.connectedComponentsWithStats(out, connectivity=8)
+    bar = mm_to_px_length(ctx.opts.line_length_mm, ctx.scan.mm_per_px)
+    long = np.hypot(st[1:, cv2.CC_STAT_WIDTH], st[1:, cv2.CC_STAT_HEIGHT]) >= bar
+    thin = st[1:, cv2.CC_STAT_AREA] <= 2.5 * stroke * np.hypot(
+        st[1:, cv2.CC_STAT_WIDTH], st[1:, cv2.CC_STAT_HEIGHT]
+    )
+    if not (long & thin).any():
+        return 0.0
+    flip = np.array([1.0, -1.0])
+    ext = [_extents(outline_points(m).reshape(-1, 2) * flip, angle) + 1.0 for m in (box, body)]
+    return float(np.max(ext[0] / ext[1]) - 1.0)
 
 
 def _faint_excess(ctx: _Context, g: Group, spots, m, *, grey, local, aside) -> float:

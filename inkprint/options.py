@@ -55,6 +55,7 @@ _RULES = {
     "edge_mark_mm": (lambda v: v >= 0, ">= 0 mm"),
     "mark_near_px": (lambda v: v >= 1 and float(v).is_integer(), "a whole number of pixels >= 1"),
     "mark_pull": (lambda v: 0 <= v < 1, "a relative change in [0, 1)"),
+    "body_reach": (lambda v: v > 0, "> 0 (a relative change)"),
     "tick_reach_mm": (lambda v: v >= 0, ">= 0 mm"),
     "edge_bump_px": (lambda v: v > 0, "> 0 px"),
     "writing_share": (lambda v: v >= 0, ">= 0 (times the group's own ink)"),
@@ -207,6 +208,12 @@ class AnalysisOptions:
         ``edge_uncertainty``: the pixels within half a stroke bound the pull from
         above, so 0.6 %, not the 0.3 % a two-pixel lower bound needed; the outline
         also follows the mark's grey).
+    body_reach : float [-]
+        A print whose ink reaches farther than this share beyond its body (its ink
+        closed by a disk a stroke wide, then opened by one 2.5 strokes wide) in
+        length or width is flagged ``mark_on_edge``: a line as wide as a pen
+        stroke or wider (a ruler's edge lying along the print) was taken for tread
+        and measured with it. Tip slivers cut by the outline reach a few percent.
     tick_reach_mm : float [mm]
         Within this of ink set aside touching a print (a ruler's ticks are 3-5 mm
         long) its outline is compared with a parabola fitted to the outline on
@@ -306,6 +313,7 @@ class AnalysisOptions:
     edge_uncertainty: float = 0.006
     mark_near_px: int = 2
     mark_pull: float = 0.006
+    body_reach: float = 0.15
     tick_reach_mm: float = 5.0
     edge_bump_px: float = 1.0
     writing_share: float = 0.5

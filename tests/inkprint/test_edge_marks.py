@@ -8,6 +8,7 @@ slick print's tip.
 
 import cv2
 import numpy as np
+import pytest
 from numpy.testing import assert_allclose
 
 import inkprint as ip
@@ -175,3 +176,28 @@ def test_tangent_bound_line_crossing_a_round_edge_adds_under_a_pixel():
     own2 = (r <= 60.0) & ~graze
     kept2 = _tangent_bound(outline_points(own2), graze, 8)
     assert graze.sum() > 200 and kept2.sum() >= graze.sum() - 2  # (a corner pixel)
+
+
+@pytest.mark.parametrize("width_mm", [1.6, 2.0])
+def test_measure_print_line_as_wide_as_a_stroke_along_a_print_is_flagged(width_mm):
+    # mixed set 4269, file 12: a ruler line with ticks 1 mm wide (wider than a stroke: it
+    # stays thick ink) lying along a print joined it, length +186 %, unflagged. The
+    # print's ink reaching far beyond its body flags it; the plain print does not
+    from inkprint.synth import PrintSpec, SheetSpec
+    from inkprint.synth_effects import Line
+
+    p = PrintSpec(60.0, 18.0, (100.0, 120.0), 10.0, "slick")
+    line = Line((40.0, 113.0), (170.0, 136.0), width_mm, 0.9)
+    for marks, flagged in (((line,), True), ((), False)):
+        img, _ = render_sheet(SheetSpec((p,), dpi=150.0, marks=marks, specks=0))
+        r = ip.analyze_scan(ip.Scan(img, 25.4 / 150.0, "given"), sensitivity=False)
+        (q,) = r.prints
+        said = [w for w in q.warnings if "beyond the print's body" in w]
+        assert bool(said) == flagged, (width_mm, q.flags, q.warnings)
+        assert ("mark_on_edge" in q.flags) == flagged
+
+
+def test_measure_print_ruler_along_a_print_is_flagged(tmp_path):
+    results, rows = outcomes(tmp_path, "ruler", mixed_file(4269, 12), dpi=None)
+    assert not [r for r in results if r["outcome"] in SILENT], results
+    assert "mark_on_edge" in rows[0]["flags"]
