@@ -813,21 +813,8 @@ def _reach_beyond_body(ctx: _Context, ink: np.ndarray, angle: float) -> float:
 
     from .group import outline_points
 
-    # on a grid about a third of a stroke a pixel (the morphology's cost falls with
-    # its square; a judgement of millimetres, not of pixels)
-    f = max(1, int(stroke_px(ctx.scan.mm_per_px, ctx.opts) // 3))
-    stroke = stroke_px(ctx.scan.mm_per_px * f, ctx.opts)
+    stroke = stroke_px(ctx.scan.mm_per_px, ctx.opts)
     ink8 = ink.view(np.uint8) if ink.dtype == bool else ink.astype(np.uint8)
-    if f > 1:
-        h, w = ink8.shape
-        ink8 = (
-            cv2.resize(
-                ink8 * np.uint8(255),
-                (max(w // f, 1), max(h // f, 1)),
-                interpolation=cv2.INTER_AREA,
-            )
-            > 127
-        ).view(np.uint8)
     pad = int(np.ceil(2.5 * stroke)) + 2
     box = cv2.copyMakeBorder(ink8, pad, pad, pad, pad, cv2.BORDER_CONSTANT, value=0)
     body = box
@@ -843,7 +830,7 @@ def _reach_beyond_body(ctx: _Context, ink: np.ndarray, angle: float) -> float:
     hull = cv2.fillConvexPoly(np.zeros_like(box), cv2.convexHull(outline_points(body)), 1)
     out = box & (1 - cv2.dilate(hull, np.ones((3, 3), np.uint8)))
     _, _, st, _ = cv2.connectedComponentsWithStats(out, connectivity=8)
-    bar = mm_to_px_length(ctx.opts.line_length_mm, ctx.scan.mm_per_px * f)
+    bar = mm_to_px_length(ctx.opts.line_length_mm, ctx.scan.mm_per_px)
     long = np.hypot(st[1:, cv2.CC_STAT_WIDTH], st[1:, cv2.CC_STAT_HEIGHT]) >= bar
     thin = st[1:, cv2.CC_STAT_AREA] <= 2.5 * stroke * np.hypot(
         st[1:, cv2.CC_STAT_WIDTH], st[1:, cv2.CC_STAT_HEIGHT]

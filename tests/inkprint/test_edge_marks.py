@@ -178,8 +178,8 @@ def test_tangent_bound_line_crossing_a_round_edge_adds_under_a_pixel():
     assert graze.sum() > 200 and kept2.sum() >= graze.sum() - 2  # (a corner pixel)
 
 
-@pytest.mark.parametrize("width_mm", [1.6, 2.0])
-def test_measure_print_line_as_wide_as_a_stroke_along_a_print_is_flagged(width_mm):
+@pytest.mark.parametrize(("width_mm", "dpi"), [(1.6, 150.0), (2.0, 150.0), (1.6, 300.0)])
+def test_measure_print_line_as_wide_as_a_stroke_along_a_print_is_flagged(width_mm, dpi):
     # mixed set 4269, file 12: a ruler line with ticks 1 mm wide (wider than a stroke: it
     # stays thick ink) lying along a print joined it, length +186 %, unflagged. The
     # print's ink reaching far beyond its body flags it; the plain print does not
@@ -189,8 +189,8 @@ def test_measure_print_line_as_wide_as_a_stroke_along_a_print_is_flagged(width_m
     p = PrintSpec(60.0, 18.0, (100.0, 120.0), 10.0, "slick")
     line = Line((40.0, 113.0), (170.0, 136.0), width_mm, 0.9)
     for marks, flagged in (((line,), True), ((), False)):
-        img, _ = render_sheet(SheetSpec((p,), dpi=150.0, marks=marks, specks=0))
-        r = ip.analyze_scan(ip.Scan(img, 25.4 / 150.0, "given"), sensitivity=False)
+        img, _ = render_sheet(SheetSpec((p,), dpi=dpi, marks=marks, specks=0))
+        r = ip.analyze_scan(ip.Scan(img, 25.4 / dpi, "given"), sensitivity=False)
         (q,) = r.prints
         said = [w for w in q.warnings if "beyond the print's body" in w]
         assert bool(said) == flagged, (width_mm, q.flags, q.warnings)
