@@ -210,7 +210,7 @@ class AnalysisOptions:
         also follows the mark's grey).
     body_reach : float [-]
         A print whose ink reaches farther than this share beyond its body (its ink
-        closed by a disk a stroke wide, then opened by one 2.5 strokes wide) in
+        closed by a square a stroke wide, then opened by one 2.5 strokes wide) in
         length or width is flagged ``mark_on_edge``: a line as wide as a pen
         stroke or wider (a ruler's edge lying along the print) was taken for tread
         and measured with it. Tip slivers cut by the outline reach a few percent.
