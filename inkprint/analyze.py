@@ -42,7 +42,7 @@ from .components import components_with_stats, pixel_sums
 from .coords import area_mm2_to_px, area_px_to_mm2, mm_to_px_length, px_to_mm, px_to_mm_length
 from .errors import InvalidInput, NoInk
 from .gridlines import Gridlines, find_gridlines, stroke_px
-from .group import Group, PrintCheck, _sides, edge_spots, is_print
+from .group import SMALL_PRINT_MM2, Group, PrintCheck, _sides, edge_spots, is_print, outline_points
 from .light import Page, prepare_page
 from .marks import Mark, SortedInk, sort_ink
 from .options import AnalysisOptions, resolve_options, resolve_threads
@@ -376,6 +376,15 @@ def own_axis(hull_px, angle: float) -> tuple[float, float]:
     return turn, float(np.max(given / np.maximum(best, 1e-9)) - 1.0)
 
 
+def _mask_excess(more: np.ndarray, less: np.ndarray, angle: float) -> float:
+    """The largest relative excess of the length or the width (along ``angle`` [rad]
+    and across) of the pixels of mask ``more`` over those of mask ``less`` (both in
+    one box, (row, col); extents of whole pixels)."""
+    flip = np.array([1.0, -1.0])
+    ext = [_extents(outline_points(m).reshape(-1, 2) * flip, angle) + 1.0 for m in (more, less)]
+    return float(np.max(ext[0] / ext[1]) - 1.0)
+
+
 def _extents(xy: np.ndarray, angle: float) -> np.ndarray:
     """Extents [px] of points along ``angle`` and across it."""
     c, s = math.cos(angle), math.sin(angle)
@@ -517,8 +526,6 @@ def _without_texture_bits(kept: list, marks: list, shape, mm_per_px: float) -> l
     blob of the texture cannot be told from a print's last piece (a texture page
     gave a 6 x 4 mm "print" at its corner instead of "no print found"); they are
     set aside as texture (in ``marks``)."""
-    from .group import SMALL_PRINT_MM2
-
     out = []
     for g in kept:
         small = area_px_to_mm2(g.n_pixels, mm_per_px) < SMALL_PRINT_MM2
@@ -811,8 +818,6 @@ def _reach_beyond_body(ctx: _Context, ink: np.ndarray, angle: float) -> float:
     strokes lies outside the body's hull (a tapering tip)."""
     import cv2
 
-    from .group import outline_points
-
     stroke = stroke_px(ctx.scan.mm_per_px, ctx.opts)
     ink8 = ink.view(np.uint8) if ink.dtype == bool else ink.astype(np.uint8)
     pad = int(np.ceil(2.5 * stroke)) + 2
@@ -838,9 +843,7 @@ def _reach_beyond_body(ctx: _Context, ink: np.ndarray, angle: float) -> float:
     )
     if not (long & thin).any():
         return 0.0
-    flip = np.array([1.0, -1.0])
-    ext = [_extents(outline_points(m).reshape(-1, 2) * flip, angle) + 1.0 for m in (box, body)]
-    return float(np.max(ext[0] / ext[1]) - 1.0)
+    return _mask_excess(box, body, angle)
 
 
 def _faint_excess(ctx: _Context, g: Group, spots, m, *, grey, local, aside) -> float:
@@ -1030,8 +1033,6 @@ def _edge_uncertainty(ctx: _Context, g: Group, kept: np.ndarray, angle: float) -
     print's padded box, ``kept`` its ink measured."""
     import cv2
 
-    from .group import outline_points
-
     grid, lines = ctx.found.grid, ctx.found.sorted.grazed
     if grid is None and lines is None:
         return 0.0
@@ -1141,8 +1142,6 @@ def _mark_pull(ctx: _Context, g: Group, kept: np.ndarray, angle: float) -> float
     as set aside."""
     import cv2
 
-    from .group import outline_points
-
     h, w = ctx.page.work.shape
     # at least half a stroke: the foot a stroke-wide opening leaves where a tick
     # meets the edge at a shallow angle (marks._drop_thin_near) reaches that far from
@@ -1164,13 +1163,9 @@ def _mark_pull(ctx: _Context, g: Group, kept: np.ndarray, angle: float) -> float
     core = own & ~near.view(bool)
     if not (own & near.view(bool)).any() or not core.any():
         return 0.0
-    ext = [
-        _extents(pts.reshape(-1, 2) * np.array([1.0, -1.0]), angle) + 1.0
-        for pts in (outline_points(own), outline_points(core))
-    ]
     reach = mm_to_px_length(ctx.opts.tick_reach_mm, ctx.scan.mm_per_px)
     bump = _bump_pull(own, aside, angle, reach, ctx.opts.edge_bump_px)
-    return max(float(np.max(ext[0] / ext[1]) - 1.0), bump)
+    return max(_mask_excess(own, core, angle), bump)
 
 
 def _bump_pull(own: np.ndarray, aside: np.ndarray, angle: float, reach: float, bump: float):

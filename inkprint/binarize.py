@@ -16,6 +16,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .components import cleared
 from .coords import mm_to_px_length
 from .errors import AllInk, InvalidInput, NoInk
 from .light import to_uint8
@@ -174,9 +175,7 @@ def remove_specks(mask, min_pixels: int) -> np.ndarray:
     flat = np.flatnonzero(mb)
     lab = labels.ravel()[flat]
     keep = np.bincount(lab, minlength=n) >= min_pixels
-    out = np.array(mb, order="C")  # the specks cleared at their pixels, not a gather
-    out.ravel()[flat[~keep[lab]]] = False  # over the whole box
-    return out
+    return cleared(mb, flat[~keep[lab]])
 
 
 def binarize(

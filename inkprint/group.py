@@ -51,7 +51,7 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
-from .components import components_with_stats, reduce_at
+from .components import cleared, components_with_stats, piece_stats, reduce_at
 from .coords import area_px_to_mm2, binned_mm_per_px, mm_to_px_length, px_to_mm_length
 from .options import AnalysisOptions, resolve_options
 
@@ -483,32 +483,17 @@ class EdgeSpots:
 @dataclass(frozen=True)
 class _Blobs:
     """8-connected blobs of a group: labels (0 = paper), areas [mm^2], centroids
-    (x = col, y = row) [px] and peak darkness, per blob 1..n; the ink pixels (flat
-    indices, raster order) and their labels."""
+    (x = col, y = row) [px], peak darkness and extent (the longer side of its box)
+    [mm], per blob 1..n; the ink pixels (flat indices, raster order) and their
+    labels."""
 
     labels: np.ndarray
     areas: np.ndarray
     centroids: np.ndarray
     peak: np.ndarray
+    extents: np.ndarray
     at: np.ndarray
     ids: np.ndarray
-
-    def extents(self, which: np.ndarray, mm_per_px: float) -> np.ndarray:
-        """Extent [mm] (the longer side of its box) of each blob, 0 for those not
-        in ``which`` ((n,) bool: only these are measured)."""
-        out = np.zeros(len(which))
-        sel = np.concatenate([[False], which])[self.ids]
-        if not sel.any():
-            return out
-        k = self.ids[sel] - 1
-        row, col = np.divmod(self.at[sel], self.labels.shape[1])
-        side = np.zeros(len(which), np.int64)
-        for v in (row, col):
-            lo, hi = np.full(len(which), v.max()), np.zeros(len(which), np.int64)
-            np.minimum.at(lo, k, v)
-            np.maximum.at(hi, k, v)
-            side = np.maximum(side, hi - lo + 1)
-        return np.where(which, px_to_mm_length(side.astype(float), mm_per_px), 0.0)
 
 
 def _blobs(group: Group, darkness, mm_per_px: float) -> _Blobs:
@@ -521,18 +506,18 @@ def _blobs(group: Group, darkness, mm_per_px: float) -> _Blobs:
     ids = lab.ravel()[on]
     peak = np.zeros(n, np.float32)
     reduce_at(np.maximum, peak, ids, values=np.asarray(darkness, np.float32).ravel()[on])
-    # areas and centroids from the ink pixels (OpenCV's statistics sum over every
-    # pixel of the box): exact integer sums, as OpenCV's, over each run of equal
-    # labels first (pixels in raster order: a blob's row segments)
-    area = np.bincount(ids, minlength=n)
-    sums = np.zeros((n, 2), np.int64)
-    if len(ids):
-        row, col = np.divmod(on, mask.shape[1])
-        starts = np.flatnonzero(np.r_[True, ids[1:] != ids[:-1]])
-        for j, v in enumerate((col, row)):
-            np.add.at(sums[:, j], ids[starts], np.add.reduceat(v, starts))
-    cent = sums[1:] / area[1:, None]
-    return _Blobs(lab, area_px_to_mm2(area[1:], mm_per_px), cent, peak[1:].astype(float), on, ids)
+    # statistics from the ink pixels (OpenCV's sum over every pixel of the box)
+    st, cent = piece_stats(lab, on, n)
+    side = np.maximum(st[1:, cv2.CC_STAT_WIDTH], st[1:, cv2.CC_STAT_HEIGHT])
+    return _Blobs(
+        lab,
+        area_px_to_mm2(st[1:, cv2.CC_STAT_AREA], mm_per_px),
+        cent[1:],
+        peak[1:].astype(float),
+        px_to_mm_length(side.astype(float), mm_per_px),
+        on,
+        ids,
+    )
 
 
 def outline_points(mask: np.ndarray) -> np.ndarray | None:
@@ -712,7 +697,7 @@ def _thin_parts(
     apart = np.zeros(n, bool)  # the pieces thin all through with ink outside the hull
     apart[ids] = True
     apart &= ~foot
-    stats, cent = _piece_stats(lab, apart)
+    stats, cent = piece_stats(lab, np.flatnonzero(apart[lab]), n)
     stroke = np.maximum(stats[:, cv2.CC_STAT_WIDTH], stats[:, cv2.CC_STAT_HEIGHT]) > width_px
     ends = _at_the_ends(hull_pts.reshape(-1, 2).astype(float), cent) & apart
     if ends.any() and not _block_pattern(
@@ -729,32 +714,6 @@ def _thin_parts(
             opts=resolve_options(opts),
         )
     return _ThinParts(at, ids, foot, stroke, ends)
-
-
-def _piece_stats(labels: np.ndarray, which: np.ndarray) -> tuple:
-    """OpenCV's statistics (left, top, width, height, area) and centroids (x, y) of
-    the labelled pieces ``which`` ((n,) bool), from their pixels only; zeros for
-    the other pieces."""
-    n = len(which)
-    stats, cent = np.zeros((n, 5), np.int32), np.zeros((n, 2))
-    if not which.any():
-        return stats, cent
-    rows, cols = np.nonzero(which[labels])
-    lab = labels[rows, cols]
-    ids = np.flatnonzero(which)
-    area = np.bincount(lab, minlength=n)[ids]
-    big = max(labels.shape)
-    lo_c, lo_r, hi_c, hi_r = np.full(n, big), np.full(n, big), np.full(n, -1), np.full(n, -1)
-    np.minimum.at(lo_c, lab, cols)
-    np.minimum.at(lo_r, lab, rows)
-    np.maximum.at(hi_c, lab, cols)
-    np.maximum.at(hi_r, lab, rows)
-    stats[ids] = np.column_stack(
-        [lo_c[ids], lo_r[ids], hi_c[ids] - lo_c[ids] + 1, hi_r[ids] - lo_r[ids] + 1, area]
-    )
-    cent[ids, 0] = np.bincount(lab, cols, minlength=n)[ids] / area
-    cent[ids, 1] = np.bincount(lab, rows, minlength=n)[ids] / area
-    return stats, cent
 
 
 def _along_outline(thin: tuple, lab, stats, hull, *, skip, opts: AnalysisOptions) -> np.ndarray:
@@ -811,14 +770,7 @@ def _outside_distance(points: np.ndarray, polygon: np.ndarray) -> np.ndarray:
 def _drop_thin(mask: np.ndarray, parts: _ThinParts | None, *, dots: bool) -> np.ndarray:
     if parts is None:
         return mask
-    return _without(mask, parts.at[parts.dropped(dots=dots)])
-
-
-def _without(mask: np.ndarray, flat: np.ndarray) -> np.ndarray:
-    """A copy of ``mask`` (bool) without the pixels at ``flat`` (flat indices)."""
-    out = np.array(mask, dtype=bool, order="C")
-    out.ravel()[flat] = False
-    return out
+    return cleared(mask, parts.at[parts.dropped(dots=dots)])
 
 
 def _block_pattern(thick: np.ndarray, side_px: float) -> bool:
@@ -897,7 +849,7 @@ def edge_spots(
     if parts is None:
         return _spots(group, darkness, mm_per_px, opts, gap=tread_gap)
     gone = parts.dropped(dots=rule_on)  # of the thin pixels; with dots=False a subset
-    kept = _without(group.mask, parts.at[gone])
+    kept = cleared(group.mask, parts.at[gone])
     dots = parts.at[gone & ~parts.dropped(dots=False)]
     n_thin = _count_pieces(parts.at[gone], group.mask.shape) if kept.any() else 0
     if n_thin:  # pen-thin ink beside the print: strokes are marks, dots edge spots
@@ -944,9 +896,7 @@ def _spots(
     if not spot.any():
         return EdgeSpots(group.mask.copy(), n_blobs, 0, 0, pattern)
     is_spot = np.concatenate([[False], spot])[blobs.labels]
-    blocks = spot & faint  # larger than a halo dot: a lightly inked block?
-    if blocks.any():
-        blocks &= blobs.extents(blocks, mm_per_px) > opts.dot_mm
+    blocks = spot & faint & (blobs.extents > opts.dot_mm)  # not a halo dot: a block?
     faint_blocks = np.concatenate([[False], blocks])[blobs.labels] if blocks.any() else None
     n_spots, n_px = int(spot.sum()), int(is_spot.sum())
     return EdgeSpots(group.mask & ~is_spot, n_blobs, n_spots, n_px, pattern, faint_blocks)

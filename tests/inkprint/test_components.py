@@ -11,8 +11,7 @@ from numpy.testing import assert_allclose, assert_array_equal
 
 from inkprint.analyze import _crossings, _Level
 from inkprint.binarize import remove_specks
-from inkprint.components import DENSE, components_with_stats
-from inkprint.group import _piece_stats
+from inkprint.components import DENSE, components_with_stats, piece_stats
 
 
 def _random_mask(seed: int, shape, share: float, blur: float) -> np.ndarray:
@@ -61,7 +60,7 @@ def test_piece_stats_equal_opencv_for_the_pieces_asked(seed, share, blur):
     assert_array_equal(lab, lab0)
     which = np.random.default_rng(seed).random(n) < 0.5
     which[0] = False
-    stats, cent = _piece_stats(lab, which)
+    stats, cent = piece_stats(lab, np.flatnonzero(which[lab]), n)
     assert_array_equal(stats[which], st0[which])
     assert_array_equal(cent[which], c0[which])
     assert not stats[~which].any()
