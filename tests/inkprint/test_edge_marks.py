@@ -201,3 +201,31 @@ def test_measure_print_ruler_along_a_print_is_flagged(tmp_path):
     results, rows = outcomes(tmp_path, "ruler", mixed_file(4269, 12), dpi=None)
     assert not [r for r in results if r["outcome"] in SILENT], results
     assert "mark_on_edge" in rows[0]["flags"]
+
+
+def test_bump_pull_tick_on_an_outer_rib():
+    # a ribbed print is three pieces: the outer ribs make its hull, the middle one
+    # has the longest outline; a tick's end out of the upper rib's edge went unseen
+    # when only the longest outline was judged (ruler 5007/84: width +4.5 %)
+    from inkprint.analyze import _bump_pull
+
+    yy, xx = np.mgrid[:160, :600]
+    lens = ((xx - 300) / 280.0) ** 2 + ((yy - 80) / 60.0) ** 2 <= 1.0
+    own = lens & (np.abs(yy - 80) % 40 >= 4)  # three ribs apart: grooves 8 px wide
+    own &= ~((np.abs(yy - 80) >= 4) & (np.abs(yy - 80) < 16))  # the middle rib apart
+    assert len(np.unique(cv2_labels(own))) - 1 >= 3
+    aside = np.zeros_like(own)
+    top = np.flatnonzero(own[:, 300])[0]
+    aside[: top - 2, 330:333] = True  # a line leaving the upper rib's edge
+    assert _bump_pull(own, aside, 0.0, 40.0, 1.0) == 0.0
+    ticked = own.copy()
+    ticked[top - 3 : top + 1, 300:325] = True  # the tick's end 3 px out of the edge
+    width = np.ptp(np.flatnonzero(own.any(axis=1))) + 1
+    pull = _bump_pull(ticked, aside, 0.0, 40.0, 1.0)  # the points beyond 1 px out
+    assert 2.0 / width - 0.002 <= pull <= 3.0 / width + 0.002  # of the tick's 3 px
+
+
+def cv2_labels(mask):
+    import cv2
+
+    return cv2.connectedComponents(mask.astype(np.uint8), connectivity=8)[1]
