@@ -228,7 +228,7 @@ def run_key(digest: str, options: Options, job: Job) -> str:
 def _error_row(job: Job, exc, *, digest: str = "", key: str = "", page="") -> dict:
     text = exc if isinstance(exc, str) else f"{type(exc).__name__}: {exc}"
     return {
-        **job.file_meta(),
+        **(job.file_meta() if page == "" else job.page_meta(int(page))),
         "file": job.display,
         "page": page,
         "print": "",
@@ -239,10 +239,11 @@ def _error_row(job: Job, exc, *, digest: str = "", key: str = "", page="") -> di
     }
 
 
-def _file_options(job: Job, options: Options):
-    """The scale, rolling axis and analysis options of one file (batch settings,
-    else its manifest's ``dpi`` / ``mm_per_px``, ``rolling_axis``, ``group_mm``)."""
-    meta = job.file_meta()
+def _file_options(job: Job, options: Options, page: int | None = None):
+    """The scale, rolling axis and analysis options of one file, or of one of its
+    pages (batch settings, else the manifest's ``dpi`` / ``mm_per_px``,
+    ``rolling_axis``, ``group_mm``: of the page's own row where it has one)."""
+    meta = job.file_meta() if page is None else job.page_meta(page)
     dpi, mmpp = options.dpi, options.mm_per_px
     if dpi is None and mmpp is None:
         dpi, mmpp = cell_number(meta.get("dpi")), cell_number(meta.get("mm_per_px"))
@@ -308,11 +309,43 @@ def overlay_name(job: Job, page: int) -> str:
     return f"{p.stem}_{p.suffix.lstrip('.').lower()}_{tag}_p{page}_overlay.png"
 
 
+def _page_plans(job: Job, data: bytes, options: Options) -> list[tuple]:
+    """``(pages, file options)`` to read the file with: one plan for the whole file,
+    or, when the manifest has rows for single pages whose scale, rolling axis or
+    grouping differ, one per set of pages that share them (a PDF's pages of several
+    tires, some wider than long: each page's own ``rolling_axis``; the first row's
+    was used for every page, length and width swapped silently)."""
+    named = job.pages_named
+    whole = _file_options(job, options)
+    if not named:
+        return [(options.pages, whole)]
+    from .read import page_count
+
+    pages = range(page_count(job.path, data=data)) if options.pages is None else options.pages
+    plans: dict = {}
+    for k in pages:
+        plans.setdefault(_file_options(job, options, int(k)), []).append(int(k))
+    if len(plans) == 1:
+        return [(options.pages, next(iter(plans)))]
+    return [(ks, opts) for opts, ks in sorted(plans.items(), key=lambda kv: kv[1][0])]
+
+
 def _analyze_job(job: Job, data: bytes, digest: str, key: str, options: Options) -> list[dict]:
+    rows = []
+    for pages, file_opts in _page_plans(job, data, options):
+        rows += _analyze_pages(job, data, digest, key, options, pages, file_opts)
+    return sorted(rows, key=lambda r: -1 if r.get("page") in ("", None) else int(r["page"]))
+
+
+def _analyze_pages(
+    job: Job, data: bytes, digest: str, key: str, options: Options, pages, file_opts
+):
+    """The rows of some pages of a file (``pages`` None: all), read and analysed with
+    ``file_opts`` (:func:`_file_options`)."""
     from .errors import NoInk
     from .read import iter_scans
 
-    dpi, mmpp, axis, analysis = _file_options(job, options)
+    dpi, mmpp, axis, analysis = file_opts
     axis_source = "manifest" if axis else ("auto" if options.rolling_axis == "auto" else "given")
     axis = axis or options.rolling_axis
     scans = iter_scans(
@@ -321,7 +354,7 @@ def _analyze_job(job: Job, data: bytes, digest: str, key: str, options: Options)
         mm_per_px=mmpp,
         allow_pixels=options.allow_pixels,
         trust_dpi=options.trust_dpi,
-        pages=options.pages,
+        pages=pages,
         options=analysis,
         data=data,
     )

@@ -85,6 +85,30 @@ class Job:
             return dict(self.meta[key])
         return {}
 
+    def page_meta(self, page: int) -> dict:
+        """Manifest columns that hold for one page: its first row (lowest print),
+        else the first row for every page, else :meth:`file_meta`.
+
+        Parameters
+        ----------
+        page : int
+            0-based.
+
+        Returns
+        -------
+        dict
+        """
+        for want in (page, -1):
+            for key in sorted(k for k in self.meta if k[0] == want):
+                return dict(self.meta[key])
+        return self.file_meta()
+
+    @property
+    def pages_named(self) -> list[int]:
+        """The pages the manifest has rows for (0-based, ascending; [] when its
+        rows hold for every page)."""
+        return sorted({k[0] for k in self.meta if k[0] >= 0})
+
 
 def resolve_once(path) -> tuple[str, str]:
     """The real path of a file (symlinks followed), or why it cannot be had.

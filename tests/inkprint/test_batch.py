@@ -259,3 +259,39 @@ def test_run_batch_records_an_unexpected_failure_and_goes_on(tmp_path, monkeypat
     assert bad[0]["error"].startswith("internal error (OverflowError: cannot convert")
     good = [r for r in res.rows if Path(r["file"]).name == files[1].name]
     assert good and all(r["status"] in ("ok", "flagged") for r in good)
+
+
+def test_batch_manifest_page_rows_set_each_pages_rolling_axis(tmp_path):
+    # a PDF of two tires: page 0 rolls along x, page 1 along y (a print 20 x 50 mm on
+    # the sheet: 50 mm long). The manifest's per-page rows give each page's axis;
+    # the first row's axis was used for every page: page 1's length and width swapped
+    from inkprint.synth import PrintSpec, SheetSpec
+
+    pages, truths = [], []
+    for angle in (0.0, 90.0):
+        img, (t,) = render_sheet(
+            SheetSpec((PrintSpec(50.0, 20.0, (100.0, 130.0), angle, "slick"),), dpi=150.0)
+        )
+        pages.append(img)
+        truths.append(t)
+    save_scan(pages, tmp_path / "two.pdf", dpi=150.0)
+    (tmp_path / "manifest.csv").write_text(
+        "file,page,rolling_axis,load_N\ntwo.pdf,0,x,300\ntwo.pdf,1,y,400\n"
+    )
+    out = tmp_path / "res.csv"
+    run_batch(
+        None,
+        out,
+        manifest=tmp_path / "manifest.csv",
+        options=Options(sensitivity=False),
+        workers=1,
+        progress=False,
+    )
+    rows = sorted(read_rows(out), key=lambda r: r["page"])
+    assert [r["page"] for r in rows] == ["0", "1"]
+    assert [r["rolling_axis"] for r in rows] == ["x", "y"]
+    assert [r["load_N"] for r in rows] == ["300", "400"]
+    for r, t in zip(rows, truths, strict=True):
+        assert r["status"] == "ok", r
+        assert abs(float(r["length_mm"]) / t.length - 1) < 0.01
+        assert abs(float(r["width_mm"]) / t.width - 1) < 0.01
