@@ -249,8 +249,11 @@ class AnalysisOptions:
         With ``rolling_axis='auto'``, a print whose length / width is below this is
         flagged ``axis_uncertain`` (its longer axis may not be the rolling one).
     axis_misaligned_deg : float [deg]
-        A given rolling axis ('x', 'y') farther than this from the print's own axis
-        flags it ``axis_misaligned`` ...
+        A given rolling axis ('x', 'y') within this of the print's own axis is
+        snapped to it (a print taped square within a fraction of a degree is
+        measured along itself: a 123 x 21 mm print turned 0.35 degrees read 3 %
+        too wide along the sheet's axis); farther, it is used as given and flags
+        the print ``axis_misaligned`` ...
     axis_misaligned_excess : float [-]
         ... when measuring along the given axis also lengthens or widens it by more
         than this share (half the 1 % bar; a nearly round print reads the same along

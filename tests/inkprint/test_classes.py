@@ -154,6 +154,24 @@ def test_own_axis_finds_the_turn_of_a_print_and_its_error():
     assert square.prints[0].flags == ()
 
 
+@pytest.mark.parametrize("angle, axis", [(0.4, "x"), (-0.6, "x"), (90.35, "y")])
+def test_analyze_scan_slender_print_taped_nearly_square_is_measured_along_itself(angle, axis):
+    # a 120 x 20 mm print with straight sides (a rounded rectangle) taped within a
+    # degree of the given axis: along the sheet's axis its width reads L sin(angle)
+    # too large (+4 % at 0.4 deg); it is measured along its own axis (independent
+    # set 1, file 107: width +3.0 %, unflagged), unflagged
+    p = PrintSpec(120.0, 20.0, (80, 80), angle, "slick", unevenness=0.0, exponent=8.0)
+    scan, (t,) = scan_of(SheetSpec((p,), size=(160, 160), dpi=200.0, specks=0))
+    res = ip.analyze_scan(scan, sensitivity=False, rolling_axis=axis)
+    m = res.prints[0].metrics
+    assert res.prints[0].flags == ()
+    assert m.length == pytest.approx(t.length, rel=0.002)
+    assert m.width == pytest.approx(t.width, rel=0.004)
+    along = 0.0 if axis == "x" else 90.0
+    assert math.degrees(m.orientation) == pytest.approx(angle, abs=0.15)
+    assert abs(math.degrees(m.orientation) - along) <= 1.0
+
+
 # -- marks that are not prints ------------------------------------------------------------
 
 
