@@ -121,6 +121,24 @@ def test_analyze_blank_and_black_pages():
         ip.analyze_scan(Scan(np.ones((10, 10), np.float32), 0.1, "given"), method="magic")
 
 
+def test_analyze_scan_lone_small_print_on_a_whole_sheet_is_found():
+    # 40 mm^2 of ink on a letter sheet (0.07 %): Otsu's classes are the paper's own
+    # grain, "nothing darker than the paper" (independent set 1, file 1: NoInk for
+    # a 12 x 3 mm print inked at 0.6); found with the paper's median and grain
+    from inkprint.synth import PrintSpec, SheetSpec
+
+    p = PrintSpec(16.0, 4.0, (60.0, 140.0), 30.0, "slick", ink=0.6)
+    img, (t,) = render_sheet(SheetSpec((p,), dpi=300.0, specks=0))
+    res = ip.analyze_scan(Scan(img, 25.4 / 300.0, "given"), sensitivity=False)
+    (pr,) = res.prints
+    assert_allclose(pr.metrics.hull_area, t.hull_area, rtol=0.02)
+    assert_allclose(pr.metrics.width, t.width, rtol=0.01)
+    rng = np.random.default_rng(0)  # the same sheet's paper grain alone: still blank
+    grain = np.clip(img.astype(float).max() + rng.normal(0, 3, img.shape), 0, 255)
+    with pytest.raises(ip.NoInk):
+        ip.analyze_scan(Scan(grain.astype(np.uint8), 25.4 / 300.0, "given"))
+
+
 def test_contact_pressure_worked_example_section_4_1_1():
     # section 4.1.1: 15479 px^2 at 0.1726 mm/px is 461.7 mm^2; under 304 N that is
     # 0.6587 N/mm^2 = 95.5 % of 100 psi (the printed numbers round the scale)
