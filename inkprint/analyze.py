@@ -43,7 +43,7 @@ from .coords import area_mm2_to_px, area_px_to_mm2, mm_to_px_length, px_to_mm, p
 from .errors import InvalidInput, NoInk
 from .gridlines import Gridlines, find_gridlines, stroke_px
 from .group import SMALL_PRINT_MM2, Group, PrintCheck, _sides, edge_spots, is_print, outline_points
-from .light import Page, prepare_page
+from .light import Page, light_spread, prepare_page
 from .marks import Mark, SortedInk, sort_ink
 from .options import AnalysisOptions, resolve_options, resolve_threads
 from .read import Scan, read_scan
@@ -409,6 +409,24 @@ def _grey(scan: Scan, page: Page, rows: slice, cols: slice) -> np.ndarray:
     if page.flattened or page.sheet is not None:
         return page.work[rows, cols] * np.float32(1 / 255)
     return scan.crop(rows, cols)
+
+
+def _light_margin(ctx: _Context, g: Group, grey: np.ndarray, ink: np.ndarray) -> tuple:
+    """How much the light changes around a print and how far its ink lies below the
+    threshold, both as log ratios (0, inf when the light was not flattened).
+
+    Under the print the paper's brightness is filled in from around it: where the
+    light changes around the print (a shadow band's edge crossing it) the fill may
+    be off by about that change, and ink lighter than the threshold by less than
+    that may come out as paper (a print inked 0.45 under a 40 % shadow band: length
+    -12 %, -47 % with a hard-edged band)."""
+    change = light_spread(ctx.page, g.rows, g.cols)
+    if change <= 0 or not ink.any():
+        return 0.0, math.inf
+    level = ctx.binarization.level
+    t = (float(level) if np.ndim(level) == 0 else float(np.median(level))) / 255.0
+    median = float(np.median(grey[ink][::2]))
+    return change, math.log(max(t, 1e-3) / max(median, 1e-3))
 
 
 def _darkness(grey: np.ndarray, mask: np.ndarray) -> np.ndarray:
@@ -791,6 +809,16 @@ def measure_print(ctx: _Context, group: Group, *, index: int = 0, sensitivity: b
             f"(section 7.1.1); with it the length, width or hull area (counted half) is "
             f"{100 * faint:.1f} % larger. Which is right is a judgement: see the overlay, "
             f"or set --edge-spot-faintness (0 keeps every blob)",
+        )
+    change, margin = _light_margin(ctx, g, grey, spots.load_bearing)
+    if opts.light_fill_error * change > margin:
+        flags += ("light_uncertain",)
+        warnings += (
+            f"print #{index}: the light changes by {100 * math.expm1(change):.0f} % around "
+            f"it (a shadow's edge or a steep gradient) while its ink is only "
+            f"{100 * -math.expm1(-margin):.0f} % darker than the threshold: the paper's "
+            f"brightness filled in under it may move its outline; light the sheet "
+            f"evenly (no shadow across the print) or scan it",
         )
     return PrintResult(
         index=index,
