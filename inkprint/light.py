@@ -41,6 +41,8 @@ LIGHT_PX_MM = 1.0
 EDGE_PX = 2
 #: the paper around a print whose light is judged: this far out of its ink region [px]
 RING_PX = 3
+#: a region at the page's edge is judged by its own edge within this of it [mm]
+EDGE_NEAR_MM = 10.0
 #: Jacobi sweeps of the harmonic fill under an ink region at most
 RELAX_SWEEPS = 80
 #: passes of the basin fill at most (a sheet on the 2 mm grid converges in < 200)
@@ -209,18 +211,18 @@ def _sharp(small: np.ndarray, pts: np.ndarray, contrast: float, border: int) -> 
     return float(np.median(mag[y[keep], x[keep]])) / 8.0 > 0.35 * contrast
 
 
-def _fill_basins(level: np.ndarray, edge: np.ndarray) -> np.ndarray:
-    """Grey reconstruction by erosion from the image's edge (the "fill holes" of a
-    grey image): every pixel raised to the lowest level at which a path joins it to
-    the edge, ``edge`` giving the edge pixels' own levels. A dark region enclosed by
-    brighter paper (a print) is raised to its rim; shade that runs off the sheet (a
-    shadow band, a dark corner, a gradient) has a path to the edge no brighter than
-    itself and is not raised. Done by repeated 3 x 3 erosion clipped from below by
-    ``level``; on the ~2 mm grid a sheet takes some 50-150 passes."""
+def _fill_basins(level: np.ndarray, seed: np.ndarray, open_: np.ndarray) -> np.ndarray:
+    """Grey reconstruction by erosion (the "fill holes" of a grey image): every pixel
+    raised to the lowest level at which a path joins it to the open pixels (off the
+    page), whose levels are ``seed``. A dark region enclosed by brighter paper (a
+    print) is raised to its rim; shade that runs off the sheet (a shadow band, a
+    dark corner, a gradient) has a path off it no brighter than itself and is not
+    raised. Repeated 3 x 3 erosion clipped from below; on the ~2 mm grid a sheet
+    takes some 50-150 passes."""
     import cv2
 
-    out = np.full_like(level, float(level.max()))
-    out[0], out[-1], out[:, 0], out[:, -1] = edge[0], edge[-1], edge[:, 0], edge[:, -1]
+    level = np.where(open_, seed, level).astype(np.float32)
+    out = np.where(open_, seed, np.float32(level.max())).astype(np.float32)
     k = np.ones((3, 3), np.uint8)
     for _ in range(_FILL_MAX_PASSES // 8):
         prev = out
@@ -229,6 +231,44 @@ def _fill_basins(level: np.ndarray, edge: np.ndarray) -> np.ndarray:
         if np.array_equal(out, prev):
             break
     return out
+
+
+def _edge_ink(
+    raw: np.ndarray, inside: np.ndarray, around: np.ndarray, p: float, opts
+) -> np.ndarray:
+    """Dark regions touching the page's edge whose own edge is sharp: prints run off
+    the sheet (bool, on ``raw``'s grid). Not enclosed, they would be taken for shade;
+    shade's edges are soft (the independent set's: 3-15 mm), a print's rises to the
+    paper within a pixel or two: a region darker than ``1 - light_basin`` of the
+    paper around is ink when its edge's mean slope exceeds its depth over
+    ``light_edge_rise_mm`` (a clipped print inked 0.35-0.45, lighter than
+    ``light_edge_ink``, was lost with the light following it)."""
+    import cv2
+
+    dark = inside & (raw < around + np.log(1.0 - opts.light_basin))
+    rim = inside & cv2.dilate((~inside).astype(np.uint8), np.ones((3, 3), np.uint8)).astype(bool)
+    rim[0], rim[-1], rim[:, 0], rim[:, -1] = inside[0], inside[-1], inside[:, 0], inside[:, -1]
+    if not (dark & rim).any():
+        return np.zeros(raw.shape, bool)
+    n, lab = cv2.connectedComponents(dark.astype(np.uint8), connectivity=8)
+    touch = np.zeros(n, bool)
+    touch[lab[dark & rim]] = True
+    touch[0] = False
+    slope = np.hypot(
+        cv2.Sobel(raw, cv2.CV_32F, 1, 0, ksize=3), cv2.Sobel(raw, cv2.CV_32F, 0, 1, ksize=3)
+    ) / np.float32(8.0 * p)
+    inner = cv2.erode(dark.astype(np.uint8), np.ones((3, 3), np.uint8)).astype(bool)
+    # judged near the page's edge only: a print lying in a shadow band further in
+    # lends the band its own sharp edges (a 6 mm soft band holding a print was taken
+    # for ink and became a 'print' 678 % long)
+    far = cv2.distanceTransform((~rim).astype(np.uint8), cv2.DIST_L2, 3)
+    edge = dark & ~inner & ~rim & (far <= mm_to_px_length(EDGE_NEAR_MM, p))
+    n_edge = np.bincount(lab[edge], minlength=n)
+    mean_slope = np.bincount(lab[edge], weights=slope[edge], minlength=n) / np.maximum(n_edge, 1)
+    n_in = np.bincount(lab[dark], minlength=n)
+    depth = np.bincount(lab[dark], weights=(around - raw)[dark], minlength=n) / np.maximum(n_in, 1)
+    ink = touch & (n_edge > 0) & (mean_slope * opts.light_edge_rise_mm > depth)
+    return ink[lab] & dark
 
 
 def _push_pull(values: np.ndarray, known: np.ndarray) -> np.ndarray:
@@ -277,6 +317,13 @@ def _relax(values: np.ndarray, known: np.ndarray) -> np.ndarray:
     return out
 
 
+def _pad(a: np.ndarray, value: float) -> np.ndarray:
+    """``a`` with a one-pixel frame of ``value``."""
+    import cv2
+
+    return cv2.copyMakeBorder(a, 1, 1, 1, 1, cv2.BORDER_CONSTANT, value=value)
+
+
 def _px(mm: float, p: float, least: int = 1) -> int:
     """``mm`` in whole pixels of ``p`` mm (at least ``least``)."""
     return max(least, round(mm_to_px_length(mm, p)))
@@ -313,12 +360,33 @@ def _background(
     # pixel on the 1 mm grid, the closing made it a shallow grey that was no basin,
     # the light followed it and the print was lost (independent lighting set 3 file 29)
     h, w = log.shape
-    coarse = cv2.resize(raw, (max(1, w // 2), max(1, h // 2)), interpolation=cv2.INTER_AREA)
+    hc, wc = max(1, h // 2), max(1, w // 2)
+    coarse = cv2.resize(raw, (wc, hc), interpolation=cv2.INTER_AREA)
+    page = cv2.resize(inside.astype(np.float32), (wc, hc), interpolation=cv2.INTER_AREA) > 0.99
+    if not page.any():
+        page = np.ones(coarse.shape, bool)
+    # the paper around, off the page the page's paper (a table is not paper)
+    paper = np.float32(np.percentile(coarse[page], 95))
     scale = _px(opts.light_scale_mm, binned_mm_per_px(p, 2), 2)
-    around = cv2.morphologyEx(coarse, cv2.MORPH_CLOSE, _disk(scale))
-    edge = np.where(coarse < around + np.log(opts.light_edge_ink), around, coarse)
-    if coarse.shape[0] > 2 and coarse.shape[1] > 2:
-        raised = _fill_basins(coarse, edge) - coarse
+    around = cv2.morphologyEx(np.where(page, coarse, paper), cv2.MORPH_CLOSE, _disk(scale))
+    sharp = _edge_ink(
+        raw, inside, cv2.resize(around, (w, h), interpolation=cv2.INTER_LINEAR), p, opts
+    )
+    sharp = cv2.resize(sharp.astype(np.uint8), (wc, hc), interpolation=cv2.INTER_AREA) > 0
+    # off the page (a frame round the image, a photo's table) is open: a path off it is
+    # no brighter than the page's edge, save next to ink at the edge (a print run off
+    # the sheet: by its depth, below light_edge_ink of the paper, or its sharp edge)
+    open_ = _pad((~page).astype(np.uint8), 1).astype(bool)
+    level = _pad(coarse, float(coarse.min()))
+    edge_ink = page & ((coarse < around + np.log(opts.light_edge_ink)) | sharp)
+    low = np.float32(coarse.min() - 10.0)
+    seed = cv2.dilate(
+        _pad(np.where(edge_ink, around, low).astype(np.float32), float(low)),
+        np.ones((3, 3), np.uint8),
+    )
+    if coarse.shape[0] > 1 and coarse.shape[1] > 1:
+        raised = (_fill_basins(level, seed, open_) - level)[1:-1, 1:-1]
+        raised[~page] = 0.0
     else:
         raised = np.zeros_like(coarse)
     ink = (raised > -np.log(1.0 - opts.light_basin)).astype(np.uint8)

@@ -47,6 +47,7 @@ _RULES = {
     "light_basin": (lambda v: 0 < v < 1, "a relative darkness in (0, 1)"),
     "light_edge_ink": (lambda v: 0 < v < 1, "a fraction of the paper's brightness in (0, 1)"),
     "light_fill_error": (lambda v: v >= 0, ">= 0 (a share of the light's change)"),
+    "light_edge_rise_mm": (lambda v: v > 0, "> 0 mm"),
     "perspective_tolerance_deg": (lambda v: 0 < v < 45, "an angle in (0, 45) degrees"),
     "edge_spot_area_mm2": (lambda v: v >= 0, ">= 0 mm^2"),
     "edge_spot_faintness": (lambda v: 0 <= v <= 1, "a fraction in [0, 1]"),
@@ -284,6 +285,11 @@ class AnalysisOptions:
         At the sheet's edge, grey below this fraction of the paper around is ink (a
         print run off the sheet), above it shade (ink < 0.5 of the paper, a
         shadow's paper > 0.6).
+    light_edge_rise_mm : float [mm]
+        At the sheet's edge, a dark region whose own edge rises to the paper
+        around within this (mean slope over its depth) is ink, a softer one shade:
+        a print's edge rises within 1-2 mm on the ~1 mm grid, a shadow's over its
+        penumbra (the independent set's: 3-15 mm).
     light_fill_error : float [-]
         The paper's brightness filled in under a print may be off by this share of
         how much it changes around the print (98th less 2nd percentile, log): when
@@ -361,6 +367,7 @@ class AnalysisOptions:
     light_basin: float = 0.1
     light_edge_ink: float = 0.55
     light_fill_error: float = 0.9
+    light_edge_rise_mm: float = 3.0
     perspective_tolerance_deg: float = 1.5
     sensitivity: float = 0.10
     min_ink_fraction: float = 1e-5

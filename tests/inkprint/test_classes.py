@@ -318,14 +318,19 @@ def test_prepare_page_slick_print_in_a_shadow_band(dpi):
 
 
 @pytest.mark.parametrize(
-    ("ink", "depth", "flagged"),
-    [(0.35, 0.25, True), (0.45, 0.4, True), (0.7, 0.4, False), (0.55, 0.25, False)],
+    ("ink", "depth", "soft", "flagged"),
+    [
+        (0.35, 0.25, 0.3, True),
+        (0.45, 0.4, 6.0, True),
+        (0.7, 0.4, 3.0, False),
+        (0.55, 0.25, 3.0, False),
+    ],
 )
-def test_analyze_scan_light_ink_across_a_hard_shadow_edge(ink, depth, flagged):
-    # a slick print 100 x 25 mm crossed by a 30 mm shadow band with hard (0.3 mm)
-    # edges. Ink 0.35 under a 25 % band: the paper filled in under the print is off
-    # where the band crosses it and its lit part read as paper (length -22.8 %,
-    # unflagged); ink 0.45 under a 40 % band: -17.9 %. Darker ink is measured within
+def test_analyze_scan_light_ink_across_a_shadow_edge(ink, depth, soft, flagged):
+    # a slick print 100 x 25 mm crossed by a 30 mm shadow band. Ink 0.35 under a 25 %
+    # band with hard (0.3 mm) edges: the paper filled in under the print is off where
+    # the band crosses it and its lit part read as paper (length -22.8 %, unflagged);
+    # ink 0.45 under a 40 % band, 6 mm soft: -17.8 %. Darker ink is measured within
     # the bar and not flagged
     p = PrintSpec(100.0, 25.0, (108.0, 140.0), 0.0, "slick", ink=ink)
     light = Light(
@@ -333,7 +338,7 @@ def test_analyze_scan_light_ink_across_a_hard_shadow_edge(ink, depth, flagged):
         direction=20.0,
         shadow=_band(None, (108.0, 120.0), 30.0, angle=70.0),
         shadow_depth=depth,
-        softness=0.3,
+        softness=soft,
     )
     scan, (truth,) = scan_of(SheetSpec((p,), dpi=200.0, light=light))
     r = ip.analyze_scan(scan, sensitivity=False)
@@ -343,6 +348,23 @@ def test_analyze_scan_light_ink_across_a_hard_shadow_edge(ink, depth, flagged):
         assert "light the sheet evenly" in " ".join(big.warnings)
     else:
         assert len(r.prints) == 1 and not big.flags and within(big.metrics, truth)
+
+
+@pytest.mark.parametrize("ink", [0.35, 0.45])
+def test_prepare_page_lightly_inked_print_run_off_the_sheet(ink):
+    # a print inked 0.35-0.45 running off the sheet's left edge is not enclosed by
+    # paper and lighter than light_edge_ink: the light estimate followed it, the
+    # sheet read as unevenly lit and the print vanished (no row at all); its sharp
+    # edge at the sheet's edge tells it from shade
+    p = PrintSpec(100.0, 25.0, (20.0, 140.0), 0.0, "slick", ink=ink)
+    q = PrintSpec(80.0, 20.0, (120.0, 60.0), 0.0, "ribbed", ink=0.8)
+    scan, (_, truth) = scan_of(SheetSpec((p, q), dpi=200.0))
+    r = ip.analyze_scan(scan, sensitivity=False)
+    assert "uneven_light" not in r.flags
+    assert len(r.prints) == 2
+    cut = [x for x in r.prints if "clipped" in x.flags]
+    whole = [x for x in r.prints if not x.flags]
+    assert len(cut) == 1 and len(whole) == 1 and within(whole[0].metrics, truth)
 
 
 def test_prepare_page_finds_the_page_of_a_flat_on_photo(tmp_path):
