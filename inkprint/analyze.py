@@ -411,6 +411,22 @@ def _grey(scan: Scan, page: Page, rows: slice, cols: slice) -> np.ndarray:
     return scan.crop(rows, cols)
 
 
+def _light_flag(ctx: _Context, g: Group, grey: np.ndarray, ink: np.ndarray, index: int) -> tuple:
+    """``('light_uncertain', warning)`` when the light changes around the print by
+    more than its ink lies below the threshold (x ``light_fill_error``), else ()."""
+    change, margin = _light_margin(ctx, g, grey, ink)
+    if ctx.opts.light_fill_error * change <= margin:
+        return ()
+    return (
+        "light_uncertain",
+        f"print #{index}: the light changes by {100 * math.expm1(change):.0f} % around "
+        f"it (a shadow's edge or a steep gradient) while its ink is only "
+        f"{100 * -math.expm1(-margin):.0f} % darker than the threshold: the paper's "
+        f"brightness filled in under it may move its outline; light the sheet evenly "
+        f"(no shadow across the print) or scan it",
+    )
+
+
 def _light_margin(ctx: _Context, g: Group, grey: np.ndarray, ink: np.ndarray) -> tuple:
     """How much the light changes around a print and how far its ink lies below the
     threshold, both as log ratios (0, inf when the light was not flattened).
@@ -810,16 +826,8 @@ def measure_print(ctx: _Context, group: Group, *, index: int = 0, sensitivity: b
             f"{100 * faint:.1f} % larger. Which is right is a judgement: see the overlay, "
             f"or set --edge-spot-faintness (0 keeps every blob)",
         )
-    change, margin = _light_margin(ctx, g, grey, spots.load_bearing)
-    if opts.light_fill_error * change > margin:
-        flags += ("light_uncertain",)
-        warnings += (
-            f"print #{index}: the light changes by {100 * math.expm1(change):.0f} % around "
-            f"it (a shadow's edge or a steep gradient) while its ink is only "
-            f"{100 * -math.expm1(-margin):.0f} % darker than the threshold: the paper's "
-            f"brightness filled in under it may move its outline; light the sheet "
-            f"evenly (no shadow across the print) or scan it",
-        )
+    light = _light_flag(ctx, g, grey, spots.load_bearing, index)
+    flags, warnings = flags + light[:1], warnings + light[1:]
     return PrintResult(
         index=index,
         metrics=m.metrics,
