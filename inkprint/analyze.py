@@ -43,7 +43,7 @@ from .coords import area_mm2_to_px, area_px_to_mm2, mm_to_px_length, px_to_mm, p
 from .errors import InvalidInput, NoInk
 from .gridlines import Gridlines, find_gridlines, stroke_px
 from .group import SMALL_PRINT_MM2, Group, PrintCheck, _sides, edge_spots, is_print, outline_points
-from .light import Page, prepare_page
+from .light import Page, light_spread, prepare_page
 from .marks import Mark, SortedInk, sort_ink
 from .options import AnalysisOptions, resolve_options, resolve_threads
 from .read import Scan, read_scan
@@ -437,6 +437,40 @@ def _grey(scan: Scan, page: Page, rows: slice, cols: slice) -> np.ndarray:
     return scan.crop(rows, cols)
 
 
+def _light_flag(ctx: _Context, g: Group, grey: np.ndarray, ink: np.ndarray, index: int) -> tuple:
+    """``('light_uncertain', warning)`` when the light changes around the print by
+    more than its ink lies below the threshold (x ``light_fill_error``), else ()."""
+    change, margin = _light_margin(ctx, g, grey, ink)
+    if ctx.opts.light_fill_error * change <= margin:
+        return ()
+    return (
+        "light_uncertain",
+        f"print #{index}: the light changes by {100 * math.expm1(change):.0f} % around "
+        f"it (a shadow's edge or a steep gradient) while its ink is only "
+        f"{100 * -math.expm1(-margin):.0f} % darker than the threshold: the paper's "
+        f"brightness filled in under it may move its outline; light the sheet evenly "
+        f"(no shadow across the print) or scan it",
+    )
+
+
+def _light_margin(ctx: _Context, g: Group, grey: np.ndarray, ink: np.ndarray) -> tuple:
+    """How much the light changes around a print and how far its ink lies below the
+    threshold, both as log ratios (0, inf when the light was not flattened).
+
+    Under the print the paper's brightness is filled in from around it: where the
+    light changes around the print (a shadow band's edge crossing it) the fill may
+    be off by about that change, and ink lighter than the threshold by less than
+    that may come out as paper (a print inked 0.45 under a 40 % shadow band: length
+    -12 %, -47 % with a hard-edged band)."""
+    change = light_spread(ctx.page, g.rows, g.cols)
+    if change <= 0 or not ink.any():
+        return 0.0, math.inf
+    level = ctx.binarization.level
+    t = (float(level) if np.ndim(level) == 0 else float(np.median(level))) / 255.0
+    median = float(np.median(grey[ink][::2]))
+    return change, math.log(max(t, 1e-3) / max(median, 1e-3))
+
+
 def _darkness(grey: np.ndarray, mask: np.ndarray) -> np.ndarray:
     """Darkness relative to the paper around the print: 0 on paper, 1 for black
     (so faintness compares ink with ink whatever the light or the paper's shade)."""
@@ -819,6 +853,8 @@ def measure_print(ctx: _Context, group: Group, *, index: int = 0, sensitivity: b
             f"{100 * faint:.1f} % larger. Which is right is a judgement: see the overlay, "
             f"or set --edge-spot-faintness (0 keeps every blob)",
         )
+    light = _light_flag(ctx, g, grey, spots.load_bearing, index)
+    flags, warnings = flags + light[:1], warnings + light[1:]
     return PrintResult(
         index=index,
         metrics=m.metrics,

@@ -42,6 +42,12 @@ _RULES = {
     "mark_overhang_mm": (lambda v: v >= 0, ">= 0 mm"),
     "light_tolerance": (lambda v: 0 <= v < 1, "a relative variation in [0, 1)"),
     "light_scale_mm": (lambda v: v > 0, "> 0 mm"),
+    "light_detail_mm": (lambda v: v > 0, "> 0 mm"),
+    "light_gap_mm": (lambda v: v >= 0, ">= 0 mm"),
+    "light_basin": (lambda v: 0 < v < 1, "a relative darkness in (0, 1)"),
+    "light_edge_ink": (lambda v: 0 < v < 1, "a fraction of the paper's brightness in (0, 1)"),
+    "light_fill_error": (lambda v: v >= 0, ">= 0 (a share of the light's change)"),
+    "light_edge_rise_mm": (lambda v: v > 0, "> 0 mm"),
     "perspective_tolerance_deg": (lambda v: 0 < v < 45, "an angle in (0, 45) degrees"),
     "edge_spot_area_mm2": (lambda v: v >= 0, ">= 0 mm^2"),
     "edge_spot_faintness": (lambda v: 0 <= v <= 1, "a fraction in [0, 1]"),
@@ -265,8 +271,37 @@ class AnalysisOptions:
         When the paper's brightness varies by more than this fraction over the
         sheet (a gradient, a shadow), the light is flattened before thresholding.
     light_scale_mm : float [mm]
-        Scale of the paper-brightness estimate (ink narrower than twice this is not
-        mistaken for shade).
+        At the sheet's edge, the paper next to a print run off it is looked for
+        this far away (the ink there is not enclosed by paper).
+    light_detail_mm : float [mm]
+        Ink details narrower than twice this (tread blocks, writing, gridlines) are
+        closed over before the paper's brightness is estimated; shadow edges are
+        softer than this (the independent set's: 3-15 mm).
+    light_gap_mm : float [mm]
+        Ink regions closer than this (a tread's blocks) are left out of the paper's
+        brightness together, with the paper between them.
+    light_basin : float [-]
+        A region enclosed by paper and darker than its lowest surrounding paper by
+        more than this share is ink, not shade (ink is > 50 % darker; the paper's
+        own mottle is < 2 %; shade runs off the sheet and is not enclosed).
+    light_edge_ink : float [-]
+        At the sheet's edge, grey below this fraction of the paper around is ink (a
+        print run off the sheet), above it shade (ink < 0.5 of the paper, a
+        shadow's paper > 0.6).
+    light_edge_rise_mm : float [mm]
+        At the sheet's edge, a dark region whose own edge rises to the paper
+        around within this (mean slope over its depth) is ink, a softer one shade:
+        a print's edge rises within 1-2 mm on the ~1 mm grid, a shadow's over its
+        penumbra (the independent set's: 3-15 mm).
+    light_fill_error : float [-]
+        The paper's brightness filled in under a print may be off by this share of
+        how much it changes around the print (98th less 2nd percentile, log): when
+        that exceeds how far the print's median ink lies below the threshold (log),
+        the print is flagged ``light_uncertain``. Slick prints inked 0.35-0.7
+        across shadow bands 25-40 % deep, soft and hard-edged: every print off by
+        more than 1 % had a change 1.33-3.9 x its margin (its margin read on the ink
+        that was kept, so a print cut short reads a larger one), every one within
+        the bar at most 1.21 x (0.9: flagged above 1.11 x).
     perspective_tolerance_deg : float [deg]
         A photographed page whose corners depart from right angles by more than
         this is not flat-on: its prints are flagged ``perspective``.
@@ -330,6 +365,12 @@ class AnalysisOptions:
     axis_misaligned_excess: float = 0.005
     light_tolerance: float = 0.1
     light_scale_mm: float = 30.0
+    light_detail_mm: float = 2.5
+    light_gap_mm: float = 5.0
+    light_basin: float = 0.1
+    light_edge_ink: float = 0.55
+    light_fill_error: float = 0.9
+    light_edge_rise_mm: float = 3.0
     perspective_tolerance_deg: float = 1.5
     sensitivity: float = 0.10
     min_ink_fraction: float = 1e-5

@@ -7,7 +7,9 @@ photographed flat-on; ``mark_on_edge`` - a mark set aside, a line along the edge
 a label's strokes, lay on the outline; ``faint_edge`` - a tread-sized blob at the
 edge, inked lighter than ``edge_spot_faintness`` of the print, was left out as not
 load-bearing (section 7.1.1) and would change the size by more than
-``edge_uncertainty``; ``axis_misaligned`` - the print is turned more
+``edge_uncertainty``; ``light_uncertain`` - the light changes around the print (a
+shadow's edge crossing it) by more than its ink lies below the threshold, so the
+paper's brightness filled in under it may move its outline; ``axis_misaligned`` - the print is turned more
 than a degree against the rolling axis given, so its length and width along that axis
 are too large: use ``auto`` or square the print); its measurements are still in the row, for inspection, but
 :mod:`contactpatch`'s pairing skips it. Advisory flags keep ``status = 'ok'``:
@@ -26,7 +28,14 @@ import numpy as np
 from .coords import mm_per_px_to_dpi, px_to_mm
 
 BAND_KEYS = ("length", "width", "hull_area", "area", "ellipse_length", "ellipse_width")
-UNMEASURABLE = ("clipped", "perspective", "mark_on_edge", "axis_misaligned", "faint_edge")
+UNMEASURABLE = (
+    "clipped",
+    "perspective",
+    "mark_on_edge",
+    "axis_misaligned",
+    "faint_edge",
+    "light_uncertain",
+)
 
 
 @dataclass(frozen=True, repr=False)

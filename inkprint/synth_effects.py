@@ -90,7 +90,7 @@ class Text:
 
 @dataclass(frozen=True)
 class Light:
-    """Uneven light: a linear gradient and one soft-edged shadow.
+    """Uneven light: a linear gradient, one soft-edged shadow and a vignette.
 
     Attributes
     ----------
@@ -104,6 +104,9 @@ class Light:
         Illumination inside the shadow is ``1 - shadow_depth`` of outside.
     softness : float [mm]
         Width of the shadow's penumbra.
+    vignette : float [-]
+        Illumination falls by this fraction from the sheet's centre to its
+        corners (quadratically with the distance, as a lens's falloff).
     """
 
     gradient: float = 0.4
@@ -111,6 +114,7 @@ class Light:
     shadow: tuple = ()
     shadow_depth: float = 0.45
     softness: float = 12.0
+    vignette: float = 0.0
 
 
 @dataclass(frozen=True)
@@ -284,6 +288,9 @@ def illumination(light: Light, grid) -> np.ndarray:
         cv2.fillPoly(mask, [np.round(np.column_stack([c, r])).astype(np.int32)], 1.0)
         soft = cv2.GaussianBlur(mask, (0, 0), max(grid.px(light.softness) / 3.0, 0.5))
         field = field * (1.0 - light.shadow_depth * soft)
+    if light.vignette:
+        r2 = (x - x.mean()) ** 2 + (y - y.mean()) ** 2
+        field = field * (1.0 - light.vignette * r2 / max(float(r2.max()), 1e-9))
     return field.astype(np.float32)
 
 
