@@ -9,7 +9,9 @@ edge, inked lighter than ``edge_spot_faintness`` of the print, was left out as n
 load-bearing (section 7.1.1) and would change the size by more than
 ``edge_uncertainty``; ``axis_misaligned`` - the print is turned more
 than a degree against the rolling axis given, so its length and width along that axis
-are too large: use ``auto`` or square the print); its measurements are still in the row, for inspection, but
+are too large: use ``auto`` or square the print; ``grouping_uncertain`` - parts
+lying side by side (a car print's ribs, or two prints?) were joined or kept apart
+by a gap near the footprint rule's limit: ``--group-mm`` decides); its measurements are still in the row, for inspection, but
 :mod:`contactpatch`'s pairing skips it. Advisory flags keep ``status = 'ok'``:
 ``uneven_light`` (flattened before thresholding), ``axis_uncertain`` (``auto``
 rolling axis on a print nearly as wide as long: give ``--rolling-axis``).
@@ -26,7 +28,14 @@ import numpy as np
 from .coords import mm_per_px_to_dpi, px_to_mm
 
 BAND_KEYS = ("length", "width", "hull_area", "area", "ellipse_length", "ellipse_width")
-UNMEASURABLE = ("clipped", "perspective", "mark_on_edge", "axis_misaligned", "faint_edge")
+UNMEASURABLE = (
+    "clipped",
+    "perspective",
+    "mark_on_edge",
+    "axis_misaligned",
+    "faint_edge",
+    "grouping_uncertain",
+)
 
 
 @dataclass(frozen=True, repr=False)
