@@ -356,7 +356,7 @@ class PartsJoined:
     doubt_joined: np.ndarray
 
 
-def _side_by_side(p: np.ndarray, q: np.ndarray) -> tuple[float, float, float]:
+def _side_by_side(p: np.ndarray, q: np.ndarray) -> tuple[float, float]:
     """How two convex hulls ((k, 2) points) face each other across the line that
     separates them best: the length over which their extents along that line
     overlap, and the shorter of the two extents along it (the lengths along a
@@ -375,11 +375,11 @@ def _side_by_side(p: np.ndarray, q: np.ndarray) -> tuple[float, float, float]:
         if len(sep) and sep.max() > best:
             best, axis = float(sep.max()), n[int(np.argmax(sep))]
     if axis is None:
-        return 0.0, 0.0, 0.0
+        return 0.0, 0.0
     t = np.array([-axis[1], axis[0]])
     pa, qa = p @ t, q @ t
     overlap = min(pa.max(), qa.max()) - max(pa.min(), qa.min())
-    return float(overlap), float(min(np.ptp(pa), np.ptp(qa))), best
+    return float(overlap), float(min(np.ptp(pa), np.ptp(qa)))
 
 
 def join_side_by_side(
@@ -459,7 +459,7 @@ def join_side_by_side(
     for g, p, q in sorted(pairs):
         if pts[p] is None or pts[q] is None or g <= 0 or not (tread[p] and tread[q]):
             continue
-        overlap, shorter, _ = _side_by_side(pts[p], pts[q])
+        overlap, shorter = _side_by_side(pts[p], pts[q])
         if overlap >= opts.group_rib_overlap * shorter and overlap >= opts.group_rib_gaps * g:
             links.append((g, p, q))
     if not links:
