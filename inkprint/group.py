@@ -67,6 +67,8 @@ from .options import AnalysisOptions, resolve_options
 #: 46 % light gradient: 3 prints -> ~50 of 5 x 3 mm; the independent generator's
 #: knobs are up to 2.7 x as far apart as they are wide)
 PATTERN_REACH = 3.0
+#: rounds of :func:`join_tips` (a chain of tip blocks joins block by block)
+TIP_ROUNDS = 4
 #: a print with a hull under this [mm^2] (a tiny print) is solid: it inks at least
 #: SMALL_PRINT_FILL of its hull (a letter, a ring, a tick does not)
 SMALL_PRINT_MM2 = 150.0
@@ -255,11 +257,22 @@ def linked_edges(graph: ElementGraph, *, options: AnalysisOptions | None = None)
     first, second, who = _pattern_gaps(graph, n)
     pa = np.where(who[a] == b, second[a], first[a])  # a's pattern gap without b
     pb = np.where(who[b] == a, second[b], first[b])
-    # the wider of the two patterns: a knobby print's tip blocks, split by a 1-2 mm
-    # sipe, face the next row across its 3-8 mm gap (with the narrower one the tip
-    # row was cut off, s2_076: length -12.4 %)
-    both = np.isfinite(pa) & np.isfinite(pb)
-    pattern = np.where(both, np.maximum(pa, pb), np.minimum(pa, pb))
+    # two pattern neighbours (no farther apart than PATTERN_REACH x the narrower's
+    # width) continue the wider of their two patterns: a knobby print's tip blocks,
+    # split by a 1-2 mm sipe, face the next row across its 3-8 mm gap (with the
+    # narrower pattern the tip row was cut off, s2_076: length -12.4 %); farther
+    # apart, the narrower
+    near = g <= PATTERN_REACH * np.minimum(w[a], w[b])
+    pattern = np.where(near, np.maximum(pa, pb), np.minimum(pa, pb))
+    # an element without a pattern of its own (a sliver, a slick print) takes the
+    # other's only when that one is at least as wide: a tip sliver continues the
+    # print's knobs, but a slick print does not continue the spacing of a label's
+    # bold letters beside it (s4_013: letters 2.7 mm apart, 6.9 mm away, joined the
+    # print once PATTERN_REACH gave them a pattern: width +143 %)
+    lone_a, lone_b = np.isinf(pa), np.isinf(pb)
+    one = lone_a ^ lone_b
+    pattern = np.where(one, np.minimum(pa, pb), pattern)
+    pattern[one & ((lone_a & (w[a] > w[b])) | (lone_b & (w[b] > w[a])))] = np.inf
     return (
         (g <= opts.group_distance_mm)
         | (g <= opts.group_size_factor * np.minimum(w[a], w[b]))
@@ -303,8 +316,22 @@ def join_tips(
         Groups after joining (renumbered).
     """
     opts = resolve_options(options)
+    if opts.group_mm is not None or not len(graph.a):
+        return comp
+    # a tip block whose nearest group is another tip block joins once that one has
+    # joined the print (s2_039: two of a knobby print's tip blocks, -0.9 % length)
+    for _ in range(TIP_ROUNDS):
+        joined = _join_tips_once(graph, comp, sizes, opts)
+        if joined is comp:
+            break
+        comp = joined
+    return comp
+
+
+def _join_tips_once(graph: ElementGraph, comp, sizes, opts: AnalysisOptions) -> np.ndarray:
+    """One round of :func:`join_tips`: each small group with its nearest group."""
     k = int(comp.max()) + 1 if len(comp) else 0
-    if k < 2 or opts.group_mm is not None or not len(graph.a):
+    if k < 2:
         return comp
     ink = np.bincount(comp, weights=sizes, minlength=k)
     ga, gb = comp[graph.a], comp[graph.b]
@@ -451,7 +478,10 @@ def join_side_by_side(
     key, gap = key[order], gap[order]
     first = np.flatnonzero(np.r_[True, key[1:] != key[:-1]])
     pairs = [(float(gap[i]), int(key[i] // k), int(key[i] % k)) for i in first]
-    pts = [None if h is None else h.reshape(-1, 2).astype(float) * px_mm for h in hulls]
+    pts = [
+        None if h is None else px_to_mm_length(h.reshape(-1, 2).astype(float), px_mm)
+        for h in hulls
+    ]
     widest = np.zeros(k)
     np.maximum.at(widest, comp, graph.widths)
     tread = widest >= opts.group_rib_strokes * opts.stroke_width_mm

@@ -146,18 +146,21 @@ def _knobby_blocks(tip=None, *, bl=3.2, row_gap=5.0, lat=4.0, cw=6.0, sw=4.0, si
     return boxes
 
 
-def _blocks_scan(boxes, dpi=300.0):
-    """A scan of dark blocks on paper, and the truth (length along u, width, hull
-    area) of the blocks as drawn (rounded to the pixel grid)."""
+def _blocks_scan(boxes, dpi=300.0, marks=()):
+    """A scan of dark blocks on paper (and of ``marks``, boxes that are not the
+    print), and the truth (length along u, width, hull area) of the blocks as drawn
+    (rounded to the pixel grid)."""
     import cv2
 
     px = 25.4 / dpi
     to_px = np.array([[1 / px, 1 / px]])
-    corners = np.array([(u, v) for u0, v0, u1, v1 in boxes for u in (u0, u1) for v in (v0, v1)])
+    every = list(boxes) + list(marks)
+    corners = np.array([(u, v) for u0, v0, u1, v1 in every for u in (u0, u1) for v in (v0, v1)])
     pix = np.round((corners - corners.min(axis=0) + 15.0) * to_px).astype(int)
     img = np.full(tuple(pix.max(axis=0)[::-1] + int(15 / px)), 245, np.uint8)
     for c in pix.reshape(-1, 4, 2):
         img[c[:, 1].min() : c[:, 1].max(), c[:, 0].min() : c[:, 0].max()] = 40
+    pix = pix[: 4 * len(boxes)]
     drawn = (pix.reshape(-1, 4, 2) - [[0, 0], [0, 1], [1, 0], [1, 1]]).reshape(-1, 2) * px
     hull = cv2.convexHull(drawn.astype(np.float32))
     truth = (np.ptp(drawn[:, 0]) + px, np.ptp(drawn[:, 1]) + px, cv2.contourArea(hull))
@@ -174,6 +177,19 @@ def test_group_blobs_knobby_tip_blocks_join_the_print(tip):
     r = ip.analyze_scan(scan, sensitivity=False, rolling_axis="x")
     assert len(r.prints) == 1 and r.prints[0].flags == ()
     m = r.prints[0].metrics
+    assert abs(m.length / length - 1) <= 0.01 and abs(m.width / width - 1) <= 0.01
+    assert abs(m.hull_area / area - 1) <= 0.02
+
+
+def test_group_blobs_bold_letters_beside_a_slick_print_stay_apart():
+    # independent set s4_013: a label's bold letters (1.5 mm strokes, 2.7 mm apart)
+    # 6.9 mm from a 10 mm wide slick print: the letters' spacing made a "pattern"
+    # that linked them to the print, which has none (width +143 %)
+    letters = [(10.0 + 2.7 * i + 1.5 * i, 11.9, 11.5 + 2.7 * i + 1.5 * i, 16.0) for i in range(5)]
+    scan, (length, width, area) = _blocks_scan([(0.0, -5.0, 36.0, 5.0)], marks=letters)
+    r = ip.analyze_scan(scan, sensitivity=False, rolling_axis="x")
+    m = r.prints[0].metrics
+    assert len(r.prints) == 1 and r.prints[0].flags == ()
     assert abs(m.length / length - 1) <= 0.01 and abs(m.width / width - 1) <= 0.01
     assert abs(m.hull_area / area - 1) <= 0.02
 
