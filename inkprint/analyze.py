@@ -991,13 +991,9 @@ def _print_flags(
                 f"its edge on chart paper (tread slivers a gridline joined?): its outline "
                 f"there is uncertain; see the overlay or rescan on plain paper"
             )
-    if g.doubt_gap_mm > 0:
-        flags.append("grouping_uncertain")
-        warnings.append(_grouping_warning(g, index))
-    cut = clipped(g, ctx.page.work.shape, ctx.page.sheet, margin_px=margin)
-    if cut:
-        flags.append("clipped")
-        warnings.append(f"print #{index} {cut}")
+    for flag, why in _grouped_or_cut(ctx, g, index, margin):
+        flags.append(flag)
+        warnings.append(why)
     if ctx.rolling_axis != "auto":
         flags, warnings = _axis_flags(m.metrics, m.hull_px, index, flags, warnings, opts=ctx.opts)
     elif m.metrics.aspect_ratio < ctx.opts.axis_uncertain_aspect:
@@ -1007,6 +1003,18 @@ def _print_flags(
             f"rolling direction was taken as its longer axis (auto); give --rolling-axis x|y"
         )
     return tuple(flags), tuple(warnings)
+
+
+def _grouped_or_cut(ctx: _Context, g: Group, index: int, margin: int) -> list:
+    """``(flag, warning)`` for a grouping near the footprint rule's limit and for a
+    print the image's edge may cut."""
+    out = []
+    if g.doubt_gap_mm > 0:
+        out.append(("grouping_uncertain", _grouping_warning(g, index)))
+    cut = clipped(g, ctx.page.work.shape, ctx.page.sheet, margin_px=margin)
+    if cut:
+        out.append(("clipped", f"print #{index} {cut}"))
+    return out
 
 
 def _grouping_warning(g: Group, index: int) -> str:

@@ -15,8 +15,10 @@ print when it is
 * at most ``group_pattern_factor`` x the tread pattern's own gap around the two
   elements: the smallest gap from each to its *other* neighbours, counting only
   neighbours no farther than :data:`PATTERN_REACH` x their widths (wide-groove knobs
-  as far apart as they are wide), the wider of the two. Two prints on a sheet are
-  farther apart than their grooves are wide.
+  as far apart as they are wide): the wider of the two when the two are such
+  neighbours themselves, else the narrower; an element with no pattern (a sliver, a
+  slick print) takes only a wider element's. Two prints on a sheet are farther
+  apart than their grooves are wide.
 
 Elements linked are one print; groups whose convex hulls overlap are one print too.
 Then the groups themselves are compared (:func:`join_tips`,
@@ -460,7 +462,6 @@ def join_side_by_side(
     -------
     PartsJoined
     """
-    import cv2
 
     opts = resolve_options(options)
     k = len(hulls)
@@ -494,43 +495,7 @@ def join_side_by_side(
             links.append((g, p, q))
     if not links:
         return none
-    # single linkage: a tree of joins, each with its gap and the two sides' leaves
-    parent = list(range(k))
-    members: dict[int, list] = {i: [i] for i in range(k)}
-
-    def root(i: int) -> int:
-        while parent[i] != i:
-            parent[i] = parent[parent[i]]
-            i = parent[i]
-        return i
-
-    joins = []  # (gap, leaves of the joined node, its hull), in order of the gap
-    hull_of = {i: pts[i].astype(np.float32) for i in range(k) if pts[i] is not None}
-    for g, p, q in links:
-        rp, rq = root(p), root(q)
-        if rp == rq:
-            continue
-        parent[rq] = rp
-        members[rp] = members[rp] + members.pop(rq)
-        both = np.concatenate([hull_of[rp], hull_of.pop(rq)])
-        hull_of[rp] = cv2.convexHull(both).reshape(-1, 2)
-        joins.append((g, list(members[rp]), hull_of[rp]))
-    # top down: a join is kept when its gap is small beside the whole it makes;
-    # every join below a kept one is kept (its gap is no larger, its whole inside)
-    kept, doubt = [], {}
-    done: set = set()
-    for g, leaves, hull in reversed(joins):
-        if done.issuperset(leaves):
-            continue
-        side = min(cv2.minAreaRect(hull)[1])
-        ratio = g / max(side, 1e-9)
-        limit = opts.group_print_gap
-        if limit / opts.group_doubt_factor < ratio <= limit * opts.group_doubt_factor:
-            for i in leaves:
-                doubt.setdefault(i, (g, ratio <= limit))
-        if ratio <= limit:
-            kept.append(leaves)
-            done.update(leaves)
+    kept, doubt = _kept_joins(_join_tree(links, pts, k), opts)
     lab = np.arange(k)
     for leaves in kept:
         lab[leaves] = leaves[0]
@@ -541,6 +506,59 @@ def join_side_by_side(
         if g > gaps[new[i]]:
             gaps[new[i]], joined[new[i]] = g, j
     return PartsJoined(new[comp], gaps, joined)
+
+
+def _join_tree(links: list, pts: list, k: int) -> list:
+    """Single linkage of ``k`` groups over ``links`` ((gap, p, q), nearest first):
+    the joins, each ``(gap, leaves of the joined node, its hull [mm])``."""
+    import cv2
+
+    parent = list(range(k))
+    members: dict[int, list] = {i: [i] for i in range(k)}
+    hull_of = {i: pts[i].astype(np.float32) for i in range(k) if pts[i] is not None}
+    joins = []
+    for g, p, q in links:
+        rp, rq = _root(parent, p), _root(parent, q)
+        if rp == rq:
+            continue
+        parent[rq] = rp
+        members[rp] = members[rp] + members.pop(rq)
+        both = np.concatenate([hull_of[rp], hull_of.pop(rq)])
+        hull_of[rp] = cv2.convexHull(both).reshape(-1, 2)
+        joins.append((g, list(members[rp]), hull_of[rp]))
+    return joins
+
+
+def _root(parent: list, i: int) -> int:
+    """The root of ``i`` in a union-find forest (halving the path)."""
+    while parent[i] != i:
+        parent[i] = parent[parent[i]]
+        i = parent[i]
+    return i
+
+
+def _kept_joins(joins: list, opts: AnalysisOptions) -> tuple[list, dict]:
+    """Top down through :func:`_join_tree`'s joins: a join is kept when its gap is at
+    most ``group_print_gap`` x the smaller extent of its hull; every join below a
+    kept one is kept (its gap is no larger, its whole inside). Returns the kept
+    joins' leaves and, per leaf, ``(gap, joined)`` of a decision within
+    ``group_doubt_factor`` of the limit."""
+    import cv2
+
+    kept, doubt = [], {}
+    done: set = set()
+    limit = opts.group_print_gap
+    for g, leaves, hull in reversed(joins):
+        if done.issuperset(leaves):
+            continue
+        ratio = g / max(min(cv2.minAreaRect(hull)[1]), 1e-9)
+        if limit / opts.group_doubt_factor < ratio <= limit * opts.group_doubt_factor:
+            for i in leaves:
+                doubt.setdefault(i, (g, ratio <= limit))
+        if ratio <= limit:
+            kept.append(leaves)
+            done.update(leaves)
+    return kept, doubt
 
 
 def union_labels(n: int, a: np.ndarray, b: np.ndarray) -> np.ndarray:
