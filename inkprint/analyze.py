@@ -1051,10 +1051,9 @@ def _print_flags(
                 f"its edge on chart paper (tread slivers a gridline joined?): its outline "
                 f"there is uncertain; see the overlay or rescan on plain paper"
             )
-    cut = clipped(g, ctx.page.work.shape, ctx.page.sheet, margin_px=margin)
-    if cut:
-        flags.append("clipped")
-        warnings.append(f"print #{index} {cut}")
+    for flag, why in _grouped_or_cut(ctx, g, index, margin):
+        flags.append(flag)
+        warnings.append(why)
     if ctx.rolling_axis != "auto":
         flags, warnings = _axis_flags(m.metrics, m.hull_px, index, flags, warnings, opts=ctx.opts)
     elif m.metrics.aspect_ratio < ctx.opts.axis_uncertain_aspect:
@@ -1064,6 +1063,35 @@ def _print_flags(
             f"rolling direction was taken as its longer axis (auto); give --rolling-axis x|y"
         )
     return tuple(flags), tuple(warnings)
+
+
+def _grouped_or_cut(ctx: _Context, g: Group, index: int, margin: int) -> list:
+    """``(flag, warning)`` for a grouping near the footprint rule's limit and for a
+    print the image's edge may cut."""
+    out = []
+    if g.doubt_gap_mm > 0:
+        out.append(("grouping_uncertain", _grouping_warning(g, index)))
+    cut = clipped(g, ctx.page.work.shape, ctx.page.sheet, margin_px=margin)
+    if cut:
+        out.append(("clipped", f"print #{index} {cut}"))
+    return out
+
+
+def _grouping_warning(g: Group, index: int) -> str:
+    """What a side-by-side grouping near the rule's limit means, and its fix."""
+    gap = g.doubt_gap_mm
+    if g.doubt_joined:
+        return (
+            f"print #{index}: parts of it lie side by side {gap:.1f} mm apart, near the "
+            f"limit between one footprint's grooves and two prints: taken as one print "
+            f"(a car tire's ribs); if they are two prints, give --group-mm under "
+            f"{gap:.1f} (mm)"
+        )
+    return (
+        f"print #{index}: ink beside it lies {gap:.1f} mm away, near the limit between "
+        f"one footprint's grooves and two prints: taken as another print; if they are "
+        f"one print (a car tire's ribs), give --group-mm over {gap:.1f} (mm)"
+    )
 
 
 def _split_by_line(ctx: _Context, g: Group) -> int:

@@ -103,6 +103,13 @@ THRESHOLDS = (
         "elements closer than this are always one print",
     ),
     (
+        "--group-print-gap",
+        "group_print_gap",
+        "FRACTION",
+        "parts side by side (car ribs) closer than this share of the footprint they "
+        "make are one print; near it the print is flagged grouping_uncertain",
+    ),
+    (
         "--min-patch-area",
         "min_patch_area_mm2",
         "MM2",

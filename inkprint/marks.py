@@ -46,7 +46,10 @@ from .components import components_with_stats
 from .coords import area_px_to_mm2, binned_mm_per_px, mm_to_px_length, px_to_mm_length
 from .group import (
     Group,
+    PartsJoined,
     element_graph,
+    join_side_by_side,
+    join_tips,
     linked_edges,
     merge_overlapping,
     outline_points,
@@ -316,14 +319,17 @@ def _attached_thin(thick_lab, thin_lab, thin_stats, thick_stats, k: int) -> int:
 
 def _groups_of_elements(
     parts: _Parts, pooled: _Pooled, opts: AnalysisOptions, bridge=None
-) -> np.ndarray:
-    """Print index of each thick element (footprint rule, then hull overlaps). The
-    ``bridge`` pixels (lines taken out) count as the ink of the nearest element, so
-    a line that crossed a print does not widen the gap between its two sides."""
+) -> PartsJoined:
+    """Print index of each thick element (footprint rule, hull overlaps, tip blocks
+    and parts side by side: :func:`inkprint.group.join_tips`,
+    :func:`inkprint.group.join_side_by_side`) and the doubtful joins. The ``bridge``
+    pixels (lines taken out) count as the ink of the nearest element, so a line
+    that crossed a print does not widen the gap between its two sides."""
+    import cv2
 
     n = parts.n_thick
     if n == 0:
-        return np.zeros(0, int)
+        return PartsJoined(np.zeros(0, int), np.zeros(0), np.zeros(0, bool))
     labels = parts.thick
     if bridge is not None and bridge.any():
         reach = mm_to_px_length(
@@ -334,7 +340,25 @@ def _groups_of_elements(
     graph = element_graph(labels, n, px_mm=pooled.px_mm, step=step)
     link = linked_edges(graph, options=opts)
     comp = union_labels(n, graph.a[link], graph.b[link])
-    return merge_overlapping(_hulls(parts.thick, comp), comp)
+    comp = merge_overlapping(_hulls(parts.thick, comp), comp)
+    sizes = parts.thick_stats[1:, cv2.CC_STAT_AREA].astype(float)
+    comp = join_tips(graph, comp, sizes, options=opts)
+    joined = join_side_by_side(
+        graph, comp, _hulls(parts.thick, comp), px_mm=pooled.px_mm, options=opts
+    )
+    if joined.comp is comp:
+        return joined
+    comp = merge_overlapping(_hulls(parts.thick, joined.comp), joined.comp)
+    if comp is joined.comp:
+        return joined
+    # the hull of joined ribs overlapping another group: one print with it
+    to_new = np.zeros(len(joined.doubt_gap), int)
+    to_new[joined.comp] = comp
+    gap = np.zeros(int(comp.max()) + 1)
+    np.maximum.at(gap, to_new, joined.doubt_gap)
+    was = np.zeros(len(gap), bool)
+    np.logical_or.at(was, to_new, joined.doubt_joined)
+    return PartsJoined(comp, gap, was)
 
 
 def _bridged(labels: np.ndarray, bridge: np.ndarray, reach: float) -> np.ndarray:
@@ -650,11 +674,13 @@ class _Sorted:
     stats: _ThinStats
     owner: np.ndarray
     kind: np.ndarray
+    doubt: tuple = ((), ())  # per print: doubtful side-by-side gap [mm], joined?
 
 
 def _sort_pooled(pooled: _Pooled, opts: AnalysisOptions, network=None, bridge=None) -> _Sorted:
     parts = _split(pooled, opts)
-    comp = _groups_of_elements(parts, pooled, opts, bridge)
+    joined = _groups_of_elements(parts, pooled, opts, bridge)
+    comp = joined.comp
     hulls = _hulls(parts.thick, comp, parts.core) if len(comp) else []
     hull_map = _hull_map(hulls, pooled.mask.shape)
     on = np.flatnonzero(parts.thin > 0)  # the thin pixels, flat
@@ -666,7 +692,8 @@ def _sort_pooled(pooled: _Pooled, opts: AnalysisOptions, network=None, bridge=No
     for k in np.flatnonzero((stats.extent >= opts.line_length_mm) & (owner >= 0)):
         ids = hull_map[_box(parts.thin_stats, k)][_crop(parts.thin, parts.thin_stats, k)]
         owner[k] = int(np.bincount(ids[ids > 0]).argmax()) - 1  # the print holding most
-    return _Sorted(parts, comp, hulls, hull_map, stats, owner, kind)
+    doubt = (joined.doubt_gap, joined.doubt_joined)
+    return _Sorted(parts, comp, hulls, hull_map, stats, owner, kind, doubt)
 
 
 @dataclass(frozen=True)
@@ -854,10 +881,16 @@ def sort_ink(mask, *, mm_per_px: float, options: AnalysisOptions | None = None) 
     marks = [_clip_mark(m, shape) for m in marks]
     aside = _aside_ink(st, owner, len(sorted_.hulls), opts)
     groups = [
-        dataclasses.replace(_lost_on_edge(g, lost) if lost is not None else g, aside_mm2=a)
-        for g, a in zip(
+        dataclasses.replace(
+            _lost_on_edge(g, lost) if lost is not None else g,
+            aside_mm2=a,
+            doubt_gap_mm=float(dg),
+            doubt_joined=bool(dj),
+        )
+        for g, a, dg, dj in zip(
             _full_groups(mask, group_map, (sorted_.comp, owner), sorted_.hulls, pooled, opts),
             aside,
+            *sorted_.doubt,
             strict=True,
         )
         if g

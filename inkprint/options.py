@@ -30,6 +30,12 @@ _RULES = {
     "group_mm": (lambda v: v > 0, "> 0 mm, or None for the footprint rule"),
     "group_size_factor": (lambda v: v >= 0, ">= 0 (times the smaller element's width)"),
     "group_pattern_factor": (lambda v: v >= 0, ">= 0 (times the tread pattern's gap)"),
+    "group_tip_share": (lambda v: 0 <= v <= 1, "a share of the neighbour's ink in [0, 1]"),
+    "group_print_gap": (lambda v: 0 <= v < 1, "a fraction of the footprint's extent in [0, 1)"),
+    "group_rib_overlap": (lambda v: 0 <= v <= 1, "a fraction of the shorter part in [0, 1]"),
+    "group_rib_gaps": (lambda v: v >= 0, ">= 0 (times the gap)"),
+    "group_rib_strokes": (lambda v: v >= 0, ">= 0 (times stroke_width_mm)"),
+    "group_doubt_factor": (lambda v: v >= 1, ">= 1 (a factor about group_print_gap)"),
     "min_patch_area_mm2": (lambda v: v >= 0, ">= 0 mm^2, or None to scale with the sheet"),
     "min_patch_sheet_fraction": (lambda v: 0 <= v < 1, "a fraction of the sheet in [0, 1)"),
     "min_patch_fraction": (lambda v: 0 <= v <= 1, "a fraction of the largest print in [0, 1]"),
@@ -103,16 +109,45 @@ class AnalysisOptions:
         Override of the footprint rule: elements belong to one print exactly when
         closer than this (``--group-mm``, manifest column ``group_mm``). None: the
         footprint rule of :func:`inkprint.group_blobs` (grooves narrower than
-        ``group_size_factor`` x the blocks' width, or than ``group_pattern_factor``
-        x the tread pattern's own gaps, are inside a print).
+        ``group_pattern_factor`` x the tread pattern's own gaps, or between parts
+        side by side narrower than ``group_print_gap`` x the footprint, are inside
+        a print).
     group_size_factor : float [-]
         A gap narrower than this fraction of the smaller element's width is a
-        groove (car ribs, blocks).
+        groove (0, off: it was 0.75 for car ribs, and joined two 30 mm wide slick
+        prints 20 mm apart; ``group_print_gap`` judges ribs at the footprint's scale).
     group_pattern_factor : float [-]
         A gap within this many times the gaps around the two elements continues
         the tread pattern (wide-groove knobs; car blocks whose circumferential
         grooves are 2.5 x their lateral ones: at 2.5 a groove measured a pixel
         wider split the print).
+    group_tip_share : float [-]
+        A group with less ink than this share of its nearest neighbour's joins it
+        when its gap is within ``group_pattern_factor`` x the neighbour's tread gap
+        (a knobby print's tip blocks, a sliver cut by the outline).
+    group_print_gap : float [-]
+        Parts of a footprint lying side by side (a car print's ribs) are one print
+        when the gap between them is at most this fraction of the smaller extent of
+        the whole they make (a car print's 4-10 mm circumferential grooves are
+        <= 0.13 x its 80-185 mm; two bicycle prints 20-30 mm apart >= 0.2 x theirs).
+    group_rib_overlap : float [-]
+        Two parts lie side by side when their extents along the gap between them
+        overlap over at least this fraction of the shorter one (the ribs of one
+        print end on its outline: the outer ones are shorter; a label beside a print
+        often reaches beyond its end) ...
+    group_rib_gaps : float [-]
+        ... and over at least this many times the gap (ribs run along a groove; a
+        speck or a block beside a print does not).
+    group_rib_strokes : float [-]
+        A part side by side is tread only when its widest element is at least this
+        many times ``stroke_width_mm`` wide (a label's bold letters, 1.5-1.9 mm at
+        400 dpi, are not a rib).
+    group_doubt_factor : float [-]
+        A side-by-side join or split whose gap lies within this factor of the
+        ``group_print_gap`` limit flags the print ``grouping_uncertain`` (give
+        ``--group-mm``): 1.15, 0.157-0.207 x the footprint, between the car prints'
+        grooves (<= 0.13) and two bicycle prints 25 mm apart (0.21 x a 120 mm long
+        knobby pair side by side: 1.35 flagged such pairs).
     min_patch_area_mm2 : float or None [mm^2]
         A group with less ink is dust or a mark, not a print; None (default):
         ``min_patch_sheet_fraction`` of the sheet's area.
@@ -325,8 +360,14 @@ class AnalysisOptions:
 
     group_distance_mm: float = 3.0
     group_mm: float | None = None
-    group_size_factor: float = 0.75
+    group_size_factor: float = 0.0
     group_pattern_factor: float = 3.0
+    group_tip_share: float = 0.1
+    group_print_gap: float = 0.18
+    group_rib_overlap: float = 0.8
+    group_rib_gaps: float = 3.0
+    group_rib_strokes: float = 3.0
+    group_doubt_factor: float = 1.15
     min_patch_area_mm2: float | None = None
     min_patch_sheet_fraction: float = 1e-4
     min_patch_fraction: float = 0.05

@@ -9,9 +9,12 @@ edge, inked lighter than ``edge_spot_faintness`` of the print, was left out as n
 load-bearing (section 7.1.1) and would change the size by more than
 ``edge_uncertainty``; ``light_uncertain`` - the light changes around the print (a
 shadow's edge crossing it) by more than its ink lies below the threshold, so the
-paper's brightness filled in under it may move its outline; ``axis_misaligned`` - the print is turned more
-than a degree against the rolling axis given, so its length and width along that axis
-are too large: use ``auto`` or square the print); its measurements are still in the row, for inspection, but
+paper's brightness filled in under it may move its outline; ``axis_misaligned`` - the
+print is turned more than a degree against the rolling axis given, so its length and
+width along that axis are too large: use ``auto`` or square the print;
+``grouping_uncertain`` - parts lying side by side (a car print's ribs, or two
+prints?) were joined or kept apart by a gap near the footprint rule's limit:
+``--group-mm`` decides); its measurements are still in the row, for inspection, but
 :mod:`contactpatch`'s pairing skips it. Advisory flags keep ``status = 'ok'``:
 ``uneven_light`` (flattened before thresholding), ``axis_uncertain`` (``auto``
 rolling axis on a print nearly as wide as long: give ``--rolling-axis``).
@@ -35,6 +38,7 @@ UNMEASURABLE = (
     "axis_misaligned",
     "faint_edge",
     "light_uncertain",
+    "grouping_uncertain",
 )
 
 

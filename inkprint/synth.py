@@ -142,6 +142,11 @@ class PrintSpec:
     block, gap : float, optional [mm]
         ``mtb``: knob size and the groove between knobs (default 5 and 6);
         ``car``: rib width and circumferential groove width (default 28 and 10).
+    sipe : float, optional [mm]
+        ``car``: each rib cut into blocks as long as the grooves are wide by lateral
+        sipes this wide (most car tires print so: the independent set's car prints,
+        whose blocks are narrower along the rib than the grooves between ribs);
+        ``mtb``: the knobs on the centre line split lengthwise by a sipe this wide.
     halo_touching : int
         Faint specks touching the outline (bore no load; not in the truth).
     """
@@ -158,6 +163,7 @@ class PrintSpec:
     block: float | None = None
     gap: float | None = None
     halo_touching: int = 0
+    sipe: float | None = None
 
 
 @dataclass(frozen=True)
@@ -288,6 +294,11 @@ def _mtb(spec: PrintSpec, outline):
     for i, u in enumerate(np.arange(-L / 2 - pitch, L / 2 + pitch, pitch)):
         off = 0.5 * pitch * (i % 2)
         for v in np.arange(-W / 2 - pitch + off, W / 2 + pitch, pitch):
+            if spec.sipe and abs(v) < 0.5 * b:  # split on the centre line
+                h = 0.5 * spec.sipe
+                knobs.append(shapely.box(u - b / 2, v - 0.45 * b, u + b / 2, v - h))
+                knobs.append(shapely.box(u - b / 2, v + h, u + b / 2, v + 0.45 * b))
+                continue
             knobs.append(shapely.box(u - b / 2, v - 0.45 * b, u + b / 2, v + 0.45 * b))
     ink = outline.intersection(shapely.union_all(knobs))
     # a knob that barely touched prints a part; keep parts of at least a quarter knob
@@ -303,7 +314,7 @@ def _car(spec: PrintSpec, outline):
     L, W = spec.length, spec.width
     n = max(2, round((W + g) / (rib + g)))
     rib = (W - (n - 1) * g) / n
-    lateral, pitch = 0.4 * g, 1.2 * rib
+    lateral, pitch = (0.4 * g, 1.2 * rib) if spec.sipe is None else (spec.sipe, g + spec.sipe)
     blocks = []
     for k in range(n):
         v0 = -W / 2 + k * (rib + g)

@@ -91,6 +91,142 @@ def test_group_blobs_car_grooves_as_wide_as_the_pattern_rule_allowed(tmp_path):
     assert len(rows) == 1
 
 
+@pytest.mark.parametrize(("rib", "groove"), [(18.0, 5.0), (24.0, 8.0), (30.0, 10.0)])
+def test_group_blobs_car_ribs_cut_by_sipes_make_one_print(rib, groove):
+    # independent set s1_061, s2_070, s1_016: ribs cut into blocks by 1-2 mm sipes,
+    # the blocks narrower along the rib than the 4-10 mm grooves between ribs: every
+    # car print came out as 2-4 ribs, each "ok" (s1_061: width -78 %)
+    p = PrintSpec(130, 150, (100, 110), 0.0, "car", exponent=4.0, block=rib, gap=groove, sipe=1.5)
+    scan, (t,) = scan_of(SheetSpec((p,), size=(200, 220), specks=0))
+    r = ip.analyze_scan(scan, sensitivity=False, rolling_axis="x")
+    assert len(r.prints) == 1 and r.prints[0].flags == ()
+    m = r.prints[0].metrics
+    assert abs(m.width / t.width - 1) <= 0.01 and abs(m.length / t.length - 1) <= 0.01
+    assert abs(m.hull_area / t.hull_area - 1) <= 0.02
+
+
+def test_group_blobs_sparse_knobs_make_one_print():
+    # s2_039: knobs 3 mm wide, 6-8 mm apart (beyond 2 x their width, the old reach of
+    # the pattern rule): 3 prints came out as ~50 "prints" of 5 x 3 mm
+    p = PrintSpec(90, 32, (100, 60), 0.0, "mtb", block=3.2, gap=7.0, unevenness=0.0)
+    scan, (t,) = scan_of(SheetSpec((p,), size=(200, 120), specks=0))
+    r = ip.analyze_scan(scan, sensitivity=False, rolling_axis="x")
+    assert len(r.prints) == 1 and within(r.prints[0].metrics, t)
+
+
+def test_group_blobs_split_centre_knobs_keep_the_tip_row():
+    # s2_076: the tip row was one centre knob split by a 1 mm sipe; its pattern gap
+    # (the sipe) x 3 fell short of the 5 mm row gap, and the row became a print of its
+    # own (length -12.4 %; here -11.2 % before)
+    p = PrintSpec(60, 34, (100, 60), 0.0, "mtb", block=3.0, gap=5.0, unevenness=0.0, sipe=1.0)
+    scan, (t,) = scan_of(SheetSpec((p,), size=(200, 120), specks=0))
+    r = ip.analyze_scan(scan, sensitivity=False, rolling_axis="x")
+    assert len(r.prints) == 1 and within(r.prints[0].metrics, t)
+
+
+def _knobby_blocks(tip=None, *, bl=3.2, row_gap=5.0, lat=4.0, cw=6.0, sw=4.0, sipe=1.0):
+    """Blocks (u0, v0, u1, v1) [mm] of a knobby tread like the independent set's
+    (s2_076): 7 rows along u, even rows a centre block split by a sipe plus two side
+    blocks, odd rows two blocks, the end rows the split centre block alone; ``tip``
+    (along, across): one more block beyond each end row."""
+    boxes, pitch = [], bl + row_gap
+    for i in range(7):
+        u = i * pitch
+        if i % 2:
+            m = lat / 2
+            boxes += [(u, m, u + bl, m + sw), (u, -m - sw, u + bl, -m)]
+            continue
+        boxes += [(u, sipe / 2, u + bl, cw / 2), (u, -cw / 2, u + bl, -sipe / 2)]
+        if 0 < i < 6:
+            off = cw / 2 + lat
+            boxes += [(u, off, u + bl, off + sw), (u, -off - sw, u + bl, -off)]
+    if tip:
+        a, b = tip
+        end = 6 * pitch + bl + row_gap
+        boxes += [(-row_gap - a, -b / 2, -row_gap, b / 2), (end, -b / 2, end + a, b / 2)]
+    return boxes
+
+
+def _blocks_scan(boxes, dpi=300.0, marks=()):
+    """A scan of dark blocks on paper (and of ``marks``, boxes that are not the
+    print), and the truth (length along u, width, hull area) of the blocks as drawn
+    (rounded to the pixel grid)."""
+    import cv2
+
+    px = 25.4 / dpi
+    to_px = np.array([[1 / px, 1 / px]])
+    every = list(boxes) + list(marks)
+    corners = np.array([(u, v) for u0, v0, u1, v1 in every for u in (u0, u1) for v in (v0, v1)])
+    pix = np.round((corners - corners.min(axis=0) + 15.0) * to_px).astype(int)
+    img = np.full(tuple(pix.max(axis=0)[::-1] + int(15 / px)), 245, np.uint8)
+    for c in pix.reshape(-1, 4, 2):
+        img[c[:, 1].min() : c[:, 1].max(), c[:, 0].min() : c[:, 0].max()] = 40
+    pix = pix[: 4 * len(boxes)]
+    drawn = (pix.reshape(-1, 4, 2) - [[0, 0], [0, 1], [1, 0], [1, 1]]).reshape(-1, 2) * px
+    hull = cv2.convexHull(drawn.astype(np.float32))
+    truth = (np.ptp(drawn[:, 0]) + px, np.ptp(drawn[:, 1]) + px, cv2.contourArea(hull))
+    return ip.Scan(img, px, "given"), truth
+
+
+@pytest.mark.parametrize("tip", [None, (2.5, 1.6)])
+def test_group_blobs_knobby_tip_blocks_join_the_print(tip):
+    # independent set s2_076 (tip row: a centre block split by a 1 mm sipe, 5 mm from
+    # the next row; the sipe was its pattern gap: length -12.4 % and a spurious print)
+    # and s2_008 (a 2.5 x 1.6 mm block cut by the outline beyond that row: no pattern
+    # of its own, dropped as a fragment: length -1.5 %); here -31 % and -11 %
+    scan, (length, width, area) = _blocks_scan(_knobby_blocks(tip))
+    r = ip.analyze_scan(scan, sensitivity=False, rolling_axis="x")
+    assert len(r.prints) == 1 and r.prints[0].flags == ()
+    m = r.prints[0].metrics
+    assert abs(m.length / length - 1) <= 0.01 and abs(m.width / width - 1) <= 0.01
+    assert abs(m.hull_area / area - 1) <= 0.02
+
+
+def test_group_blobs_bold_letters_beside_a_slick_print_stay_apart():
+    # independent set s4_013: a label's bold letters (1.5 mm strokes, 2.7 mm apart)
+    # 6.9 mm from a 10 mm wide slick print: the letters' spacing made a "pattern"
+    # that linked them to the print, which has none (width +143 %)
+    letters = [(10.0 + 2.7 * i + 1.5 * i, 11.9, 11.5 + 2.7 * i + 1.5 * i, 16.0) for i in range(5)]
+    scan, (length, width, area) = _blocks_scan([(0.0, -5.0, 36.0, 5.0)], marks=letters)
+    r = ip.analyze_scan(scan, sensitivity=False, rolling_axis="x")
+    m = r.prints[0].metrics
+    assert len(r.prints) == 1 and r.prints[0].flags == ()
+    assert abs(m.length / length - 1) <= 0.01 and abs(m.width / width - 1) <= 0.01
+    assert abs(m.hull_area / area - 1) <= 0.02
+
+
+@pytest.mark.parametrize(
+    ("apart", "n", "flagged"), [(12.0, 1, True), (14.0, 2, True), (22.0, 2, False)]
+)
+def test_group_blobs_side_by_side_prints_near_the_limit_are_flagged(apart, n, flagged):
+    # two 90 x 30 mm slick prints side by side 12, 14 and 22 mm apart: 0.17, 0.19 and
+    # 0.27 x the 72-82 mm they would make together. Near group_print_gap (0.18) it
+    # could be a car print's ribs or two prints: joined or not, flagged, and
+    # --group-mm decides; 22 mm apart they are two prints (before, the size rule
+    # joined them up to 0.75 x their 30 mm width: one print 82 mm wide, unflagged)
+    p = [
+        PrintSpec(90, 30, (100, 60 + 30 + apart), 0.0, "slick", unevenness=0.0),
+        PrintSpec(90, 30, (100, 60), 0.0, "slick", unevenness=0.0),
+    ]
+    scan, truths = scan_of(SheetSpec(tuple(p), size=(200, 170), specks=0))
+    r = ip.analyze_scan(scan, sensitivity=False, rolling_axis="x")
+    assert len(r.prints) == n
+    if flagged:
+        assert all(q.status == "flagged" and "grouping_uncertain" in q.flags for q in r.prints)
+        assert all(any("--group-mm" in w for w in q.warnings) for q in r.prints)
+    else:
+        assert all(q.flags == () for q in r.prints)
+    if n == 1:
+        assert abs(r.prints[0].metrics.width - (60 + apart)) < 0.5  # both, and the gap
+    else:
+        assert all(within(q.metrics, t) for q, t in zip(r.prints, truths, strict=True))
+    apart_ = ip.analyze_scan(
+        scan, sensitivity=False, rolling_axis="x", options=ip.AnalysisOptions(group_mm=5.0)
+    )
+    assert len(apart_.prints) == 2 and all(q.flags == () for q in apart_.prints)
+    assert all(within(q.metrics, t) for q, t in zip(apart_.prints, truths, strict=True))
+
+
 def test_group_blobs_group_mm_overrides_the_footprint_rule():
     spec = PrintSpec(120, 140, (100, 110), 0.0, "car", exponent=4.0, block=25, gap=12)
     scan, _ = scan_of(SheetSpec((spec,), size=(200, 220), specks=0))
