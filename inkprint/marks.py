@@ -13,6 +13,17 @@ resolution.
    pixel noise, and the thin edges of prints (clipped knobs, rib tails, halo specks).
 2. **Footprints.** The thick elements are linked into prints by the footprint rule
    of :mod:`inkprint.group`.
+   **Bold strokes.** A marker's letters (strokes wider than ``stroke_width_mm``) are
+   thick ink too, linked to the print they touch. A print's *body* is the core (ink
+   wider than two strokes) of its elements that are mostly core, or of a long one
+   whose pores are filled (a file tread); thick ink reaching out of the body's hull
+   is judged (:func:`_bold_strokes`): a piece of a body element outside its core
+   reaching farther than ``bold_reach_mm`` is a letter unless it fills ``bold_fill``
+   of what it adds to its element's hull (a tip, a corner); another element, with the ink joined to
+   it, is a letter unless it lies along the outline (a sliver) or is a compact blob
+   (a tread block; a bold '0' is one too when the print has no small blocks and it
+   lies within ``group_distance_mm`` of a letter). Letters are set aside (``text``)
+   and the prints regrouped without them.
 3. **Thin ink.** Each connected piece of thin ink is judged against the prints'
    convex hulls:
 
@@ -38,6 +49,7 @@ and box (:class:`Mark`), and drawn on the QA overlay.
 from __future__ import annotations
 
 import dataclasses
+import functools
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -46,6 +58,7 @@ from .components import components_with_stats
 from .coords import area_px_to_mm2, binned_mm_per_px, mm_to_px_length, px_to_mm_length
 from .group import (
     Group,
+    _outside_distance,
     element_graph,
     linked_edges,
     merge_overlapping,
@@ -79,6 +92,14 @@ LINE_SEGMENT_MM = 5.0
 LINE_SUPPORT = 0.5
 #: a line crossing a print is bridged where ink lies this close [mm] on both sides
 BRIDGE_MM = 1.0
+#: the reason given for bold pen strokes set aside (their marks' kind is 'text')
+BOLD_REASON = "bold pen strokes (a marker's letters) touching or near a print"
+#: bold pen strokes are looked for again this many times after regrouping without
+#: those found (each pass can only set more aside)
+BOLD_PASSES = 3
+#: a thick sliver along a print's outline lies no deeper out of its body's hull than
+#: this many strokes
+SLIVER_STROKES = 3.0
 
 
 @dataclass(frozen=True)
@@ -180,10 +201,11 @@ def _pool(mask: np.ndarray, mm_per_px: float, opts: AnalysisOptions) -> _Pooled:
     return _Pooled(small >= 128, q, binned_mm_per_px(mm_per_px, q))
 
 
+@functools.lru_cache(maxsize=64)
 def _disk(diameter_px: float) -> np.ndarray:
     """A digital disk of the given diameter [px] (pixel centres within the radius;
     OpenCV's small "ellipses" are closer to a plus sign, which fits in the
-    crossing of two thin lines)."""
+    crossing of two thin lines). Cached: not to be written to."""
     r = max(diameter_px, 2.0) / 2.0
     n = int(np.floor(r))
     y, x = np.mgrid[-n : n + 1, -n : n + 1]
@@ -315,16 +337,21 @@ def _attached_thin(thick_lab, thin_lab, thin_stats, thick_stats, k: int) -> int:
 
 
 def _groups_of_elements(
-    parts: _Parts, pooled: _Pooled, opts: AnalysisOptions, bridge=None
+    parts: _Parts, pooled: _Pooled, opts: AnalysisOptions, bridge=None, drop=None
 ) -> np.ndarray:
     """Print index of each thick element (footprint rule, then hull overlaps). The
     ``bridge`` pixels (lines taken out) count as the ink of the nearest element, so
-    a line that crossed a print does not widen the gap between its two sides."""
+    a line that crossed a print does not widen the gap between its two sides.
+    ``drop`` ((n,) bool): elements set aside (bold pen strokes), grouped with none
+    (index -1)."""
 
     n = parts.n_thick
     if n == 0:
         return np.zeros(0, int)
     labels = parts.thick
+    if drop is not None:
+        labels = np.where(np.r_[False, drop][labels], 0, labels).astype(labels.dtype)
+    own = labels  # (the hulls: without the bridges)
     if bridge is not None and bridge.any():
         reach = mm_to_px_length(
             opts.stroke_width_mm + BRIDGE_MM, pooled.px_mm
@@ -334,7 +361,12 @@ def _groups_of_elements(
     graph = element_graph(labels, n, px_mm=pooled.px_mm, step=step)
     link = linked_edges(graph, options=opts)
     comp = union_labels(n, graph.a[link], graph.b[link])
-    return merge_overlapping(_hulls(parts.thick, comp), comp)
+    comp = merge_overlapping(_hulls(own, comp), comp)
+    if drop is None or not drop.any():
+        return comp
+    comp = np.where(drop, -1, comp)
+    used = np.unique(comp[comp >= 0])
+    return np.where(comp >= 0, np.searchsorted(used, comp), -1)
 
 
 def _bridged(labels: np.ndarray, bridge: np.ndarray, reach: float) -> np.ndarray:
@@ -400,8 +432,264 @@ def _hulls(labels: np.ndarray, comp: np.ndarray, core=None) -> list:
     pts: list[list] = [[] for _ in range(int(comp.max()) + 1 if len(comp) else 0)]
     for c in contours:
         x, y = c[0, 0]
-        pts[comp[labels[y, x] - 1]].append(c)
+        g = comp[labels[y, x] - 1]
+        if g >= 0:  # (an element set aside belongs to no print)
+            pts[g].append(c)
     return [cv2.convexHull(np.concatenate(p)).astype(np.float32) if p else None for p in pts]
+
+
+@dataclass(frozen=True)
+class _Bold:
+    """Bold pen strokes among the thick ink (:func:`_bold_strokes`): the elements
+    set aside ((n,) bool) and the pixels set aside ((H, W) bool or None: those
+    elements and the strokes cut from the prints' bodies)."""
+
+    elements: np.ndarray
+    pixels: np.ndarray | None
+
+
+def _bold_strokes(parts: _Parts, comp: np.ndarray, pooled: _Pooled, opts: AnalysisOptions):
+    """Bold pen strokes among the thick ink (a :class:`_Bold`). Marker letters whose
+    strokes are wider than ``stroke_width_mm`` survive the opening as thick ink and
+    the footprint rule links them to the print they touch (a label of 1.1-1.4 mm
+    strokes touching a slick print, independent set 1 file 12: width +60 %,
+    unflagged).
+
+    A print's body: the core (ink wider than two strokes) of its elements that are
+    mostly core, and of its elements at least ``line_length_mm`` long that are so
+    once their holes are filled (a file tread's pores). Judged against the body's
+    hull:
+
+    * a piece of a body element outside its core (a letter one piece of ink with
+      the print) reaching farther than ``bold_reach_mm`` out of it is a letter unless
+      it inks ``bold_fill`` of what it adds to its element's hull (a tip, a corner);
+      a nearer piece is one when joined to a letter;
+    * another element reaching farther than ``mark_overhang_mm`` out of it, with all
+      the ink connected to it when that holds no body element (a letter apart from
+      the print), else alone: lying along the outline (no deeper out of the hull
+      than :data:`SLIVER_STROKES` strokes and ``sliver_elongation`` times longer: a
+      tip sliver the outline cut) it is the print's; a compact blob (a tread block;
+      a bold '0') is a letter only when the print has no such element inside the
+      body's hull (its tread has no small blocks) and it lies within
+      ``group_distance_mm`` of a letter, or of such a blob that does; any other
+      shape (a letter, a scribble) is a letter."""
+    import cv2
+
+    n = parts.n_thick
+    out = np.zeros(n, bool)
+    if n == 0:
+        return _Bold(out, None)
+    lab_all = parts.thick
+    st = parts.thick_stats
+    core_px = np.bincount(lab_all[parts.core], minlength=n + 1)
+    cored = core_px[1:] >= 0.5 * st[1:, 4]
+    long = px_to_mm_length(np.maximum(st[1:, 2], st[1:, 3]), pooled.px_mm) >= opts.line_length_mm
+    groups = np.unique(comp[cored | long])
+    lut = np.r_[0, comp]  # an element's print, -1: set aside
+    over = mm_to_px_length(opts.mark_overhang_mm, pooled.px_mm)
+    cut_reach = mm_to_px_length(opts.bold_reach_mm, pooled.px_mm)
+    two = mm_to_px_length(2.0 * opts.stroke_width_mm, pooled.px_mm)
+    stroke_disk = _disk(mm_to_px_length(opts.stroke_width_mm, pooled.px_mm))
+    core_disk = _disk(two)
+    # a sliver without core is thinner than two strokes; curving with the outline
+    # its depth out of the hull's chords is more (a chevron print's tip, independent
+    # set 1 file 36: 1.9 mm deep, 10.7 mm long)
+    sliver = mm_to_px_length(SLIVER_STROKES * opts.stroke_width_mm, pooled.px_mm)
+    near = mm_to_px_length(opts.group_distance_mm, pooled.px_mm)
+    ink: list = []  # the pooled ink's pieces, once needed
+    pixels = None
+
+    def judge(piece: np.ndarray, off: np.ndarray, hull: np.ndarray, reach: float) -> str:
+        p = cv2.findNonZero(piece).reshape(-1, 2).astype(float) + off
+        d = _outside_distance(p, hull)
+        if d.max() <= reach:
+            return ""
+        across = d.max() - max(d.min(), 0.0) + 1.0
+        if across <= sliver and max(piece.shape) >= opts.sliver_elongation * across:
+            return ""  # along the outline: a sliver the outline cut
+        return "blob" if _compact_piece(piece, COMPACT_ASPECT) else "stroke"
+
+    for g in groups[groups >= 0]:
+        els = np.flatnonzero(comp == g) + 1
+        x0, y0 = st[els, 0].min(), st[els, 1].min()
+        x1 = (st[els, 0] + st[els, 2]).max()
+        y1 = (st[els, 1] + st[els, 3]).max()
+        box = (slice(y0, y1), slice(x0, x1))
+        local = lab_all[box]
+        member = np.zeros(n + 1, bool)
+        member[els[cored[els - 1]]] = True
+        body = member[local] & parts.core[box]
+        is_body = cored[els - 1].copy()
+        for i in np.flatnonzero(~cored[els - 1] & long[els - 1]):
+            el = (local == els[i]).view(np.uint8)  # its pores filled, then its core
+            c = cv2.morphologyEx(_filled(el), cv2.MORPH_OPEN, core_disk).view(bool)
+            if np.count_nonzero(c & el.view(bool)) >= 0.5 * np.count_nonzero(el):
+                is_body[i] = True
+                body |= c
+        if not body.any():
+            continue
+        hull = cv2.convexHull(outline_points(body)).reshape(-1, 2).astype(float)
+        # pieces of the body's elements outside the body
+        cut = np.zeros(local.shape, bool)
+        # (a pixel off the body: the opening shaves the outline's staircase, and a ring
+        # of such pixels joined every letter's foot into one piece)
+        shaved = cv2.dilate(body.view(np.uint8), np.ones((3, 3), np.uint8)).view(bool)
+        # (with the pores filled: a file tread's tip is a sliver full of them)
+        member[els[is_body]] = True
+        mine = _filled(member[local].view(np.uint8)).view(bool)
+        rim = (mine & ~shaved).view(np.uint8)
+        inked = None  # the body's elements, their pores closed, once needed
+        rest = []  # the other pieces: a letter's foot when joined to a letter
+        if rim.any():
+            m, rl, rs, _ = components_with_stats(rim, connectivity=8)
+            for c in range(1, m):
+                x, y, w, h = rs[c, :4]
+                piece = (rl[y : y + h, x : x + w] == c).view(np.uint8)
+                if max(w, h) + 2 <= cut_reach:  # (a piece a pixel off the body: no)
+                    rest.append((slice(y, y + h), slice(x, x + w), piece.view(bool)))
+                    continue
+                off = np.array([x, y], float)
+                kind = judge(piece, off, hull, cut_reach)
+                if kind:  # a tip or a corner the opening cut extends its element convexly
+                    e = local[_first_pixel(rl, rs, c)]
+                    own = outline_points(body & (local == e))
+                    if inked is None:  # (the pores the outline cut closed too: a file
+                        # tread's tip is ragged with them, 5001 file 100 at 150 dpi)
+                        inked = cv2.morphologyEx(
+                            np.pad(mine.view(np.uint8), 1), cv2.MORPH_CLOSE, stroke_disk
+                        )[1:-1, 1:-1].view(bool)
+                    fill = 0.0 if own is None else _hull_fill(inked, own, piece, (x, y))
+                    # a bar standing out of a slick print is no tread block
+                    kind = "" if fill >= opts.bold_fill else "stroke"
+                if kind == "stroke":
+                    cut[y : y + h, x : x + w] |= piece.view(bool)
+                else:
+                    rest.append((slice(y, y + h), slice(x, x + w), piece.view(bool)))
+        # the other elements reaching out of the body's hull, with their ink
+        reach = np.zeros(len(els), bool)
+        for i in np.flatnonzero(~is_body):
+            x, y, w, h = st[els[i], :4]
+            e = outline_points(lab_all[y : y + h, x : x + w] == els[i]).reshape(-1, 2)
+            reach[i] = _outside_distance(e + np.array([x - x0, y - y0]), hull).max() > over
+        kinds = {}  # element index -> 'stroke' | 'blob' | ''
+        if reach.any():
+            if not ink:
+                ink.extend(components_with_stats(pooled.mask, connectivity=8)[1:3])
+            ink_lab, ink_st = ink
+            ids = np.array([ink_lab[_first_pixel(lab_all, st, k)] for k in els])  # pieces
+            for i in np.flatnonzero(reach):
+                c = ids[i]
+                if c in ids[is_body]:  # joined to the body by thin ink: the element alone
+                    x, y, w, h = st[els[i], :4]
+                    piece = (lab_all[y : y + h, x : x + w] == els[i]).view(np.uint8)
+                else:
+                    x, y, w, h = ink_st[c, :4]
+                    piece = (ink_lab[y : y + h, x : x + w] == c).view(np.uint8)
+                kinds[i] = judge(piece, np.array([x - x0, y - y0], float), hull, over)
+        strokes = [i for i, k in kinds.items() if k == "stroke"]
+        # (letters set aside by an earlier pass, when the prints were grouped with them)
+        member[:] = False
+        member[els[strokes]] = True
+        taken = cut | member[local] | (lut[local] < 0)
+        if not taken.any():
+            continue
+        blobs = [i for i, k in kinds.items() if k == "blob"]
+        if blobs and not (~is_body & ~reach).any():
+            # no element like a block inside the body's hull (its tread has none):
+            # the blobs chained to a stroke within the distance are letters too
+            grow = True
+            while grow and blobs:
+                dist = cv2.distanceTransform((~taken).view(np.uint8), cv2.DIST_L2, 3)
+                grow = False
+                for i in list(blobs):
+                    if dist[local == els[i]].min() <= near:
+                        strokes.append(i)
+                        blobs.remove(i)
+                        taken |= local == els[i]
+                        grow = True
+        out[els[strokes] - 1] = True
+        # a letter's foot cut from the body with it: joined to the letter by ink
+        # outside the body, or within a stroke of it
+        if rest:
+            _, joined, _, _ = components_with_stats(pooled.mask[box] & ~shaved, connectivity=8)
+            ids = np.unique(joined[taken & ~shaved])
+            grown = cv2.dilate(taken.view(np.uint8), stroke_disk).view(bool)
+            for rows, cols, piece in rest:
+                if not (
+                    (grown[rows, cols] & piece).any()
+                    or np.isin(joined[rows, cols][piece], ids[ids > 0]).any()
+                ):
+                    continue
+                if _reach(piece.view(np.uint8), np.array([cols.start, rows.start]), hull) > 0:
+                    cut[rows, cols] |= piece
+        if cut.any():
+            if pixels is None:
+                pixels = np.zeros(lab_all.shape, bool)
+            pixels[box] |= cut
+    return _Bold(out, pixels)
+
+
+def _hull_fill(inked: np.ndarray, own: np.ndarray, piece: np.ndarray, at: tuple) -> float:
+    """How much of what a piece (uint8 crop at ``at``, (x, y)) adds to the hull of
+    ``own`` (an element's core, outline points) is inked (``inked``, the box's bool
+    ink, pores closed): about 1 for a tip or a corner of a print (convex with it),
+    far less for a stroke standing out of its edge (paper on either side of it)."""
+    import cv2
+
+    x, y = at
+    p = cv2.findNonZero(piece).reshape(-1, 2) + np.array([x, y])
+    core = cv2.convexHull(own)
+    both = cv2.convexHull(np.concatenate([own.reshape(-1, 2), p]).astype(np.int32))
+    grown = cv2.fillConvexPoly(np.zeros(inked.shape, np.uint8), both, 1)
+    grown &= 1 - cv2.fillConvexPoly(np.zeros(inked.shape, np.uint8), core, 1)
+    room = int(np.count_nonzero(grown))
+    return float(np.count_nonzero(grown.view(bool) & inked)) / max(room, 1)
+
+
+def _filled(piece: np.ndarray) -> np.ndarray:
+    """A piece (uint8) with its holes filled (a closing would also fill the notch
+    between a print and a letter's foot joined to it, and keep the foot)."""
+    import cv2
+
+    contours, _ = cv2.findContours(piece, cv2.RETR_EXTERNAL, cv2.CHAIN_APPROX_SIMPLE)
+    return cv2.drawContours(np.zeros_like(piece), contours, -1, 1, cv2.FILLED)
+
+
+def _reach(piece: np.ndarray, off: np.ndarray, hull: np.ndarray) -> float:
+    """How far [px] a piece (uint8 crop at ``off``, (x, y)) reaches out of a hull."""
+    import cv2
+
+    return float(_outside_distance(cv2.findNonZero(piece).reshape(-1, 2) + off, hull).max())
+
+
+def _either(a: np.ndarray | None, b: np.ndarray | None) -> np.ndarray | None:
+    """The union of two masks, either of which may be None."""
+    if a is None or b is None:
+        return b if a is None else a
+    return a | b
+
+
+def _first_pixel(labels: np.ndarray, stats: np.ndarray, k: int) -> tuple[int, int]:
+    """(row, col) of a pixel of piece ``k`` (on its box's top row)."""
+    x, y, w = stats[k, :3]
+    return int(y), int(x + np.argmax(labels[y, x : x + w] == k))
+
+
+def _compact_piece(piece: np.ndarray, aspect: float) -> bool:
+    """Whether a piece (uint8 crop) is a compact blob: convex, filling
+    :data:`COMPACT_SOLIDITY` of its hull after closing pinholes and one-pixel notches,
+    at most ``aspect`` times longer than wide."""
+    import cv2
+
+    crop = cv2.morphologyEx(
+        np.pad(piece, 1), cv2.MORPH_CLOSE, np.ones((3, 3), np.uint8), borderValue=0
+    )
+    pts = cv2.findNonZero(crop)
+    (_, _), (a, b), _ = cv2.minAreaRect(pts)
+    a, b = max(a, b) + 1.0, min(a, b) + 1.0
+    hull = cv2.convexHull(pts)
+    solid = len(pts) / max(cv2.contourArea(hull) + 0.5 * cv2.arcLength(hull, True) + 1.0, 1.0)
+    return solid >= COMPACT_SOLIDITY and a <= aspect * b
 
 
 def _line_kind(crop: np.ndarray, extent_mm: float, px_mm: float) -> tuple[str, str]:
@@ -650,11 +938,24 @@ class _Sorted:
     stats: _ThinStats
     owner: np.ndarray
     kind: np.ndarray
+    bold_px: np.ndarray | None = None
 
 
 def _sort_pooled(pooled: _Pooled, opts: AnalysisOptions, network=None, bridge=None) -> _Sorted:
     parts = _split(pooled, opts)
     comp = _groups_of_elements(parts, pooled, opts, bridge)
+    bold = _bold_strokes(parts, comp, pooled, opts)
+    for _ in range(BOLD_PASSES):
+        if not bold.elements.any():
+            break
+        # without the letters the prints' neighbours change: letters they kept
+        # apart from a print may now join it (independent set 1 file 30: the rest of
+        # a label took the print's place beside it, width +133 %)
+        comp = _groups_of_elements(parts, pooled, opts, bridge, drop=bold.elements)
+        more = _bold_strokes(parts, comp, pooled, opts)
+        if not more.elements.any():
+            break
+        bold = _Bold(bold.elements | more.elements, _either(bold.pixels, more.pixels))
     hulls = _hulls(parts.thick, comp, parts.core) if len(comp) else []
     hull_map = _hull_map(hulls, pooled.mask.shape)
     on = np.flatnonzero(parts.thin > 0)  # the thin pixels, flat
@@ -666,7 +967,12 @@ def _sort_pooled(pooled: _Pooled, opts: AnalysisOptions, network=None, bridge=No
     for k in np.flatnonzero((stats.extent >= opts.line_length_mm) & (owner >= 0)):
         ids = hull_map[_box(parts.thin_stats, k)][_crop(parts.thin, parts.thin_stats, k)]
         owner[k] = int(np.bincount(ids[ids > 0]).argmax()) - 1  # the print holding most
-    return _Sorted(parts, comp, hulls, hull_map, stats, owner, kind)
+    bold_px = bold.pixels
+    if bold.elements.any():  # the elements set aside, with the pieces of the others
+        bold_px = (bold_px if bold_px is not None else False) | np.r_[False, bold.elements][
+            parts.thick
+        ]
+    return _Sorted(parts, comp, hulls, hull_map, stats, owner, kind, bold_px)
 
 
 @dataclass(frozen=True)
@@ -848,9 +1154,16 @@ def sort_ink(mask, *, mm_per_px: float, options: AnalysisOptions | None = None) 
     thin_lut[0] = 0
     # (without lines there are no line pixels)
     line_px = (lines & ~pooled.mask) if bands else None
-    group_map = _GroupMap(parts, np.r_[0, sorted_.comp + 1], thin_lut, line_px)
+    group_map = _GroupMap(
+        parts,
+        np.r_[0, np.where(sorted_.comp >= 0, sorted_.comp + 1, -2)],
+        thin_lut,
+        line_px,
+        sorted_.bold_px,
+    )
     shape = mask.shape
     marks = line_marks + _thin_marks(parts, st, owner, sorted_.kind, pooled, shape, opts)
+    marks += _bold_marks(sorted_.bold_px, pooled)
     marks = [_clip_mark(m, shape) for m in marks]
     aside = _aside_ink(st, owner, len(sorted_.hulls), opts)
     groups = [
@@ -995,6 +1308,27 @@ def _thin_marks(parts, stats: _ThinStats, owner, kind, pooled, shape, opts) -> l
     return out
 
 
+def _bold_marks(bold: np.ndarray | None, pooled: _Pooled) -> list:
+    """Marks for the bold pen strokes set aside (:func:`_bold_strokes`), one per
+    piece."""
+    if bold is None:
+        return []
+    n, _, st, _ = components_with_stats(bold, connectivity=8)
+    why = BOLD_REASON
+    return [
+        _mark(
+            "text",
+            _box(st, k)[0],
+            _box(st, k)[1],
+            pooled,
+            None,
+            area_px_to_mm2(int(st[k, 4]), pooled.px_mm),
+            why,
+        )
+        for k in range(1, n)
+    ]
+
+
 def _mark(kind, rows, cols, pooled: _Pooled, shape, area, why) -> Mark:
     q = pooled.q
     h, w = shape if shape is not None else (1 << 62, 1 << 62)
@@ -1027,6 +1361,7 @@ class _GroupMap:
     thick_lut: np.ndarray
     thin_lut: np.ndarray
     lines: np.ndarray | None
+    bold: np.ndarray | None = None
 
     @property
     def shape(self) -> tuple:
@@ -1041,6 +1376,8 @@ class _GroupMap:
         out[on] = self.thin_lut[thin[on]]
         if self.lines is not None:
             out[self.lines[rows, cols]] = -1
+        if self.bold is not None:
+            out[self.bold[rows, cols]] = -2
         return out
 
     def marks(self) -> np.ndarray:
@@ -1050,6 +1387,8 @@ class _GroupMap:
         out[on] = (self.thin_lut < 0)[self.parts.thin[on]]
         if self.lines is not None:
             out |= self.lines
+        if self.bold is not None:
+            out |= self.bold
         return out
 
 

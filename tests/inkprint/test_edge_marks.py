@@ -197,10 +197,16 @@ def test_measure_print_line_as_wide_as_a_stroke_along_a_print_is_flagged(width_m
         assert ("mark_on_edge" in q.flags) == flagged
 
 
-def test_measure_print_ruler_along_a_print_is_flagged(tmp_path):
-    results, rows = outcomes(tmp_path, "ruler", mixed_file(4269, 12), dpi=None)
+def test_measure_print_ruler_along_a_print_is_not_measured(tmp_path):
+    # mixed set 4269 file 12: a ruler's line as wide as a pen stroke along a print,
+    # taken for tread (length +186 %, unflagged), was flagged by the bar it leaves
+    # beyond the print's body; now its bar and ticks, thick ink outside the body that
+    # fills little of what it adds to the hull, are set aside as strokes
+    # (marks._bold_strokes) and the print is measured without them: length +0.03 %,
+    # width +0.08 % (flagged clipped: it reaches the image's edge)
+    results, _ = outcomes(tmp_path, "ruler", mixed_file(4269, 12), dpi=None)
     assert not [r for r in results if r["outcome"] in SILENT], results
-    assert "mark_on_edge" in rows[0]["flags"]
+    assert abs(results[0]["err_length"]) < 0.005 and abs(results[0]["err_width"]) < 0.005
 
 
 def test_bump_pull_tick_on_an_outer_rib():
