@@ -15,6 +15,8 @@ from inkprint.marks import BOLD_REASON
 from inkprint.synth import PrintSpec, SheetSpec, _outline, render_sheet
 from inkprint.synth_effects import Text, text_extent
 
+from .test_classes import outcomes
+
 
 def mixed_file(seed: int, k: int) -> int:
     return seed * 100_003 + k
@@ -23,6 +25,28 @@ def mixed_file(seed: int, k: int) -> int:
 def _errors(pr, t) -> tuple[float, float, float]:
     m = pr.metrics
     return (m.length / t.length - 1, m.width / t.width - 1, m.hull_area / t.hull_area - 1)
+
+
+# -- a pen label's letters on the edge (mixed sets) ----------------------------------
+
+
+def test_measure_print_letter_bar_along_the_widest_point(tmp_path):
+    # 5006 file 24 at 300 dpi: an 'E''s bottom bar 1.5 px out of a slick print's
+    # edge at its widest point, joined to it through the anti-aliased row between
+    # them: width +1.14 %, unflagged. Measured without the ink under the label the
+    # hull spans the notch (its sagitta is a hundredth of a pixel there)
+    results, _ = outcomes(tmp_path, "label", mixed_file(5006, 24), dpi=None)
+    assert [r["outcome"] for r in results] == ["pass"], results
+    assert abs(results[0]["err_width"]) < 0.004
+
+
+def test_measure_print_letter_feet_on_a_narrow_slick_print(tmp_path):
+    # 5008 file 42 at 150 dpi: a label's feet on the top of an 8.8 mm wide slick
+    # print: width +1.59 %, unflagged; the tangents on either side of the hidden
+    # stretch bound it within edge_uncertainty
+    results, _ = outcomes(tmp_path, "label", mixed_file(5008, 42), dpi=None)
+    assert [r["outcome"] for r in results] == ["pass"], results
+    assert abs(results[0]["err_width"]) < 0.007
 
 
 # -- a marker's bold letters -----------------------------------------------------------
@@ -58,3 +82,16 @@ def test_sort_ink_bold_label_touching_a_slick_print_is_set_aside(dpi):
     ), errors
     assert max(abs(e) for e in errors) < 0.01, errors
     assert sum(m.reason == BOLD_REASON for m in r.marks) >= 5
+
+
+def test_sort_ink_bold_label_left_on_the_edge_is_flagged():
+    # the label's corner lying along the print's shoulder: what is left of its feet
+    # on the edge is measured out (the ink under the label), and the edge there,
+    # hidden, bounded by the tangents on either side beyond edge_uncertainty
+    spec = _bold_label_sheet(150.0, theta=100.0)
+    img, truths = render_sheet(spec)
+    r = ip.analyze_scan(ip.Scan(img, 25.4 / spec.dpi, "given"), sensitivity=False)
+    (pr,) = r.prints
+    errors = _errors(pr, truths[0])
+    assert "mark_on_edge" in pr.flags, errors
+    assert max(abs(e) for e in errors) < 0.015, errors
