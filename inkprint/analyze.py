@@ -792,6 +792,15 @@ def measure_print(ctx: _Context, group: Group, *, index: int = 0, sensitivity: b
             f"in length or width: a line as wide as a pen stroke (a ruler's edge) taken "
             f"for tread? See the overlay, remove the line or rescan",
         )
+    sliver = _sliver_excess(ctx, g, kept, m)
+    if sliver > opts.edge_uncertainty and "mark_on_edge" not in flags:
+        flags += ("mark_on_edge",)
+        warnings += (
+            f"print #{index}: a thin piece alone off its tip was set aside as a pen mark; "
+            f"it may be a tread block the outline cut to a sliver: with it the length, "
+            f"width or hull area (counted half) is {100 * sliver:.1f} % larger. See the "
+            f"overlay",
+        )
     faint = _faint_excess(ctx, g, spots, m, grey=grey, local=local, aside=aside, kept=kept)
     if faint > opts.edge_uncertainty:
         flags += ("faint_edge",)
@@ -976,6 +985,68 @@ def _clip(poly: list, p: np.ndarray, q: np.ndarray, inner: np.ndarray) -> list:
         if (dx >= 0) != (dy >= 0):
             out.append(x + (y - x) * dx / (dx - dy))
     return out
+
+
+def _sliver_excess(ctx: _Context, g: Group, kept: np.ndarray, m) -> float:
+    """How much larger the print is with the thin pieces alone off its tip that were
+    set aside (marks of kind ``sliver``, :mod:`inkprint.marks`: a sliver of a tip
+    block or a pen mark, which cannot be told apart beside a print without a block
+    pattern): the largest relative excess of length, width or half the hull area
+    over ``m`` (0 when none lies within ``group_distance_mm`` of the print's box
+    ``g``, its ink ``kept``), measured in the box holding them too."""
+    s, opts = ctx.scan.mm_per_px, ctx.opts
+    near = mm_to_px_length(opts.group_distance_mm, s)
+    r0, r1, c0, c1 = g.rows.start, g.rows.stop, g.cols.start, g.cols.stop
+    boxes = [
+        mk.bbox
+        for mk in ctx.found.marks
+        if mk.kind == "sliver"
+        and mk.bbox[0] < r1 + near
+        and mk.bbox[2] > r0 - near
+        and mk.bbox[1] < c1 + near
+        and mk.bbox[3] > c0 - near
+    ]
+    if not boxes:
+        return 0.0
+    pad = 2 + round(mm_to_px_length(opts.edge_window_mm, s))
+    h, w = ctx.page.work.shape
+    rows = slice(
+        max(min([r0] + [b[0] - pad for b in boxes]), 0),
+        min(max([r1] + [b[2] + pad for b in boxes]), h),
+    )
+    cols = slice(
+        max(min([c0] + [b[1] - pad for b in boxes]), 0),
+        min(max([c1] + [b[3] + pad for b in boxes]), w),
+    )
+    own = np.zeros((rows.stop - rows.start, cols.stop - cols.start), bool)
+    own[r0 - rows.start : r1 - rows.start, c0 - cols.start : c1 - cols.start] = kept
+    extra = np.zeros(own.shape, bool)
+    for a, b, c, d in boxes:
+        extra[max(a - rows.start, 0) : c - rows.start, max(b - cols.start, 0) : d - cols.start] = (
+            True
+        )
+    ink = ctx.binarization.mask[rows, cols]
+    extra &= ink & ~own
+    if not extra.any():
+        return 0.0
+    grey = _grey(ctx.scan, ctx.page, rows, cols)
+    both = own | extra
+    fld = edge_field(grey, both, mm_per_px=s, options=opts, local=_local_range(grey, s, opts))
+    fld = _paper_where_set_apart(fld, ink & ~both, both)
+    with_it = measure_mask(
+        both,
+        rows.start,
+        cols.start,
+        n_rows=h,
+        mm_per_px=s,
+        field=fld,
+        axis=m.metrics.orientation,
+        stations=(0.0,),
+    ).metrics
+    weights = {"length": 1.0, "width": 1.0, "hull_area": 0.5}
+    return max(
+        wt * (getattr(with_it, k) / getattr(m.metrics, k) - 1.0) for k, wt in weights.items()
+    )
 
 
 def _faint_excess(ctx: _Context, g: Group, spots, m, *, grey, local, aside, kept) -> float:
