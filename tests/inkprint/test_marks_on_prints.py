@@ -7,6 +7,8 @@ ruler's ticks beside a print's tips.
 ``python -m inkprint.accuracy``; the other sheets are drawn with exact truth.
 """
 
+import math
+
 import numpy as np
 import pytest
 
@@ -134,3 +136,25 @@ def test_sort_ink_bold_label_left_on_the_edge_is_flagged():
     errors = _errors(pr, truths[0])
     assert "mark_on_edge" in pr.flags, errors
     assert max(abs(e) for e in errors) < 0.015, errors
+
+
+# -- a ruler along a print through its tips ---------------------------------------------
+
+
+def test_sort_ink_ruler_along_a_print_keeps_its_ticks_out():
+    # independent set 1 file 96: a ruler (0.69 mm line, ticks every mm) along a
+    # print's rolling axis through both tips; the ticks beside a tip lay inside the
+    # print's hull while the line was in it and, the line out, along its outline,
+    # read as slivers of it (length +1.7 %). Ticks touching the band of a line taken
+    # out are the line's. On a file tread the ticks joined the print: length +48 %
+    a = math.radians(-23.0)
+    d = np.array([math.cos(a), math.sin(a)])
+    c = np.array([134.0, 130.0])
+    p = PrintSpec(71.0, 21.0, tuple(c), -23.0, "file", ink=0.8)
+    ruler = Line(tuple(c - 70 * d), tuple(c + 70 * d), 0.69, 0.85, 1.0)
+    spec = SheetSpec((p,), dpi=300.0, seed=5, specks=0, marks=(ruler,))
+    img, truths = render_sheet(spec)
+    r = ip.analyze_scan(ip.Scan(img, 25.4 / spec.dpi, "given"), sensitivity=False)
+    (pr,) = r.prints
+    errors = _errors(pr, truths[0])
+    assert abs(errors[0]) < 0.01 and abs(errors[1]) < 0.01 and abs(errors[2]) < 0.02, errors
