@@ -1158,7 +1158,11 @@ def _print_flags(
             f"overlay, remove the line or rescan"
         )
     elif (
-        excess := _edge_uncertainty(ctx, padded, kept, m.metrics.orientation)
+        # (with the ink under a label: a ruler's ticks set aside as text notch the
+        # outline next to the line, whose band then seemed to widen it, 5006 file 48)
+        excess := _edge_uncertainty(
+            ctx, padded, kept if hidden is None else kept | hidden, m.metrics.orientation
+        )
     ) > ctx.opts.edge_uncertainty:
         flags.append("mark_on_edge")
         warnings.append(
