@@ -770,37 +770,10 @@ def measure_print(ctx: _Context, group: Group, *, index: int = 0, sensitivity: b
         else {k: (v, v) for k, v in base.items()}
     )
     margin = max(mm_to_px_length(opts.group_distance_mm, s), 1.5 * spots.tread_gap)
-    under = (
-        0.0 if hidden is None else _hidden_excess(ctx, g, m.hull_px, hidden, m.metrics.orientation)
-    )
     flags, warnings = _print_flags(
         ctx, group, m, index, int(np.ceil(margin)), padded=g, kept=kept, hidden=hidden
     )
-    if under > opts.edge_uncertainty and "mark_on_edge" not in flags:
-        flags += ("mark_on_edge",)
-        warnings += (
-            f"print #{index}: a label's letters touch its edge and hide it there: measured "
-            f"without the ink under them, its length, width or hull area (counted half) "
-            f"may be up to {100 * under:.1f} % larger; see the overlay, remove the label "
-            f"or rescan",
-        )
-    reach = _reach_beyond_body(ctx, kept, m.metrics.orientation)
-    if reach > opts.body_reach and "mark_on_edge" not in flags:
-        flags += ("mark_on_edge",)
-        warnings += (
-            f"print #{index}: its ink reaches {100 * reach:.0f} % beyond the print's body "
-            f"in length or width: a line as wide as a pen stroke (a ruler's edge) taken "
-            f"for tread? See the overlay, remove the line or rescan",
-        )
-    sliver = _sliver_excess(ctx, g, kept, m)
-    if sliver > opts.edge_uncertainty and "mark_on_edge" not in flags:
-        flags += ("mark_on_edge",)
-        warnings += (
-            f"print #{index}: a thin piece alone off its tip was set aside as a pen mark; "
-            f"it may be a tread block the outline cut to a sliver: with it the length, "
-            f"width or hull area (counted half) is {100 * sliver:.1f} % larger. See the "
-            f"overlay",
-        )
+    flags, warnings = _edge_mark_flags(ctx, g, m, index, (kept, hidden), flags, warnings)
     faint = _faint_excess(ctx, g, spots, m, grey=grey, local=local, aside=aside, kept=kept)
     if faint > opts.edge_uncertainty:
         flags += ("faint_edge",)
@@ -825,6 +798,45 @@ def measure_print(ctx: _Context, group: Group, *, index: int = 0, sensitivity: b
         warnings=warnings,
         unit=ctx.scan.unit,
     )
+
+
+def _edge_mark_flags(ctx: _Context, g: Group, m, index: int, ink: tuple, flags, warnings):
+    """The flags and warnings with ``mark_on_edge`` added when a mark may have moved
+    the print's edge beyond ``edge_uncertainty``: the edge hidden under a label
+    (:func:`_hidden_excess`), a line as wide as a stroke taken for tread
+    (:func:`_reach_beyond_body`), a thin piece alone off its tip set aside
+    (:func:`_sliver_excess`). ``g``: the padded print; ``ink``: its ink measured and
+    the ink under a label (or None)."""
+    opts, (kept, hidden) = ctx.opts, ink
+    if "mark_on_edge" in flags:
+        return flags, warnings
+    angle = m.metrics.orientation
+    why = ""
+    if (
+        hidden is not None
+        and (under := _hidden_excess(ctx, g, m.hull_px, hidden, angle)) > opts.edge_uncertainty
+    ):
+        why = (
+            f"a mark set aside (a label's letters, a ruler's tick) touches its edge and "
+            f"hides it there: measured without the ink under it, its length, width or "
+            f"hull area (counted half) may be up to {100 * under:.1f} % larger; see the "
+            f"overlay, remove the mark or rescan"
+        )
+    elif (reach := _reach_beyond_body(ctx, kept, angle)) > opts.body_reach:
+        why = (
+            f"its ink reaches {100 * reach:.0f} % beyond the print's body in length or "
+            f"width: a line as wide as a pen stroke (a ruler's edge) taken for tread? See "
+            f"the overlay, remove the line or rescan"
+        )
+    elif (sliver := _sliver_excess(ctx, g, kept, m)) > opts.edge_uncertainty:
+        why = (
+            f"a thin piece alone off its tip was set aside as a pen mark; it may be a "
+            f"tread block the outline cut to a sliver: with it the length, width or hull "
+            f"area (counted half) is {100 * sliver:.1f} % larger. See the overlay"
+        )
+    if not why:
+        return flags, warnings
+    return (*flags, "mark_on_edge"), (*warnings, f"print #{index}: {why}")
 
 
 def _reach_beyond_body(ctx: _Context, ink: np.ndarray, angle: float) -> float:
@@ -1128,17 +1140,13 @@ def _axis_flags(
     return flags, warnings
 
 
-def _print_flags(
-    ctx: _Context,
-    g: Group,
-    m,
-    index: int,
-    margin: int,
-    *,
-    padded: Group,
-    kept: np.ndarray,
-    hidden: np.ndarray | None = None,
-) -> tuple[tuple, tuple]:
+def _line_flags(
+    ctx: _Context, g: Group, m, index: int, *, padded: Group, kept, hidden
+) -> tuple[list, list]:
+    """``mark_on_edge`` (flags and warnings, lists) for a line taken out beside the
+    print (splitting it, along its edge, its band beside the edge), or a mark set
+    aside covering more than ``edge_mark_mm`` of its outline where no text mark hides
+    its edge (``hidden``: the ink under a label, :func:`_under_text`)."""
     flags, warnings = [], []
     contact = px_to_mm_length(g.edge_marks, ctx.scan.mm_per_px)
     along = px_to_mm_length(g.line_along, ctx.scan.mm_per_px)
@@ -1181,6 +1189,21 @@ def _print_flags(
             f"line along its edge, a label's strokes): the outline there is uncertain by up "
             f"to the mark's width; see the overlay, remove the mark or rescan"
         )
+    return flags, warnings
+
+
+def _print_flags(
+    ctx: _Context,
+    g: Group,
+    m,
+    index: int,
+    margin: int,
+    *,
+    padded: Group,
+    kept: np.ndarray,
+    hidden: np.ndarray | None = None,
+) -> tuple[tuple, tuple]:
+    flags, warnings = _line_flags(ctx, g, m, index, padded=padded, kept=kept, hidden=hidden)
     pull = 0.0
     if "mark_on_edge" not in flags:
         pull = _mark_pull(ctx, padded, kept, m.metrics.orientation, hidden=hidden)

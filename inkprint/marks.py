@@ -481,171 +481,247 @@ def _bold_strokes(parts: _Parts, comp: np.ndarray, pooled: _Pooled, opts: Analys
       body's hull (its tread has no small blocks) and it lies within
       ``group_distance_mm`` of a letter, or of such a blob that does; any other
       shape (a letter, a scribble) is a letter."""
-    import cv2
-
     n = parts.n_thick
     out = np.zeros(n, bool)
     if n == 0:
         return _Bold(out, None)
-    lab_all = parts.thick
-    st = parts.thick_stats
-    core_px = np.bincount(lab_all[parts.core], minlength=n + 1)
-    cored = core_px[1:] >= 0.5 * st[1:, 4]
-    long = px_to_mm_length(np.maximum(st[1:, 2], st[1:, 3]), pooled.px_mm) >= opts.line_length_mm
-    groups = np.unique(comp[cored | long])
-    lut = np.r_[0, comp]  # an element's print, -1: set aside
-    over = mm_to_px_length(opts.mark_overhang_mm, pooled.px_mm)
-    cut_reach = mm_to_px_length(opts.bold_reach_mm, pooled.px_mm)
-    two = mm_to_px_length(2.0 * opts.stroke_width_mm, pooled.px_mm)
-    stroke_disk = _disk(mm_to_px_length(opts.stroke_width_mm, pooled.px_mm))
-    core_disk = _disk(two)
-    # a sliver without core is thinner than two strokes; curving with the outline
-    # its depth out of the hull's chords is more (a chevron print's tip, independent
-    # set 1 file 36: 1.9 mm deep, 10.7 mm long)
-    sliver = mm_to_px_length(SLIVER_STROKES * opts.stroke_width_mm, pooled.px_mm)
-    near = mm_to_px_length(opts.group_distance_mm, pooled.px_mm)
-    ink: list = []  # the pooled ink's pieces, once needed
+    judge = _BoldJudge(parts, comp, pooled, opts)
     pixels = None
+    for g in np.unique(comp[judge.cored | judge.long]):
+        if g < 0:
+            continue
+        found = judge.print_strokes(np.flatnonzero(comp == g) + 1)
+        if found is None:
+            continue
+        strokes, box, cut = found
+        out[strokes - 1] = True
+        if cut.any():
+            if pixels is None:
+                pixels = np.zeros(parts.thick.shape, bool)
+            pixels[box] |= cut
+    return _Bold(out, pixels)
 
-    def judge(piece: np.ndarray, off: np.ndarray, hull: np.ndarray, reach: float) -> str:
+
+class _BoldJudge:
+    """The judgement of :func:`_bold_strokes`, print by print (its sheet-wide
+    quantities computed once)."""
+
+    def __init__(self, parts: _Parts, comp: np.ndarray, pooled: _Pooled, opts):
+        st, px = parts.thick_stats, pooled.px_mm
+        self.parts, self.pooled, self.opts, self.st = parts, pooled, opts, st
+        core_px = np.bincount(parts.thick[parts.core], minlength=parts.n_thick + 1)
+        self.cored = core_px[1:] >= 0.5 * st[1:, 4]
+        self.long = px_to_mm_length(np.maximum(st[1:, 2], st[1:, 3]), px) >= opts.line_length_mm
+        self.lut = np.r_[0, comp]  # an element's print, -1: set aside
+        self.over = mm_to_px_length(opts.mark_overhang_mm, px)
+        self.cut_reach = mm_to_px_length(opts.bold_reach_mm, px)
+        self.stroke_disk = _disk(mm_to_px_length(opts.stroke_width_mm, px))
+        self.core_disk = _disk(mm_to_px_length(2.0 * opts.stroke_width_mm, px))
+        # a sliver without core is thinner than two strokes; curving with the
+        # outline its depth out of the hull's chords is more (a chevron print's tip,
+        # independent set 1 file 36: 1.9 mm deep, 10.7 mm long)
+        self.sliver = mm_to_px_length(SLIVER_STROKES * opts.stroke_width_mm, px)
+        self.near = mm_to_px_length(opts.group_distance_mm, px)
+        self.ink: list = []  # the pooled ink's pieces, once needed
+
+    def judge(self, piece: np.ndarray, off: np.ndarray, hull: np.ndarray, reach: float) -> str:
+        """'stroke', 'blob' or '' (the print's) for a piece (uint8 crop at ``off``)."""
+        import cv2
+
         p = cv2.findNonZero(piece).reshape(-1, 2).astype(float) + off
         d = _outside_distance(p, hull)
         if d.max() <= reach:
             return ""
         across = d.max() - max(d.min(), 0.0) + 1.0
-        if across <= sliver and max(piece.shape) >= opts.sliver_elongation * across:
+        if across <= self.sliver and max(piece.shape) >= self.opts.sliver_elongation * across:
             return ""  # along the outline: a sliver the outline cut
         return "blob" if _compact_piece(piece, COMPACT_ASPECT) else "stroke"
 
-    for g in groups[groups >= 0]:
-        els = np.flatnonzero(comp == g) + 1
+    def print_strokes(self, els: np.ndarray):
+        """The letters of one print (its elements ``els``): the elements set aside,
+        the print's box and the pixels cut from its body there; None without a body."""
+        import cv2
+
+        st = self.st
         x0, y0 = st[els, 0].min(), st[els, 1].min()
-        x1 = (st[els, 0] + st[els, 2]).max()
-        y1 = (st[els, 1] + st[els, 3]).max()
-        box = (slice(y0, y1), slice(x0, x1))
-        local = lab_all[box]
-        member = np.zeros(n + 1, bool)
-        member[els[cored[els - 1]]] = True
-        body = member[local] & parts.core[box]
-        is_body = cored[els - 1].copy()
-        for i in np.flatnonzero(~cored[els - 1] & long[els - 1]):
-            el = (local == els[i]).view(np.uint8)  # its pores filled, then its core
-            c = cv2.morphologyEx(_filled(el), cv2.MORPH_OPEN, core_disk).view(bool)
-            if np.count_nonzero(c & el.view(bool)) >= 0.5 * np.count_nonzero(el):
-                is_body[i] = True
-                body |= c
+        box = (
+            slice(y0, (st[els, 1] + st[els, 3]).max()),
+            slice(x0, (st[els, 0] + st[els, 2]).max()),
+        )
+        local = self.parts.thick[box]
+        body, is_body = self._body(els, local, box)
         if not body.any():
-            continue
+            return None
         hull = cv2.convexHull(outline_points(body)).reshape(-1, 2).astype(float)
-        # pieces of the body's elements outside the body
-        cut = np.zeros(local.shape, bool)
-        # (a pixel off the body: the opening shaves the outline's staircase, and a ring
-        # of such pixels joined every letter's foot into one piece)
+        # (a pixel off the body: the opening shaves the outline's staircase, and a
+        # ring of such pixels joined every letter's foot into one piece)
         shaved = cv2.dilate(body.view(np.uint8), np.ones((3, 3), np.uint8)).view(bool)
-        # (with the pores filled: a file tread's tip is a sliver full of them)
+        member = np.zeros(len(self.lut), bool)
         member[els[is_body]] = True
+        # (with the pores filled: a file tread's tip is a sliver full of them)
         mine = _filled(member[local].view(np.uint8)).view(bool)
-        rim = (mine & ~shaved).view(np.uint8)
-        inked = None  # the body's elements, their pores closed, once needed
-        rest = []  # the other pieces: a letter's foot when joined to a letter
-        if rim.any():
-            m, rl, rs, _ = components_with_stats(rim, connectivity=8)
-            for c in range(1, m):
-                x, y, w, h = rs[c, :4]
-                piece = (rl[y : y + h, x : x + w] == c).view(np.uint8)
-                if max(w, h) + 2 <= cut_reach:  # (a piece a pixel off the body: no)
-                    rest.append((slice(y, y + h), slice(x, x + w), piece.view(bool)))
-                    continue
-                off = np.array([x, y], float)
-                kind = judge(piece, off, hull, cut_reach)
-                if kind:  # a tip or a corner the opening cut extends its element convexly
-                    e = local[_first_pixel(rl, rs, c)]
-                    own = outline_points(body & (local == e))
-                    if inked is None:  # (the pores the outline cut closed too: a file
-                        # tread's tip is ragged with them, 5001 file 100 at 150 dpi)
-                        inked = cv2.morphologyEx(
-                            np.pad(mine.view(np.uint8), 1), cv2.MORPH_CLOSE, stroke_disk
-                        )[1:-1, 1:-1].view(bool)
-                    fill = 0.0 if own is None else _hull_fill(inked, own, piece, (x, y))
-                    # a bar standing out of a slick print is no tread block
-                    kind = "" if fill >= opts.bold_fill else "stroke"
-                if kind == "stroke":
-                    cut[y : y + h, x : x + w] |= piece.view(bool)
-                else:
-                    rest.append((slice(y, y + h), slice(x, x + w), piece.view(bool)))
-        # the other elements reaching out of the body's hull, with their ink
-        reach = np.zeros(len(els), bool)
-        for i in np.flatnonzero(~is_body):
-            x, y, w, h = st[els[i], :4]
-            e = outline_points(lab_all[y : y + h, x : x + w] == els[i]).reshape(-1, 2)
-            reach[i] = _outside_distance(e + np.array([x - x0, y - y0]), hull).max() > over
-        kinds = {}  # element index -> 'stroke' | 'blob' | ''
-        if reach.any():
-            if not ink:
-                ink.extend(components_with_stats(pooled.mask, connectivity=8)[1:3])
-            ink_lab, ink_st = ink
-            ids = np.array([ink_lab[_first_pixel(lab_all, st, k)] for k in els])  # pieces
-            for i in np.flatnonzero(reach):
-                c = ids[i]
-                if c in ids[is_body]:  # joined to the body by thin ink: the element alone
-                    x, y, w, h = st[els[i], :4]
-                    piece = (lab_all[y : y + h, x : x + w] == els[i]).view(np.uint8)
-                else:
-                    x, y, w, h = ink_st[c, :4]
-                    piece = (ink_lab[y : y + h, x : x + w] == c).view(np.uint8)
-                kinds[i] = judge(piece, np.array([x - x0, y - y0], float), hull, over)
+        cut, rest = self._rim(local, body, mine, shaved, hull)
+        kinds, reach = self._elements(els, is_body, (x0, y0), hull)
         strokes = [i for i, k in kinds.items() if k == "stroke"]
-        # (letters set aside by an earlier pass, when the prints were grouped with them)
         member[:] = False
         member[els[strokes]] = True
-        taken = cut | member[local] | (lut[local] < 0)
+        # (and letters set aside by an earlier pass, grouped with the print then)
+        taken = cut | member[local] | (self.lut[local] < 0)
         if not taken.any():
-            continue
+            return None
         blobs = [i for i, k in kinds.items() if k == "blob"]
         if blobs and not (~is_body & ~reach).any():
             # no element like a block inside the body's hull (its tread has none):
             # the blobs chained to a stroke within the distance are letters too
-            grow = True
-            while grow and blobs:
-                dist = cv2.distanceTransform((~taken).view(np.uint8), cv2.DIST_L2, 3)
-                grow = False
-                for i in list(blobs):
-                    if dist[local == els[i]].min() <= near:
-                        strokes.append(i)
-                        blobs.remove(i)
-                        taken |= local == els[i]
-                        grow = True
-        out[els[strokes] - 1] = True
-        # a letter's foot cut from the body with it: joined to the letter by ink
-        # outside the body, or within a stroke of it
-        if rest:
-            _, joined, _, _ = components_with_stats(pooled.mask[box] & ~shaved, connectivity=8)
-            ids = np.unique(joined[taken & ~shaved])
-            grown = cv2.dilate(taken.view(np.uint8), stroke_disk).view(bool)
-            for rows, cols, piece in rest:
-                if not (
-                    (grown[rows, cols] & piece).any()
-                    or np.isin(joined[rows, cols][piece], ids[ids > 0]).any()
-                ):
-                    continue
-                if _reach(piece.view(np.uint8), np.array([cols.start, rows.start]), hull) > 0:
-                    cut[rows, cols] |= piece
-        if cut.any():
-            if pixels is None:
-                pixels = np.zeros(lab_all.shape, bool)
-            pixels[box] |= cut
-    return _Bold(out, pixels)
+            strokes += self._chained(blobs, els, local, taken)
+        self._feet(rest, taken, box, shaved, hull, cut)
+        return els[strokes], box, cut
+
+    def _body(self, els, local, box) -> tuple:
+        """The print's body (bool over its box) and which of ``els`` make it."""
+        import cv2
+
+        member = np.zeros(len(self.lut), bool)
+        member[els[self.cored[els - 1]]] = True
+        body = member[local] & self.parts.core[box]
+        is_body = self.cored[els - 1].copy()
+        for i in np.flatnonzero(~self.cored[els - 1] & self.long[els - 1]):
+            el = (local == els[i]).view(np.uint8)  # its pores filled, then its core
+            c = cv2.morphologyEx(_filled(el), cv2.MORPH_OPEN, self.core_disk).view(bool)
+            if np.count_nonzero(c & el.view(bool)) >= 0.5 * np.count_nonzero(el):
+                is_body[i] = True
+                body |= c
+        return body, is_body
+
+    def _rim(self, local, body, mine, shaved, hull) -> tuple:
+        """The pieces of the body's elements outside the body: the strokes cut (bool
+        over the box) and the others (a letter's foot when joined to a letter)."""
+
+        cut, rest = np.zeros(local.shape, bool), []
+        rim = (mine & ~shaved).view(np.uint8)
+        if not rim.any():
+            return cut, rest
+        m, rl, rs, _ = components_with_stats(rim, connectivity=8)
+        for c in range(1, m):
+            x, y, w, h = rs[c, :4]
+            piece = (rl[y : y + h, x : x + w] == c).view(np.uint8)
+            where = (slice(y, y + h), slice(x, x + w), piece.view(bool))
+            if max(w, h) + 2 <= self.cut_reach:  # (a piece a pixel off the body: no)
+                rest.append(where)
+                continue
+            kind = self.judge(piece, np.array([x, y], float), hull, self.cut_reach)
+            if kind:  # a tip or a corner the opening cut extends its element convexly
+                e = local == local[_first_pixel(rl, rs, c)]
+                own = outline_points(body & e)
+                fill = 0.0
+                if own is not None:
+                    fill = _hull_fill(self._inked(body & e, where), own, where)
+                # a bar standing out of a slick print is no tread block
+                kind = "" if fill >= self.opts.bold_fill else "stroke"
+            if kind == "stroke":
+                cut[where[:2]] |= where[2]
+            else:
+                rest.append(where)
+        return cut, rest
+
+    def _inked(self, core: np.ndarray, where: tuple) -> np.ndarray:
+        """The ink of a piece (``where``: its rows, cols and bool crop) with its
+        element's core ``core`` (bool over the box), the pores between them closed,
+        in a window about the piece as large again each way (bool over the box; the
+        other pieces of the body's elements left out: a marker label lying along a
+        slick print, its letters joined to it side by side, filled each other's
+        hulls)."""
+        import cv2
+
+        rows, cols, piece = where
+        h, w = rows.stop - rows.start, cols.stop - cols.start
+        r0, c0 = max(rows.start - h, 0), max(cols.start - w, 0)
+        win = (slice(r0, rows.stop + h), slice(c0, cols.stop + w))
+        ink = core[win].view(np.uint8).copy()
+        ink[rows.start - r0 : rows.stop - r0, cols.start - c0 : cols.stop - c0] |= piece
+        # (the pores the outline cut closed too: a file tread's tip is ragged with
+        # them, 5001 file 100 at 150 dpi)
+        ink = cv2.morphologyEx(np.pad(ink, 1), cv2.MORPH_CLOSE, self.stroke_disk)[1:-1, 1:-1]
+        out = np.zeros(core.shape, bool)
+        out[win] = ink.view(bool)
+        return out
+
+    def _elements(self, els, is_body, at, hull) -> tuple:
+        """The kind of each other element reaching out of the body's hull, judged
+        with the ink joined to it (alone when that holds a body element), and which
+        of ``els`` reach out of it."""
+        st, lab, (x0, y0) = self.st, self.parts.thick, at
+        reach = np.zeros(len(els), bool)
+        for i in np.flatnonzero(~is_body):
+            x, y, w, h = st[els[i], :4]
+            e = outline_points(lab[y : y + h, x : x + w] == els[i]).reshape(-1, 2)
+            reach[i] = _outside_distance(e + np.array([x - x0, y - y0]), hull).max() > self.over
+        kinds = {}  # element index -> 'stroke' | 'blob' | ''
+        if not reach.any():
+            return kinds, reach
+        if not self.ink:
+            self.ink.extend(components_with_stats(self.pooled.mask, connectivity=8)[1:3])
+        ink_lab, ink_st = self.ink
+        ids = np.array([ink_lab[_first_pixel(lab, st, k)] for k in els])  # ink pieces
+        for i in np.flatnonzero(reach):
+            c = ids[i]
+            if c in ids[is_body]:  # joined to the body by thin ink: the element alone
+                x, y, w, h = st[els[i], :4]
+                piece = (lab[y : y + h, x : x + w] == els[i]).view(np.uint8)
+            else:
+                x, y, w, h = ink_st[c, :4]
+                piece = (ink_lab[y : y + h, x : x + w] == c).view(np.uint8)
+            kinds[i] = self.judge(piece, np.array([x - x0, y - y0], float), hull, self.over)
+        return kinds, reach
+
+    def _chained(self, blobs: list, els, local, taken) -> list:
+        """Of the blobs (element indices), those within ``group_distance_mm`` of the
+        ink ``taken`` (strokes), or of such a blob that is (``taken`` grows)."""
+        import cv2
+
+        out, grow = [], True
+        while grow and blobs:
+            dist = cv2.distanceTransform((~taken).view(np.uint8), cv2.DIST_L2, 3)
+            grow = False
+            for i in list(blobs):
+                if dist[local == els[i]].min() <= self.near:
+                    out.append(i)
+                    blobs.remove(i)
+                    taken |= local == els[i]
+                    grow = True
+        return out
+
+    def _feet(self, rest: list, taken, box, shaved, hull, cut) -> None:
+        """Add to ``cut`` the pieces of ``rest`` that are a letter's foot: joined to
+        a letter (``taken``) by ink outside the body, or within a stroke of it, and
+        reaching out of the body's hull."""
+        import cv2
+
+        if not rest:
+            return
+        _, joined, _, _ = components_with_stats(self.pooled.mask[box] & ~shaved, connectivity=8)
+        ids = np.unique(joined[taken & ~shaved])
+        grown = cv2.dilate(taken.view(np.uint8), self.stroke_disk).view(bool)
+        for rows, cols, piece in rest:
+            if not (
+                (grown[rows, cols] & piece).any()
+                or np.isin(joined[rows, cols][piece], ids[ids > 0]).any()
+            ):
+                continue
+            if _reach(piece.view(np.uint8), np.array([cols.start, rows.start]), hull) > 0:
+                cut[rows, cols] |= piece
 
 
-def _hull_fill(inked: np.ndarray, own: np.ndarray, piece: np.ndarray, at: tuple) -> float:
-    """How much of what a piece (uint8 crop at ``at``, (x, y)) adds to the hull of
-    ``own`` (an element's core, outline points) is inked (``inked``, the box's bool
-    ink, pores closed): about 1 for a tip or a corner of a print (convex with it),
-    far less for a stroke standing out of its edge (paper on either side of it)."""
+def _hull_fill(inked: np.ndarray, own: np.ndarray, where: tuple) -> float:
+    """How much of what a piece (``where``: its rows, cols and bool crop in a box)
+    adds to the hull of ``own`` (an element's core, outline points) is inked
+    (``inked``, bool over the box): about 1 for a tip or a corner of a print
+    (convex with it), far less for a stroke standing out of its edge (paper on
+    either side of it)."""
     import cv2
 
-    x, y = at
-    p = cv2.findNonZero(piece).reshape(-1, 2) + np.array([x, y])
+    rows, cols, piece = where
+    p = cv2.findNonZero(piece.view(np.uint8)).reshape(-1, 2) + np.array([cols.start, rows.start])
     core = cv2.convexHull(own)
     both = cv2.convexHull(np.concatenate([own.reshape(-1, 2), p]).astype(np.int32))
     grown = cv2.fillConvexPoly(np.zeros(inked.shape, np.uint8), both, 1)

@@ -138,6 +138,24 @@ def test_sort_ink_bold_label_left_on_the_edge_is_flagged():
     assert max(abs(e) for e in errors) < 0.015, errors
 
 
+def test_sort_ink_bold_label_lying_along_a_slick_print_is_never_silent():
+    # the label's baseline along the print's top, its letters joined to the print
+    # side by side: each letter's piece, judged against the ink about it, filled the
+    # hull it adds with its neighbours' ink and stayed (width +18 %, unflagged); the
+    # ink about it is its element's core and the piece itself now
+    p = PrintSpec(62.0, 24.0, (100.0, 120.0), 0.0, "slick", ink=0.85)
+    text = Text("GP5000 41", (0.0, 0.0), 6.0, 1.2, 0.85)
+    w, _ = text_extent(text)
+    label = Text(text.text, (100.0 - 0.3 * w, 132.0 - 0.3), 6.0, 1.2, 0.85)
+    spec = SheetSpec((p,), dpi=150.0, seed=3, specks=0, marks=(label,))
+    img, truths = render_sheet(spec)
+    r = ip.analyze_scan(ip.Scan(img, 25.4 / spec.dpi, "given"), sensitivity=False)
+    (pr,) = r.prints
+    errors = _errors(pr, truths[0])
+    assert "mark_on_edge" in pr.flags, errors
+    assert max(abs(e) for e in errors) < 0.03, errors
+
+
 # -- a ruler along a print through its tips ---------------------------------------------
 
 
