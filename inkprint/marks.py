@@ -19,7 +19,8 @@ resolution.
    whose pores are filled (a file tread); thick ink reaching out of the body's hull
    is judged (:func:`_bold_strokes`): a piece of a body element outside its core
    reaching farther than ``bold_reach_mm`` is a letter unless it fills ``bold_fill``
-   of what it adds to its element's hull (a tip, a corner); another element, with the ink joined to
+   of what it adds to its element's hull (a tip, a corner; judged beside a body
+   filling ``bold_body_fill`` of its hull); another element, with the ink joined to
    it, is a letter unless it lies along the outline (a sliver) or is a compact blob
    (a tread block; a bold '0' is one too when the print has no small blocks and it
    lies within ``group_distance_mm`` of a letter). Letters are set aside (``text``)
@@ -471,7 +472,9 @@ def _bold_strokes(parts: _Parts, comp: np.ndarray, pooled: _Pooled, opts: Analys
     * a piece of a body element outside its core (a letter one piece of ink with
       the print) reaching farther than ``bold_reach_mm`` out of it is a letter unless
       it inks ``bold_fill`` of what it adds to its element's hull (a tip, a corner);
-      a nearer piece is one when joined to a letter;
+      a nearer piece is one when joined to a letter. Only beside a body filling
+      ``bold_body_fill`` of its hull (slick, file tread): a car print's shoulder
+      bars between grooves stand out of its body like letters;
     * another element reaching farther than ``mark_overhang_mm`` out of it, with all
       the ink connected to it when that holds no body element (a letter apart from
       the print), else alone: lying along the outline (no deeper out of the hull
@@ -560,7 +563,10 @@ class _BoldJudge:
         member[els[is_body]] = True
         # (with the pores filled: a file tread's tip is a sliver full of them)
         mine = _filled(member[local].view(np.uint8)).view(bool)
-        cut, rest = self._rim(local, body, mine, shaved, hull)
+        cut, rest = np.zeros(local.shape, bool), []
+        solid = np.count_nonzero(body) / max(cv2.contourArea(hull.astype(np.float32)), 1.0)
+        if solid >= self.opts.bold_body_fill:  # a slick or file tread body
+            cut, rest = self._rim(local, body, mine, shaved, hull)
         kinds, reach = self._elements(els, is_body, (x0, y0), hull)
         strokes = [i for i, k in kinds.items() if k == "stroke"]
         member[:] = False

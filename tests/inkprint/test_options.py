@@ -157,6 +157,7 @@ def test_options_change_single_calls(sheet_factory):
         ("bold_reach_mm", -0.5),
         ("bold_reach_mm", math.nan),
         ("bold_fill", 1.5),
+        ("bold_body_fill", -0.1),
         ("edge_mark_mm", -0.1),
         ("mark_near_px", 1.5),
         ("mark_near_px", 0),
