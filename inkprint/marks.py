@@ -525,7 +525,6 @@ class _BoldJudge:
         # independent set 1 file 36: 1.9 mm deep, 10.7 mm long)
         self.sliver = mm_to_px_length(SLIVER_STROKES * opts.stroke_width_mm, px)
         self.near = mm_to_px_length(opts.group_distance_mm, px)
-        self.ink: list = []  # the pooled ink's pieces, once needed
 
     def judge(self, piece: np.ndarray, off: np.ndarray, hull: np.ndarray, reach: float) -> str:
         """'stroke', 'blob' or '' (the print's) for a piece (uint8 crop at ``off``)."""
@@ -556,18 +555,18 @@ class _BoldJudge:
         if not body.any():
             return None
         hull = cv2.convexHull(outline_points(body)).reshape(-1, 2).astype(float)
-        # (a pixel off the body: the opening shaves the outline's staircase, and a
-        # ring of such pixels joined every letter's foot into one piece)
-        shaved = cv2.dilate(body.view(np.uint8), np.ones((3, 3), np.uint8)).view(bool)
         member = np.zeros(len(self.lut), bool)
-        member[els[is_body]] = True
-        # (with the pores filled: a file tread's tip is a sliver full of them)
-        mine = _filled(member[local].view(np.uint8)).view(bool)
-        cut, rest = np.zeros(local.shape, bool), []
+        cut, rest, shaved = np.zeros(local.shape, bool), [], None
         solid = np.count_nonzero(body) / max(cv2.contourArea(hull.astype(np.float32)), 1.0)
         if solid >= self.opts.bold_body_fill:  # a slick or file tread body
+            # (a pixel off the body: the opening shaves the outline's staircase, and
+            # a ring of such pixels joined every letter's foot into one piece)
+            shaved = cv2.dilate(body.view(np.uint8), np.ones((3, 3), np.uint8)).view(bool)
+            member[els[is_body]] = True
+            # (with the pores filled: a file tread's tip is a sliver full of them)
+            mine = _filled(member[local].view(np.uint8)).view(bool)
             cut, rest = self._rim(local, body, mine, shaved, hull)
-        kinds, reach = self._elements(els, is_body, (x0, y0), hull)
+        kinds, reach = self._elements(els, is_body, box, hull)
         strokes = [i for i, k in kinds.items() if k == "stroke"]
         member[:] = False
         member[els[strokes]] = True
@@ -580,7 +579,8 @@ class _BoldJudge:
             # no element like a block inside the body's hull (its tread has none):
             # the blobs chained to a stroke within the distance are letters too
             strokes += self._chained(blobs, els, local, taken)
-        self._feet(rest, taken, box, shaved, hull, cut)
+        if rest:
+            self._feet(rest, taken, box, shaved, hull, cut)
         return els[strokes], box, cut
 
     def _body(self, els, local, box) -> tuple:
@@ -652,23 +652,40 @@ class _BoldJudge:
         out[win] = ink.view(bool)
         return out
 
-    def _elements(self, els, is_body, at, hull) -> tuple:
+    def _elements(self, els, is_body, box, hull) -> tuple:
         """The kind of each other element reaching out of the body's hull, judged
         with the ink joined to it (alone when that holds a body element), and which
         of ``els`` reach out of it."""
-        st, lab, (x0, y0) = self.st, self.parts.thick, at
+        st, lab = self.st, self.parts.thick
+        x0, y0 = box[1].start, box[0].start
         reach = np.zeros(len(els), bool)
-        for i in np.flatnonzero(~is_body):
+        # (an element whose box lies within the hull lies within it: its box's
+        # corners judge most elements of a print at once)
+        others = np.flatnonzero(~is_body)
+        x, y, w, h = (st[els[others], j] for j in range(4))
+        corners = np.stack([x, y, x + w - 1, y, x, y + h - 1, x + w - 1, y + h - 1], 1)
+        corners = corners.reshape(-1, 2) - np.array([x0, y0])
+        out = _outside_distance(corners.astype(float), hull).reshape(-1, 4).max(1) > self.over
+        for i in others[out]:
             x, y, w, h = st[els[i], :4]
             e = outline_points(lab[y : y + h, x : x + w] == els[i]).reshape(-1, 2)
             reach[i] = _outside_distance(e + np.array([x - x0, y - y0]), hull).max() > self.over
         kinds = {}  # element index -> 'stroke' | 'blob' | ''
         if not reach.any():
             return kinds, reach
-        if not self.ink:
-            self.ink.extend(components_with_stats(self.pooled.mask, connectivity=8)[1:3])
-        ink_lab, ink_st = self.ink
-        ids = np.array([ink_lab[_first_pixel(lab, st, k)] for k in els])  # ink pieces
+        # the ink's pieces about the print (a margin of group_distance_mm: a letter's
+        # ink lies about its thick ink)
+        m = int(np.ceil(self.near))
+        H, W = lab.shape
+        wy, wx = max(y0 - m, 0), max(x0 - m, 0)
+        win = (slice(wy, min(box[0].stop + m, H)), slice(wx, min(box[1].stop + m, W)))
+        _, ink_lab, ink_st, _ = components_with_stats(self.pooled.mask[win], connectivity=8)
+        local = lab[box]  # each element's ink piece
+        idmap = np.zeros(len(self.lut), ink_lab.dtype)
+        idmap[local[local > 0]] = ink_lab[y0 - wy :, x0 - wx :][
+            : local.shape[0], : local.shape[1]
+        ][local > 0]
+        ids = idmap[els]
         for i in np.flatnonzero(reach):
             c = ids[i]
             if c in ids[is_body]:  # joined to the body by thin ink: the element alone
@@ -677,6 +694,7 @@ class _BoldJudge:
             else:
                 x, y, w, h = ink_st[c, :4]
                 piece = (ink_lab[y : y + h, x : x + w] == c).view(np.uint8)
+                x, y = x + wx, y + wy
             kinds[i] = self.judge(piece, np.array([x - x0, y - y0], float), hull, self.over)
         return kinds, reach
 
@@ -703,8 +721,6 @@ class _BoldJudge:
         reaching out of the body's hull."""
         import cv2
 
-        if not rest:
-            return
         _, joined, _, _ = components_with_stats(self.pooled.mask[box] & ~shaved, connectivity=8)
         ids = np.unique(joined[taken & ~shaved])
         grown = cv2.dilate(taken.view(np.uint8), self.stroke_disk).view(bool)
