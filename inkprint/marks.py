@@ -13,13 +13,27 @@ resolution.
    pixel noise, and the thin edges of prints (clipped knobs, rib tails, halo specks).
 2. **Footprints.** The thick elements are linked into prints by the footprint rule
    of :mod:`inkprint.group`.
+   **Bold strokes.** A marker's letters (strokes wider than ``stroke_width_mm``) are
+   thick ink too, linked to the print they touch. A print's *body* is the core (ink
+   wider than two strokes) of its elements that are mostly core, or of a long one
+   whose pores are filled (a file tread); thick ink reaching out of the body's hull
+   is judged (:func:`_bold_strokes`): a piece of a body element outside its core
+   reaching farther than ``bold_reach_mm`` is a letter unless it fills ``bold_fill``
+   of what it adds to its element's hull (a tip, a corner; judged beside a body
+   filling ``bold_body_fill`` of its hull); another element, with the ink joined to
+   it, is a letter unless it lies along the outline (a sliver) or is a compact blob
+   (a tread block; a bold '0' is one too when the print has no small blocks and it
+   lies within ``group_distance_mm`` of a letter). Letters are set aside (``text``)
+   and the prints regrouped without them.
 3. **Thin ink.** Each connected piece of thin ink is judged against the prints'
    convex hulls:
 
    * ``line`` / ``gridlines`` / ``noise`` / ``text``: at least ``line_length_mm``
      long and mostly outside every print (a ruler crossing a print, chart paper,
      a pixel-noise page, a line of writing); set aside whole. The parts of a line
-     inside a print's grooves stay (they are short and do not move the hull).
+     inside a print's grooves stay (they are short and do not move the hull). Once
+     the lines are taken out, what touched them (a ruler's tick) is the print's
+     only as a compact blob.
    * the print's own edge: within ``group_distance_mm`` of a print and reaching no
      farther than ``mark_overhang_mm`` out of its hull (rib tails, slivers), a
      compact blob apart from the print's thick ink (a clipped knob), or a dot no
@@ -29,6 +43,11 @@ resolution.
      does not widen it;
    * ``text``: thin strokes reaching farther out (a pen label touching a print), or
      strokes away from every print;
+   * a thin piece alone off a print's tip along its major axis (no other piece
+     within twice ``group_distance_mm``): a tread block the outline cut to a sliver, the
+     print's, beside a block pattern (``tip_block_strokes``); beside a one-piece
+     print it cannot be told from a pen stroke: set aside as ``sliver``, and the
+     print is flagged with the size it would have with it;
    * ``dust``: small dots away from every print.
 
 Nothing set aside is ever merged into a print; every mark is reported with its kind
@@ -38,6 +57,7 @@ and box (:class:`Mark`), and drawn on the QA overlay.
 from __future__ import annotations
 
 import dataclasses
+import functools
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -47,6 +67,7 @@ from .coords import area_px_to_mm2, binned_mm_per_px, mm_to_px_length, px_to_mm_
 from .group import (
     Group,
     PartsJoined,
+    _outside_distance,
     element_graph,
     join_side_by_side,
     join_tips,
@@ -82,6 +103,14 @@ LINE_SEGMENT_MM = 5.0
 LINE_SUPPORT = 0.5
 #: a line crossing a print is bridged where ink lies this close [mm] on both sides
 BRIDGE_MM = 1.0
+#: the reason given for bold pen strokes set aside (their marks' kind is 'text')
+BOLD_REASON = "bold pen strokes (a marker's letters) touching or near a print"
+#: bold pen strokes are looked for again this many times after regrouping without
+#: those found (each pass can only set more aside)
+BOLD_PASSES = 3
+#: a thick sliver along a print's outline lies no deeper out of its body's hull than
+#: this many strokes
+SLIVER_STROKES = 3.0
 
 
 @dataclass(frozen=True)
@@ -92,7 +121,8 @@ class Mark:
     ----------
     kind : str
         'line', 'gridlines', 'text', 'dust', 'noise', 'texture', 'writing',
-        'fragment'.
+        'fragment', 'sliver' (a thin piece alone off a print's tip: a sliver of it
+        or a pen mark, the print flagged with its size with it).
     bbox : (row0, col0, row1, col1) int [px]
         Box on the sheet.
     area_mm2 : float [mm^2]
@@ -183,10 +213,11 @@ def _pool(mask: np.ndarray, mm_per_px: float, opts: AnalysisOptions) -> _Pooled:
     return _Pooled(small >= 128, q, binned_mm_per_px(mm_per_px, q))
 
 
+@functools.lru_cache(maxsize=64)
 def _disk(diameter_px: float) -> np.ndarray:
     """A digital disk of the given diameter [px] (pixel centres within the radius;
     OpenCV's small "ellipses" are closer to a plus sign, which fits in the
-    crossing of two thin lines)."""
+    crossing of two thin lines). Cached: not to be written to."""
     r = max(diameter_px, 2.0) / 2.0
     n = int(np.floor(r))
     y, x = np.mgrid[-n : n + 1, -n : n + 1]
@@ -318,19 +349,24 @@ def _attached_thin(thick_lab, thin_lab, thin_stats, thick_stats, k: int) -> int:
 
 
 def _groups_of_elements(
-    parts: _Parts, pooled: _Pooled, opts: AnalysisOptions, bridge=None
+    parts: _Parts, pooled: _Pooled, opts: AnalysisOptions, bridge=None, drop=None
 ) -> PartsJoined:
     """Print index of each thick element (footprint rule, hull overlaps, tip blocks
     and parts side by side: :func:`inkprint.group.join_tips`,
     :func:`inkprint.group.join_side_by_side`) and the doubtful joins. The ``bridge``
     pixels (lines taken out) count as the ink of the nearest element, so a line
-    that crossed a print does not widen the gap between its two sides."""
+    that crossed a print does not widen the gap between its two sides. ``drop``
+    ((n,) bool): elements set aside (bold pen strokes), grouped with none (index
+    -1)."""
     import cv2
 
     n = parts.n_thick
     if n == 0:
         return PartsJoined(np.zeros(0, int), np.zeros(0), np.zeros(0, bool))
     labels = parts.thick
+    if drop is not None:
+        labels = np.where(np.r_[False, drop][labels], 0, labels).astype(labels.dtype)
+    own = labels  # (the hulls: without the bridges)
     if bridge is not None and bridge.any():
         reach = mm_to_px_length(
             opts.stroke_width_mm + BRIDGE_MM, pooled.px_mm
@@ -340,25 +376,33 @@ def _groups_of_elements(
     graph = element_graph(labels, n, px_mm=pooled.px_mm, step=step)
     link = linked_edges(graph, options=opts)
     comp = union_labels(n, graph.a[link], graph.b[link])
-    comp = merge_overlapping(_hulls(parts.thick, comp), comp)
+    comp = merge_overlapping(_hulls(own, comp), comp)
     sizes = parts.thick_stats[1:, cv2.CC_STAT_AREA].astype(float)
     comp = join_tips(graph, comp, sizes, options=opts)
-    joined = join_side_by_side(
-        graph, comp, _hulls(parts.thick, comp), px_mm=pooled.px_mm, options=opts
-    )
-    if joined.comp is comp:
+    joined = join_side_by_side(graph, comp, _hulls(own, comp), px_mm=pooled.px_mm, options=opts)
+    if joined.comp is not comp:
+        merged = merge_overlapping(_hulls(own, joined.comp), joined.comp)
+        if merged is not joined.comp:
+            # the hull of joined ribs overlapping another group: one print with it
+            joined = _regrouped(joined, merged)
+    if drop is None or not drop.any():
         return joined
-    comp = merge_overlapping(_hulls(parts.thick, joined.comp), joined.comp)
-    if comp is joined.comp:
-        return joined
-    # the hull of joined ribs overlapping another group: one print with it
-    to_new = np.zeros(len(joined.doubt_gap), int)
-    to_new[joined.comp] = comp
-    gap = np.zeros(int(comp.max()) + 1)
-    np.maximum.at(gap, to_new, joined.doubt_gap)
-    was = np.zeros(len(gap), bool)
-    np.logical_or.at(was, to_new, joined.doubt_joined)
-    return PartsJoined(comp, gap, was)
+    return _regrouped(joined, np.where(drop, -1, joined.comp))
+
+
+def _regrouped(joined: PartsJoined, comp: np.ndarray) -> PartsJoined:
+    """``joined`` with its groups mapped to ``comp`` (each element's new group, -1:
+    none), renumbered 0..k-1; a new group's doubt is the largest of its old ones."""
+    used = np.unique(comp[comp >= 0])
+    new = np.where(comp >= 0, np.searchsorted(used, comp), -1)
+    to_new = np.full(len(joined.doubt_gap), -1)
+    to_new[joined.comp] = new
+    keep = to_new >= 0
+    gap = np.zeros(len(used))
+    np.maximum.at(gap, to_new[keep], joined.doubt_gap[keep])
+    was = np.zeros(len(used), bool)
+    np.logical_or.at(was, to_new[keep], joined.doubt_joined[keep])
+    return PartsJoined(new, gap, was)
 
 
 def _bridged(labels: np.ndarray, bridge: np.ndarray, reach: float) -> np.ndarray:
@@ -424,8 +468,361 @@ def _hulls(labels: np.ndarray, comp: np.ndarray, core=None) -> list:
     pts: list[list] = [[] for _ in range(int(comp.max()) + 1 if len(comp) else 0)]
     for c in contours:
         x, y = c[0, 0]
-        pts[comp[labels[y, x] - 1]].append(c)
+        g = comp[labels[y, x] - 1]
+        if g >= 0:  # (an element set aside belongs to no print)
+            pts[g].append(c)
     return [cv2.convexHull(np.concatenate(p)).astype(np.float32) if p else None for p in pts]
+
+
+@dataclass(frozen=True)
+class _Bold:
+    """Bold pen strokes among the thick ink (:func:`_bold_strokes`): the elements
+    set aside ((n,) bool) and the pixels set aside ((H, W) bool or None: those
+    elements and the strokes cut from the prints' bodies)."""
+
+    elements: np.ndarray
+    pixels: np.ndarray | None
+
+
+def _bold_strokes(parts: _Parts, comp: np.ndarray, pooled: _Pooled, opts: AnalysisOptions):
+    """Bold pen strokes among the thick ink (a :class:`_Bold`). Marker letters whose
+    strokes are wider than ``stroke_width_mm`` survive the opening as thick ink and
+    the footprint rule links them to the print they touch (a label of 1.1-1.4 mm
+    strokes touching a slick print, independent set 1 file 12: width +60 %,
+    unflagged).
+
+    A print's body: the core (ink wider than two strokes) of its elements that are
+    mostly core, and of its elements at least ``line_length_mm`` long that are so
+    once their holes are filled (a file tread's pores). Judged against the body's
+    hull:
+
+    * a piece of a body element outside its core (a letter one piece of ink with
+      the print) reaching farther than ``bold_reach_mm`` out of it is a letter unless
+      it inks ``bold_fill`` of what it adds to its element's hull (a tip, a corner);
+      a nearer piece is one when joined to a letter. Only beside a body filling
+      ``bold_body_fill`` of its hull (slick, file tread): a car print's shoulder
+      bars between grooves stand out of its body like letters;
+    * another element reaching farther than ``mark_overhang_mm`` out of it, with all
+      the ink connected to it when that holds no body element (a letter apart from
+      the print), else alone: lying along the outline (no deeper out of the hull
+      than :data:`SLIVER_STROKES` strokes and ``sliver_elongation`` times longer: a
+      tip sliver the outline cut) it is the print's; a compact blob (a tread block;
+      a bold '0') is a letter only when the print has no such element inside the
+      body's hull (its tread has no small blocks) and it lies within
+      ``group_distance_mm`` of a letter, or of such a blob that does; any other
+      shape (a letter, a scribble) is a letter."""
+    n = parts.n_thick
+    out = np.zeros(n, bool)
+    if n == 0:
+        return _Bold(out, None)
+    judge = _BoldJudge(parts, comp, pooled, opts)
+    pixels = None
+    for g in np.unique(comp[judge.cored | judge.long]):
+        if g < 0:
+            continue
+        found = judge.print_strokes(np.flatnonzero(comp == g) + 1)
+        if found is None:
+            continue
+        strokes, box, cut = found
+        out[strokes - 1] = True
+        if cut.any():
+            if pixels is None:
+                pixels = np.zeros(parts.thick.shape, bool)
+            pixels[box] |= cut
+    return _Bold(out, pixels)
+
+
+class _BoldJudge:
+    """The judgement of :func:`_bold_strokes`, print by print (its sheet-wide
+    quantities computed once)."""
+
+    def __init__(self, parts: _Parts, comp: np.ndarray, pooled: _Pooled, opts):
+        st, px = parts.thick_stats, pooled.px_mm
+        self.parts, self.pooled, self.opts, self.st = parts, pooled, opts, st
+        core_px = np.bincount(parts.thick[parts.core], minlength=parts.n_thick + 1)
+        self.cored = core_px[1:] >= 0.5 * st[1:, 4]
+        self.long = px_to_mm_length(np.maximum(st[1:, 2], st[1:, 3]), px) >= opts.line_length_mm
+        self.lut = np.r_[0, comp]  # an element's print, -1: set aside
+        self.over = mm_to_px_length(opts.mark_overhang_mm, px)
+        self.cut_reach = mm_to_px_length(opts.bold_reach_mm, px)
+        self.stroke_disk = _disk(mm_to_px_length(opts.stroke_width_mm, px))
+        self.core_disk = _disk(mm_to_px_length(2.0 * opts.stroke_width_mm, px))
+        # a sliver without core is thinner than two strokes; curving with the
+        # outline its depth out of the hull's chords is more (a chevron print's tip,
+        # independent set 1 file 36: 1.9 mm deep, 10.7 mm long)
+        self.sliver = mm_to_px_length(SLIVER_STROKES * opts.stroke_width_mm, px)
+        self.near = mm_to_px_length(opts.group_distance_mm, px)
+
+    def judge(self, piece: np.ndarray, off: np.ndarray, hull: np.ndarray, reach: float) -> str:
+        """'stroke', 'blob' or '' (the print's) for a piece (uint8 crop at ``off``)."""
+        import cv2
+
+        p = cv2.findNonZero(piece).reshape(-1, 2).astype(float) + off
+        d = _outside_distance(p, hull)
+        if d.max() <= reach:
+            return ""
+        across = d.max() - max(d.min(), 0.0) + 1.0
+        if across <= self.sliver and max(piece.shape) >= self.opts.sliver_elongation * across:
+            return ""  # along the outline: a sliver the outline cut
+        return "blob" if _compact_piece(piece, COMPACT_ASPECT) else "stroke"
+
+    def print_strokes(self, els: np.ndarray):
+        """The letters of one print (its elements ``els``): the elements set aside,
+        the print's box and the pixels cut from its body there; None without a body."""
+        import cv2
+
+        st = self.st
+        x0, y0 = st[els, 0].min(), st[els, 1].min()
+        box = (
+            slice(y0, (st[els, 1] + st[els, 3]).max()),
+            slice(x0, (st[els, 0] + st[els, 2]).max()),
+        )
+        local = self.parts.thick[box]
+        body, is_body = self._body(els, local, box)
+        if not body.any():
+            return None
+        hull = cv2.convexHull(outline_points(body)).reshape(-1, 2).astype(float)
+        member = np.zeros(len(self.lut), bool)
+        cut, rest, shaved = np.zeros(local.shape, bool), [], None
+        solid = np.count_nonzero(body) / max(cv2.contourArea(hull.astype(np.float32)), 1.0)
+        if solid >= self.opts.bold_body_fill:  # a slick or file tread body
+            # (a pixel off the body: the opening shaves the outline's staircase, and
+            # a ring of such pixels joined every letter's foot into one piece)
+            shaved = cv2.dilate(body.view(np.uint8), np.ones((3, 3), np.uint8)).view(bool)
+            member[els[is_body]] = True
+            # (with the pores filled: a file tread's tip is a sliver full of them)
+            mine = _filled(member[local].view(np.uint8)).view(bool)
+            cut, rest = self._rim(local, body, mine, shaved, hull)
+        kinds, reach = self._elements(els, is_body, box, hull)
+        strokes = [i for i, k in kinds.items() if k == "stroke"]
+        member[:] = False
+        member[els[strokes]] = True
+        # (and letters set aside by an earlier pass, grouped with the print then)
+        taken = cut | member[local] | (self.lut[local] < 0)
+        if not taken.any():
+            return None
+        blobs = [i for i, k in kinds.items() if k == "blob"]
+        if blobs and not (~is_body & ~reach).any():
+            # no element like a block inside the body's hull (its tread has none):
+            # the blobs chained to a stroke within the distance are letters too
+            strokes += self._chained(blobs, els, local, taken)
+        if rest:
+            self._feet(rest, taken, box, shaved, hull, cut)
+        return els[strokes], box, cut
+
+    def _body(self, els, local, box) -> tuple:
+        """The print's body (bool over its box) and which of ``els`` make it."""
+        import cv2
+
+        member = np.zeros(len(self.lut), bool)
+        member[els[self.cored[els - 1]]] = True
+        body = member[local] & self.parts.core[box]
+        is_body = self.cored[els - 1].copy()
+        for i in np.flatnonzero(~self.cored[els - 1] & self.long[els - 1]):
+            el = (local == els[i]).view(np.uint8)  # its pores filled, then its core
+            c = cv2.morphologyEx(_filled(el), cv2.MORPH_OPEN, self.core_disk).view(bool)
+            if np.count_nonzero(c & el.view(bool)) >= 0.5 * np.count_nonzero(el):
+                is_body[i] = True
+                body |= c
+        return body, is_body
+
+    def _rim(self, local, body, mine, shaved, hull) -> tuple:
+        """The pieces of the body's elements outside the body: the strokes cut (bool
+        over the box) and the others (a letter's foot when joined to a letter)."""
+
+        cut, rest = np.zeros(local.shape, bool), []
+        rim = (mine & ~shaved).view(np.uint8)
+        if not rim.any():
+            return cut, rest
+        m, rl, rs, _ = components_with_stats(rim, connectivity=8)
+        for c in range(1, m):
+            x, y, w, h = rs[c, :4]
+            piece = (rl[y : y + h, x : x + w] == c).view(np.uint8)
+            where = (slice(y, y + h), slice(x, x + w), piece.view(bool))
+            if max(w, h) + 2 <= self.cut_reach:  # (a piece a pixel off the body: no)
+                rest.append(where)
+                continue
+            kind = self.judge(piece, np.array([x, y], float), hull, self.cut_reach)
+            if kind:  # a tip or a corner the opening cut extends its element convexly
+                e = local == local[_first_pixel(rl, rs, c)]
+                own = outline_points(body & e)
+                fill = 0.0
+                if own is not None:
+                    fill = _hull_fill(self._inked(body & e, where), own, where)
+                # a bar standing out of a slick print is no tread block
+                kind = "" if fill >= self.opts.bold_fill else "stroke"
+            if kind == "stroke":
+                cut[where[:2]] |= where[2]
+            else:
+                rest.append(where)
+        return cut, rest
+
+    def _inked(self, core: np.ndarray, where: tuple) -> np.ndarray:
+        """The ink of a piece (``where``: its rows, cols and bool crop) with its
+        element's core ``core`` (bool over the box), the pores between them closed,
+        in a window about the piece as large again each way (bool over the box; the
+        other pieces of the body's elements left out: a marker label lying along a
+        slick print, its letters joined to it side by side, filled each other's
+        hulls)."""
+        import cv2
+
+        rows, cols, piece = where
+        h, w = rows.stop - rows.start, cols.stop - cols.start
+        r0, c0 = max(rows.start - h, 0), max(cols.start - w, 0)
+        win = (slice(r0, rows.stop + h), slice(c0, cols.stop + w))
+        ink = core[win].view(np.uint8).copy()
+        ink[rows.start - r0 : rows.stop - r0, cols.start - c0 : cols.stop - c0] |= piece
+        # (the pores the outline cut closed too: a file tread's tip is ragged with
+        # them, 5001 file 100 at 150 dpi)
+        ink = cv2.morphologyEx(np.pad(ink, 1), cv2.MORPH_CLOSE, self.stroke_disk)[1:-1, 1:-1]
+        out = np.zeros(core.shape, bool)
+        out[win] = ink.view(bool)
+        return out
+
+    def _elements(self, els, is_body, box, hull) -> tuple:
+        """The kind of each other element reaching out of the body's hull, judged
+        with the ink joined to it (alone when that holds a body element), and which
+        of ``els`` reach out of it."""
+        st, lab = self.st, self.parts.thick
+        x0, y0 = box[1].start, box[0].start
+        reach = np.zeros(len(els), bool)
+        # (an element whose box lies within the hull lies within it: its box's
+        # corners judge most elements of a print at once)
+        others = np.flatnonzero(~is_body)
+        x, y, w, h = (st[els[others], j] for j in range(4))
+        corners = np.stack([x, y, x + w - 1, y, x, y + h - 1, x + w - 1, y + h - 1], 1)
+        corners = corners.reshape(-1, 2) - np.array([x0, y0])
+        out = _outside_distance(corners.astype(float), hull).reshape(-1, 4).max(1) > self.over
+        for i in others[out]:
+            x, y, w, h = st[els[i], :4]
+            e = outline_points(lab[y : y + h, x : x + w] == els[i]).reshape(-1, 2)
+            reach[i] = _outside_distance(e + np.array([x - x0, y - y0]), hull).max() > self.over
+        kinds = {}  # element index -> 'stroke' | 'blob' | ''
+        if not reach.any():
+            return kinds, reach
+        # the ink's pieces about the print (a margin of group_distance_mm: a letter's
+        # ink lies about its thick ink)
+        m = int(np.ceil(self.near))
+        H, W = lab.shape
+        wy, wx = max(y0 - m, 0), max(x0 - m, 0)
+        win = (slice(wy, min(box[0].stop + m, H)), slice(wx, min(box[1].stop + m, W)))
+        _, ink_lab, ink_st, _ = components_with_stats(self.pooled.mask[win], connectivity=8)
+        local = lab[box]  # each element's ink piece
+        idmap = np.zeros(len(self.lut), ink_lab.dtype)
+        idmap[local[local > 0]] = ink_lab[y0 - wy :, x0 - wx :][
+            : local.shape[0], : local.shape[1]
+        ][local > 0]
+        ids = idmap[els]
+        for i in np.flatnonzero(reach):
+            c = ids[i]
+            if c in ids[is_body]:  # joined to the body by thin ink: the element alone
+                x, y, w, h = st[els[i], :4]
+                piece = (lab[y : y + h, x : x + w] == els[i]).view(np.uint8)
+            else:
+                x, y, w, h = ink_st[c, :4]
+                piece = (ink_lab[y : y + h, x : x + w] == c).view(np.uint8)
+                x, y = x + wx, y + wy
+            kinds[i] = self.judge(piece, np.array([x - x0, y - y0], float), hull, self.over)
+        return kinds, reach
+
+    def _chained(self, blobs: list, els, local, taken) -> list:
+        """Of the blobs (element indices), those within ``group_distance_mm`` of the
+        ink ``taken`` (strokes), or of such a blob that is (``taken`` grows)."""
+        import cv2
+
+        out, grow = [], True
+        while grow and blobs:
+            dist = cv2.distanceTransform((~taken).view(np.uint8), cv2.DIST_L2, 3)
+            grow = False
+            for i in list(blobs):
+                if dist[local == els[i]].min() <= self.near:
+                    out.append(i)
+                    blobs.remove(i)
+                    taken |= local == els[i]
+                    grow = True
+        return out
+
+    def _feet(self, rest: list, taken, box, shaved, hull, cut) -> None:
+        """Add to ``cut`` the pieces of ``rest`` that are a letter's foot: joined to
+        a letter (``taken``) by ink outside the body, or within a stroke of it, and
+        reaching out of the body's hull."""
+        import cv2
+
+        _, joined, _, _ = components_with_stats(self.pooled.mask[box] & ~shaved, connectivity=8)
+        ids = np.unique(joined[taken & ~shaved])
+        grown = cv2.dilate(taken.view(np.uint8), self.stroke_disk).view(bool)
+        for rows, cols, piece in rest:
+            if not (
+                (grown[rows, cols] & piece).any()
+                or np.isin(joined[rows, cols][piece], ids[ids > 0]).any()
+            ):
+                continue
+            if _reach(piece.view(np.uint8), np.array([cols.start, rows.start]), hull) > 0:
+                cut[rows, cols] |= piece
+
+
+def _hull_fill(inked: np.ndarray, own: np.ndarray, where: tuple) -> float:
+    """How much of what a piece (``where``: its rows, cols and bool crop in a box)
+    adds to the hull of ``own`` (an element's core, outline points) is inked
+    (``inked``, bool over the box): about 1 for a tip or a corner of a print
+    (convex with it), far less for a stroke standing out of its edge (paper on
+    either side of it)."""
+    import cv2
+
+    rows, cols, piece = where
+    p = cv2.findNonZero(piece.view(np.uint8)).reshape(-1, 2) + np.array([cols.start, rows.start])
+    core = cv2.convexHull(own)
+    both = cv2.convexHull(np.concatenate([own.reshape(-1, 2), p]).astype(np.int32))
+    grown = cv2.fillConvexPoly(np.zeros(inked.shape, np.uint8), both, 1)
+    grown &= 1 - cv2.fillConvexPoly(np.zeros(inked.shape, np.uint8), core, 1)
+    room = int(np.count_nonzero(grown))
+    return float(np.count_nonzero(grown.view(bool) & inked)) / max(room, 1)
+
+
+def _filled(piece: np.ndarray) -> np.ndarray:
+    """A piece (uint8) with its holes filled (a closing would also fill the notch
+    between a print and a letter's foot joined to it, and keep the foot)."""
+    import cv2
+
+    contours, _ = cv2.findContours(piece, cv2.RETR_EXTERNAL, cv2.CHAIN_APPROX_SIMPLE)
+    return cv2.drawContours(np.zeros_like(piece), contours, -1, 1, cv2.FILLED)
+
+
+def _reach(piece: np.ndarray, off: np.ndarray, hull: np.ndarray) -> float:
+    """How far [px] a piece (uint8 crop at ``off``, (x, y)) reaches out of a hull."""
+    import cv2
+
+    return float(_outside_distance(cv2.findNonZero(piece).reshape(-1, 2) + off, hull).max())
+
+
+def _either(a: np.ndarray | None, b: np.ndarray | None) -> np.ndarray | None:
+    """The union of two masks, either of which may be None."""
+    if a is None or b is None:
+        return b if a is None else a
+    return a | b
+
+
+def _first_pixel(labels: np.ndarray, stats: np.ndarray, k: int) -> tuple[int, int]:
+    """(row, col) of a pixel of piece ``k`` (on its box's top row)."""
+    x, y, w = stats[k, :3]
+    return int(y), int(x + np.argmax(labels[y, x : x + w] == k))
+
+
+def _compact_piece(piece: np.ndarray, aspect: float) -> bool:
+    """Whether a piece (uint8 crop) is a compact blob: convex, filling
+    :data:`COMPACT_SOLIDITY` of its hull after closing pinholes and one-pixel notches,
+    at most ``aspect`` times longer than wide."""
+    import cv2
+
+    crop = cv2.morphologyEx(
+        np.pad(piece, 1), cv2.MORPH_CLOSE, np.ones((3, 3), np.uint8), borderValue=0
+    )
+    pts = cv2.findNonZero(crop)
+    (_, _), (a, b), _ = cv2.minAreaRect(pts)
+    a, b = max(a, b) + 1.0, min(a, b) + 1.0
+    hull = cv2.convexHull(pts)
+    solid = len(pts) / max(cv2.contourArea(hull) + 0.5 * cv2.arcLength(hull, True) + 1.0, 1.0)
+    return solid >= COMPACT_SOLIDITY and a <= aspect * b
 
 
 def _line_kind(crop: np.ndarray, extent_mm: float, px_mm: float) -> tuple[str, str]:
@@ -539,7 +936,7 @@ def _compact(parts: _Parts, k: int, aspect: float | None = None, *, along: float
     return solid >= COMPACT_SOLIDITY and a <= (aspect or COMPACT_ASPECT) * b
 
 
-def _judge_thin(t: _ThinStats, parts: _Parts, opts: AnalysisOptions, network=None):
+def _judge_thin(t: _ThinStats, parts: _Parts, opts: AnalysisOptions, network=None, prints=None):
     """Per thin piece: the print it belongs to (-1: set aside), and the kind of mark
     for the short ones ('' for long ones, judged by shape later).
 
@@ -571,15 +968,76 @@ def _judge_thin(t: _ThinStats, parts: _Parts, opts: AnalysisOptions, network=Non
     for k in np.flatnonzero(near & ~own & (~t.touch | on_line) & ~long):
         aspect = LINE_COMPACT_ASPECT if on_line[k] else COMPACT_ASPECT
         own[k] = _compact(parts, k, aspect, along=opts.sliver_solidity if along[k] else 0.0)
+    kind = np.where(long, "", np.where(dot, "dust", "text")).astype("<U6")
+    if prints is not None:
+        cand = near & ~own & ~t.touch & ~on_line & ~long & ~dot
+        tip = _lone_tip_pieces(t, parts, cand, own, prints, opts)
+        blocks = np.r_[_block_prints(parts, prints[1], prints[2], opts), False]
+        own |= tip & blocks[t.target]
+        kind = np.where(tip & ~blocks[t.target], "sliver", kind)
     keep = np.where(long, t.inside >= 0.5, own)
     owner = np.where(keep, t.target, -1)
-    kind = np.where(long, "", np.where(dot, "dust", "text"))
     return owner, kind
+
+
+def _lone_tip_pieces(t: _ThinStats, parts: _Parts, cand, own, prints: tuple, opts):
+    """Which of the thin pieces ``cand`` ((n,) bool: near a print, apart from its thick
+    ink, neither a dot nor a compact blob) lie alone off the ends of that print along
+    its major axis (beyond 0.8 of its half-length from its centre): no other piece
+    near a print, longer than ``dot_mm`` and not its ``own``, within twice
+    ``group_distance_mm`` of it (a letter has its word about it, some touching the
+    print; a label's '5' lay 3.05 mm from its 'E', mixed set 5001 file 24). A tread
+    block the outline cut to a sliver at a print's tip (mixed set 5006 file 29 at 150
+    dpi: 1.9 x 0.24 mm, 1.5 mm beyond the print; set aside as a pen mark, length
+    -2.15 %, unflagged) and a lone pen stroke look alike there. ``prints``: the
+    prints' hulls and the print of each thick element."""
+    from .group import _at_the_ends
+
+    hulls = prints[0]
+    out = np.zeros(len(cand), bool)
+    ks = np.flatnonzero(cand)
+    if not len(ks):
+        return out
+    st = parts.thin_stats
+    centre = st[:, :2] + 0.5 * st[:, 2:4]  # (x, y) of the boxes' centres
+    for k in ks:
+        hull = hulls[t.target[k]]
+        if hull is not None and len(hull) >= 3:
+            out[k] = bool(_at_the_ends(hull.reshape(-1, 2).astype(float), centre[k : k + 1])[0])
+    if not out.any():
+        return out
+    # alone: no other such piece near a print within the distance (box to box)
+    far = mm_to_px_length(2.0 * opts.group_distance_mm, prints[2])
+    near = (t.target >= 0) & (t.gap <= opts.group_distance_mm)
+    others = np.flatnonzero(near & ~own & (t.extent > opts.dot_mm))
+    x0, y0 = st[others, 0], st[others, 1]
+    x1, y1 = x0 + st[others, 2], y0 + st[others, 3]
+    for k in np.flatnonzero(out):
+        dx = np.maximum(0, np.maximum(x0 - (st[k, 0] + st[k, 2]), st[k, 0] - x1))
+        dy = np.maximum(0, np.maximum(y0 - (st[k, 1] + st[k, 3]), st[k, 1] - y1))
+        out[k] = not ((np.hypot(dx, dy) <= far) & (others != k)).any()
+    return out
+
+
+def _block_prints(parts: _Parts, comp: np.ndarray, px_mm: float, opts) -> np.ndarray:
+    """Per print: whether its thick ink holds two or more blocks at least
+    ``tip_block_strokes`` strokes a side (squared): a block pattern, whose tip blocks
+    the outline can cut to slivers (see :func:`inkprint.group.thin_protrusions`)."""
+    n = int(comp.max()) + 1 if len(comp) else 0
+    side = mm_to_px_length(opts.tip_block_strokes * opts.stroke_width_mm, px_mm)
+    big = parts.thick_stats[1:, 4] >= side * side
+    ok = comp >= 0
+    return np.bincount(comp[ok & big], minlength=n)[:n] >= 2
 
 
 def _short_reason(kind: str, t: _ThinStats, k: int, opts: AnalysisOptions) -> str:
     if kind == "dust":
         return "a speck away from the prints"
+    if kind == "sliver":
+        return (
+            f"a thin piece ({t.extent[k]:.1f} mm) alone off a print's tip: a sliver of "
+            f"the print the outline cut, or a pen mark (the print is flagged)"
+        )
     if t.target[k] >= 0 and t.gap[k] <= opts.group_distance_mm:
         return f"a pen mark or tick reaching {t.reach[k]:.1f} mm out of a print"
     return f"writing or a mark ({t.extent[k]:.1f} mm) away from the prints"
@@ -675,11 +1133,24 @@ class _Sorted:
     owner: np.ndarray
     kind: np.ndarray
     doubt: tuple = ((), ())  # per print: doubtful side-by-side gap [mm], joined?
+    bold_px: np.ndarray | None = None
 
 
 def _sort_pooled(pooled: _Pooled, opts: AnalysisOptions, network=None, bridge=None) -> _Sorted:
     parts = _split(pooled, opts)
     joined = _groups_of_elements(parts, pooled, opts, bridge)
+    bold = _bold_strokes(parts, joined.comp, pooled, opts)
+    for _ in range(BOLD_PASSES):
+        if not bold.elements.any():
+            break
+        # without the letters the prints' neighbours change: letters they kept
+        # apart from a print may now join it (independent set 1 file 30: the rest of
+        # a label took the print's place beside it, width +133 %)
+        joined = _groups_of_elements(parts, pooled, opts, bridge, drop=bold.elements)
+        more = _bold_strokes(parts, joined.comp, pooled, opts)
+        if not more.elements.any():
+            break
+        bold = _Bold(bold.elements | more.elements, _either(bold.pixels, more.pixels))
     comp = joined.comp
     hulls = _hulls(parts.thick, comp, parts.core) if len(comp) else []
     hull_map = _hull_map(hulls, pooled.mask.shape)
@@ -687,13 +1158,18 @@ def _sort_pooled(pooled: _Pooled, opts: AnalysisOptions, network=None, bridge=No
     reach = mm_to_px_length(opts.line_length_mm, pooled.px_mm)
     near = _nearest_hull(hull_map, reach, on, [_hull_box(h, hull_map.shape) for h in hulls])
     stats = _thin_stats(parts, hull_map, near, on, pooled)
-    owner, kind = _judge_thin(stats, parts, opts, network)
+    owner, kind = _judge_thin(stats, parts, opts, network, (hulls, comp, pooled.px_mm))
     owner[0] = -1
     for k in np.flatnonzero((stats.extent >= opts.line_length_mm) & (owner >= 0)):
         ids = hull_map[_box(parts.thin_stats, k)][_crop(parts.thin, parts.thin_stats, k)]
         owner[k] = int(np.bincount(ids[ids > 0]).argmax()) - 1  # the print holding most
     doubt = (joined.doubt_gap, joined.doubt_joined)
-    return _Sorted(parts, comp, hulls, hull_map, stats, owner, kind, doubt)
+    bold_px = bold.pixels
+    if bold.elements.any():  # the elements set aside, with the pieces of the others
+        bold_px = (bold_px if bold_px is not None else False) | np.r_[False, bold.elements][
+            parts.thick
+        ]
+    return _Sorted(parts, comp, hulls, hull_map, stats, owner, kind, doubt, bold_px)
 
 
 @dataclass(frozen=True)
@@ -869,15 +1345,36 @@ def sort_ink(mask, *, mm_per_px: float, options: AnalysisOptions | None = None) 
         graze = mm_to_px_length(opts.grid_graze_mm, mm_per_px)
         mask, lost, grazed = remove_lines(mask, bands, bridge_px=bridge, graze_px=graze)
         pooled = _pool(mask, mm_per_px, opts)
-        sorted_ = _sort_pooled(pooled, opts, network & ~lines & pooled.mask, lines & ~pooled.mask)
+        # what the lines' ink touched is the line's too (a ruler's tick): a tick
+        # beside a print's tip, inside its hull while the line was in it, lay along
+        # its outline once the line was out and read as a sliver of it (independent
+        # set 1 file 96: a ruler along a print through its tips, length +1.7 %)
+        import cv2
+
+        touched = np.zeros(pooled.mask.shape, np.uint8)
+        for b in bands:  # the bands taken out, on the pooled grid, a pixel wider
+            p0 = tuple(np.round(np.divide(b.p0, pooled.q) * 16).astype(int))
+            p1 = tuple(np.round(np.divide(b.p1, pooled.q) * 16).astype(int))
+            cv2.line(touched, p0, p1, 1, int(np.ceil(b.width / pooled.q)) + 3, cv2.LINE_8, 4)
+        touched = touched.view(bool)
+        sorted_ = _sort_pooled(
+            pooled, opts, (network & ~lines | touched) & pooled.mask, lines & ~pooled.mask
+        )
     parts, st, owner = sorted_.parts, sorted_.stats, sorted_.owner
     thin_lut = np.where(owner >= 0, owner + 1, np.where(st.extent >= opts.line_length_mm, -1, -2))
     thin_lut[0] = 0
     # (without lines there are no line pixels)
     line_px = (lines & ~pooled.mask) if bands else None
-    group_map = _GroupMap(parts, np.r_[0, sorted_.comp + 1], thin_lut, line_px)
+    group_map = _GroupMap(
+        parts,
+        np.r_[0, np.where(sorted_.comp >= 0, sorted_.comp + 1, -2)],
+        thin_lut,
+        line_px,
+        sorted_.bold_px,
+    )
     shape = mask.shape
     marks = line_marks + _thin_marks(parts, st, owner, sorted_.kind, pooled, shape, opts)
+    marks += _bold_marks(sorted_.bold_px, pooled)
     marks = [_clip_mark(m, shape) for m in marks]
     aside = _aside_ink(st, owner, len(sorted_.hulls), opts)
     groups = [
@@ -1028,6 +1525,27 @@ def _thin_marks(parts, stats: _ThinStats, owner, kind, pooled, shape, opts) -> l
     return out
 
 
+def _bold_marks(bold: np.ndarray | None, pooled: _Pooled) -> list:
+    """Marks for the bold pen strokes set aside (:func:`_bold_strokes`), one per
+    piece."""
+    if bold is None:
+        return []
+    n, _, st, _ = components_with_stats(bold, connectivity=8)
+    why = BOLD_REASON
+    return [
+        _mark(
+            "text",
+            _box(st, k)[0],
+            _box(st, k)[1],
+            pooled,
+            None,
+            area_px_to_mm2(int(st[k, 4]), pooled.px_mm),
+            why,
+        )
+        for k in range(1, n)
+    ]
+
+
 def _mark(kind, rows, cols, pooled: _Pooled, shape, area, why) -> Mark:
     q = pooled.q
     h, w = shape if shape is not None else (1 << 62, 1 << 62)
@@ -1060,6 +1578,7 @@ class _GroupMap:
     thick_lut: np.ndarray
     thin_lut: np.ndarray
     lines: np.ndarray | None
+    bold: np.ndarray | None = None
 
     @property
     def shape(self) -> tuple:
@@ -1074,6 +1593,8 @@ class _GroupMap:
         out[on] = self.thin_lut[thin[on]]
         if self.lines is not None:
             out[self.lines[rows, cols]] = -1
+        if self.bold is not None:
+            out[self.bold[rows, cols]] = -2
         return out
 
     def marks(self) -> np.ndarray:
@@ -1083,6 +1604,8 @@ class _GroupMap:
         out[on] = (self.thin_lut < 0)[self.parts.thin[on]]
         if self.lines is not None:
             out |= self.lines
+        if self.bold is not None:
+            out |= self.bold
         return out
 
 

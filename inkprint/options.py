@@ -46,6 +46,9 @@ _RULES = {
     "stroke_width_mm": (lambda v: v > 0, "> 0 mm"),
     "line_length_mm": (lambda v: v > 0, "> 0 mm"),
     "mark_overhang_mm": (lambda v: v >= 0, ">= 0 mm"),
+    "bold_reach_mm": (lambda v: v >= 0, ">= 0 mm"),
+    "bold_fill": (lambda v: 0 <= v <= 1, "a fraction in [0, 1]"),
+    "bold_body_fill": (lambda v: 0 <= v <= 1, "a fraction in [0, 1]"),
     "light_tolerance": (lambda v: 0 <= v < 1, "a relative variation in [0, 1)"),
     "light_scale_mm": (lambda v: v > 0, "> 0 mm"),
     "light_detail_mm": (lambda v: v > 0, "> 0 mm"),
@@ -178,6 +181,22 @@ class AnalysisOptions:
         A thin piece of ink reaching farther than this out of a print's outline (a
         label touching the print, a ruler's tick) is set aside; nearer, it is the
         print's own edge (see :mod:`inkprint.marks`).
+    bold_reach_mm : float [mm]
+        A piece of a print's thick ink outside its body (what an opening two strokes
+        wide keeps) reaching farther than this out of the body's hull ...
+    bold_fill : float [-]
+        ... and inking less than this share of what it adds to its element's hull
+        (its pores closed) is a marker's letter joined to the print and is set aside
+        (bold letters, 1.1-1.4 mm strokes, touching a slick print: width +60 %;
+        they ink 2-13 % of it); nearer, it is one only when joined to such letters.
+        A print's tip or corner the opening cut fills what it adds: a slick or
+        car print's 0.8-1.0, a file tread's ragged tip at 150 dpi 0.67.
+    bold_body_fill : float [-]
+        Pieces of a print's thick ink outside its body are judged so only when the
+        body (its elements' cores) fills at least this share of its convex hull: a
+        slick or file tread print's 0.80-1.0. A car print's body fills 0.72 of it,
+        and the bars between its shoulder grooves, cut by the outline, stand out of
+        it like letters (independent set 4 file 86: width -5.5 %, unflagged).
     dot_mm : float [mm]
         Thin ink no longer than this either way near a print is a dot (a halo
         speck, a clipped knob): the print's own, for the edge-spot rule to judge.
@@ -378,6 +397,9 @@ class AnalysisOptions:
     stroke_width_mm: float = 0.9
     line_length_mm: float = 12.0
     mark_overhang_mm: float = 1.0
+    bold_reach_mm: float = 2.0
+    bold_fill: float = 0.4
+    bold_body_fill: float = 0.75
     dot_mm: float = 1.5
     edge_spot_area_mm2: float = 1.5
     edge_spot_faintness: float = 0.6

@@ -77,7 +77,8 @@ class Text:
     height : float [mm]
         Height of a capital letter.
     stroke : float [mm]
-        Pen width (thinner than ``AnalysisOptions.stroke_width_mm``).
+        Pen width (a pen's is thinner than ``AnalysisOptions.stroke_width_mm``, a
+        marker's may be wider).
     darkness : float in (0, 1]
     """
 
@@ -217,7 +218,8 @@ def draw_text(canvas, text: Text, grid) -> None:
     """Draw a :class:`Text` label with strokes ``text.stroke`` wide.
 
     OpenCV's Hershey strokes grow with the font scale (about 14 % of the letters'
-    height); the glyphs are drawn at their size and thinned to the pen's width.
+    height); the glyphs are drawn at their size and thinned, or thickened (a
+    marker's bold letters), to the pen's width.
 
     Parameters
     ----------
@@ -245,9 +247,12 @@ def draw_text(canvas, text: Text, grid) -> None:
         1,
         cv2.LINE_AA,
     )
-    thin = max(0, round((STROKE_OF_HEIGHT * grid.px(text.height) - grid.px(text.stroke)) / 2))
-    if thin:
-        box = cv2.erode(box, cv2.getStructuringElement(cv2.MORPH_ELLIPSE, (3, 3)), iterations=thin)
+    grow = round((grid.px(text.stroke) - STROKE_OF_HEIGHT * grid.px(text.height)) / 2)
+    disk = cv2.getStructuringElement(cv2.MORPH_ELLIPSE, (3, 3))
+    if grow < 0:
+        box = cv2.erode(box, disk, iterations=-grow)
+    elif grow > 0:  # a marker's bold letters (wider than a stroke, thick ink)
+        box = cv2.dilate(box, disk, iterations=grow)
     top, left = y0 - pad - int(scale * h), x0 - pad
     r0, c0 = max(top, 0), max(left, 0)
     r1, c1 = min(top + box.shape[0], canvas.shape[0]), min(left + box.shape[1], canvas.shape[1])

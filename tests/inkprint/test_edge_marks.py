@@ -141,13 +141,17 @@ def test_bump_pull_stretch_across_the_contours_start():
     assert_allclose(_bump_pull(dotted, aside, 0.0, 40.0, 1.0), 2.0 / 81.0, atol=0.004)
 
 
-def test_mark_pull_label_period_on_a_slick_edge_is_flagged(tmp_path):
+def test_measure_print_label_period_on_a_slick_edge(tmp_path):
     # mixed set 4259, file 6: a label written on a slick print's edge, its period
     # kept as the print's own (a dot) on the edge at the print's widest point: width
-    # +1.7 %, unflagged while the outline's stretch near the label was lost
-    results, rows = outcomes(tmp_path, "label", mixed_file(4259, 6), dpi=None)
+    # +1.7 %, unflagged while the outline's stretch near the label was lost; then
+    # flagged (mark_pull). Measured without the ink under the label, the hull spans
+    # the notch at the widest point: width +0.17 %, and the tangents on either side
+    # bound the hidden edge within the bar (not flagged)
+    results, _ = outcomes(tmp_path, "label", mixed_file(4259, 6), dpi=None)
     assert not [r for r in results if r["outcome"] in SILENT], results
-    assert "mark_on_edge" in rows[0]["flags"]
+    assert [r["outcome"] for r in results] == ["pass"], results
+    assert abs(results[0]["err_width"]) < 0.005
 
 
 def test_tangent_bound_line_crossing_a_round_edge_adds_under_a_pixel():
@@ -197,10 +201,16 @@ def test_measure_print_line_as_wide_as_a_stroke_along_a_print_is_flagged(width_m
         assert ("mark_on_edge" in q.flags) == flagged
 
 
-def test_measure_print_ruler_along_a_print_is_flagged(tmp_path):
-    results, rows = outcomes(tmp_path, "ruler", mixed_file(4269, 12), dpi=None)
+def test_measure_print_ruler_along_a_print_is_not_measured(tmp_path):
+    # mixed set 4269 file 12: a ruler's line as wide as a pen stroke along a print,
+    # taken for tread (length +186 %, unflagged), was flagged by the bar it leaves
+    # beyond the print's body; now its bar and ticks, thick ink outside the body that
+    # fills little of what it adds to the hull, are set aside as strokes
+    # (marks._bold_strokes) and the print is measured without them: length +0.03 %,
+    # width +0.08 % (flagged clipped: it reaches the image's edge)
+    results, _ = outcomes(tmp_path, "ruler", mixed_file(4269, 12), dpi=None)
     assert not [r for r in results if r["outcome"] in SILENT], results
-    assert "mark_on_edge" in rows[0]["flags"]
+    assert abs(results[0]["err_length"]) < 0.005 and abs(results[0]["err_width"]) < 0.005
 
 
 def test_bump_pull_tick_on_an_outer_rib():

@@ -1,0 +1,178 @@
+"""Issue 11 item 3: marks touching a print measured as the print, silently (marks,
+analyze): a marker's bold letters swallowed into a slick print, a pen letter's bar
+lying along the edge at the widest point, a tip sliver set aside as a pen stroke, a
+ruler's ticks beside a print's tips.
+
+``make_case(kind, seed=S * 100_003 + k)`` is file ``k`` of seed ``S`` of
+``python -m inkprint.accuracy``; the other sheets are drawn with exact truth.
+"""
+
+import math
+
+import numpy as np
+import pytest
+
+import inkprint as ip
+from inkprint.accuracy import SILENT
+from inkprint.marks import BOLD_REASON
+from inkprint.synth import PrintSpec, SheetSpec, _outline, render_sheet
+from inkprint.synth_effects import Line, Text, text_extent
+
+from .test_classes import outcomes
+
+
+def mixed_file(seed: int, k: int) -> int:
+    return seed * 100_003 + k
+
+
+def _errors(pr, t) -> tuple[float, float, float]:
+    m = pr.metrics
+    return (m.length / t.length - 1, m.width / t.width - 1, m.hull_area / t.hull_area - 1)
+
+
+# -- a pen label's letters on the edge (mixed sets) ----------------------------------
+
+
+def test_measure_print_letter_bar_along_the_widest_point(tmp_path):
+    # 5006 file 24 at 300 dpi: an 'E''s bottom bar 1.5 px out of a slick print's
+    # edge at its widest point, joined to it through the anti-aliased row between
+    # them: width +1.14 %, unflagged. Measured without the ink under the label the
+    # hull spans the notch (its sagitta is a hundredth of a pixel there)
+    results, _ = outcomes(tmp_path, "label", mixed_file(5006, 24), dpi=None)
+    assert [r["outcome"] for r in results] == ["pass"], results
+    assert abs(results[0]["err_width"]) < 0.004
+
+
+def test_measure_print_letter_feet_on_a_narrow_slick_print(tmp_path):
+    # 5008 file 42 at 150 dpi: a label's feet on the top of an 8.8 mm wide slick
+    # print: width +1.59 %, unflagged; the tangents on either side of the hidden
+    # stretch bound it within edge_uncertainty
+    results, _ = outcomes(tmp_path, "label", mixed_file(5008, 42), dpi=None)
+    assert [r["outcome"] for r in results] == ["pass"], results
+    assert abs(results[0]["err_width"]) < 0.007
+
+
+# -- tip slivers (mixed sets) ----------------------------------------------------------
+
+
+def test_sort_ink_keeps_a_lone_tip_sliver_of_a_block_pattern(tmp_path):
+    # 5006 file 29 (a photo, manifest dpi 150): a knob at a print's tip cut by the
+    # outline to a 1.9 x 0.24 mm sliver 1.5 mm beyond the print, set aside as a pen
+    # stroke: length -2.15 %, unflagged. Alone off the tip of a block pattern it is
+    # a tip block (the section 7.1.1 rule keeps it)
+    results, _ = outcomes(tmp_path, "photo", mixed_file(5006, 29), dpi=None)
+    assert not [r for r in results if r["outcome"] in SILENT], results
+    assert all(r["outcome"] == "pass" for r in results), results
+    assert max(abs(r["err_length"]) for r in results) < 0.003
+
+
+def test_sort_ink_keeps_a_wedge_tip_block_on_a_pdf_page(tmp_path):
+    # 5008 file 82, page 1 (JPEG-coded): a knobby print's tip block cut to a wedge
+    # (2.7 mm, 0.24 mm from the print, reaching 1.3 mm out): hull area -2.04 %
+    results, _ = outcomes(tmp_path, "pdf", mixed_file(5008, 82), dpi=None)
+    assert all(r["outcome"] == "pass" for r in results), results
+    assert max(abs(r["err_hull_area"]) for r in results) < 0.01
+
+
+def test_measure_print_lone_stroke_off_a_slick_tip_is_flagged():
+    # beside a print without a block pattern a lone thin piece off its tip cannot be
+    # told from a tread sliver: it stays out of the measure (exact), and the print is
+    # flagged with the size it would have with it (its 2.5 mm: length +4 %)
+    p = PrintSpec(60.0, 14.0, (100.0, 120.0), 0.0, "slick", ink=0.85)
+    stroke = Line((131.2, 120.0), (133.7, 120.5), 0.3, 0.85)
+    spec = SheetSpec((p,), dpi=300.0, seed=2, specks=0, marks=(stroke,))
+    img, truths = render_sheet(spec)
+    r = ip.analyze_scan(ip.Scan(img, 25.4 / spec.dpi, "given"), sensitivity=False)
+    (pr,) = r.prints
+    assert max(abs(e) for e in _errors(pr, truths[0])) < 0.003
+    assert "mark_on_edge" in pr.flags
+    assert any("alone off its tip" in w for w in pr.warnings), pr.warnings
+    assert any(m.kind == "sliver" for m in r.marks)
+
+
+# -- a marker's bold letters -----------------------------------------------------------
+
+
+def _bold_label_sheet(dpi: float, theta: float = 140.0) -> SheetSpec:
+    """A slick print and a marker label (letters 6 mm, strokes 1.2 mm: thick ink)
+    whose bottom-right corner touches the print's outline ``theta`` degrees round
+    from its rolling axis, 0.3 mm into it."""
+    p = PrintSpec(62.0, 24.0, (100.0, 120.0), 0.0, "slick", ink=0.85)
+    uv = _outline(p)
+    ang = np.degrees(np.arctan2(uv[:, 1], uv[:, 0]))
+    k = int(np.argmin(np.abs((ang - theta + 180) % 360 - 180)))
+    x, y = 100.0 + uv[k, 0], 120.0 + uv[k, 1]
+    text = Text("GP5000 41", (0.0, 0.0), 6.0, 1.2, 0.85)
+    w, _ = text_extent(text)
+    label = Text(text.text, (x - w + 0.3, y - 0.3), 6.0, 1.2, 0.85)
+    return SheetSpec((p,), dpi=dpi, seed=3, specks=0, marks=(label,))
+
+
+@pytest.mark.parametrize("dpi", [150.0, 300.0])
+def test_sort_ink_bold_label_touching_a_slick_print_is_set_aside(dpi):
+    # independent set 1 files 12 and 30, set 2 file 92: bold letters (1.1-1.4 mm
+    # strokes survive the stroke-wide opening) touching a slick print were linked to
+    # it: width +60 %, +97 %, +23 %, unflagged. Here at 300 dpi: width +13 %
+    spec = _bold_label_sheet(dpi)
+    img, truths = render_sheet(spec)
+    r = ip.analyze_scan(ip.Scan(img, 25.4 / spec.dpi, "given"), sensitivity=False)
+    (pr,) = r.prints
+    errors = _errors(pr, truths[0])
+    assert "mark_on_edge" in pr.flags or (
+        abs(errors[0]) <= 0.01 and abs(errors[1]) <= 0.01 and abs(errors[2]) <= 0.02
+    ), errors
+    assert max(abs(e) for e in errors) < 0.01, errors
+    assert sum(m.reason == BOLD_REASON for m in r.marks) >= 5
+
+
+def test_sort_ink_bold_label_left_on_the_edge_is_flagged():
+    # the label's corner lying along the print's shoulder: what is left of its feet
+    # on the edge is measured out (the ink under the label), and the edge there,
+    # hidden, bounded by the tangents on either side beyond edge_uncertainty
+    spec = _bold_label_sheet(150.0, theta=100.0)
+    img, truths = render_sheet(spec)
+    r = ip.analyze_scan(ip.Scan(img, 25.4 / spec.dpi, "given"), sensitivity=False)
+    (pr,) = r.prints
+    errors = _errors(pr, truths[0])
+    assert "mark_on_edge" in pr.flags, errors
+    assert max(abs(e) for e in errors) < 0.015, errors
+
+
+def test_sort_ink_bold_label_lying_along_a_slick_print_is_never_silent():
+    # the label's baseline along the print's top, its letters joined to the print
+    # side by side: each letter's piece, judged against the ink about it, filled the
+    # hull it adds with its neighbours' ink and stayed (width +18 %, unflagged); the
+    # ink about it is its element's core and the piece itself now
+    p = PrintSpec(62.0, 24.0, (100.0, 120.0), 0.0, "slick", ink=0.85)
+    text = Text("GP5000 41", (0.0, 0.0), 6.0, 1.2, 0.85)
+    w, _ = text_extent(text)
+    label = Text(text.text, (100.0 - 0.3 * w, 132.0 - 0.3), 6.0, 1.2, 0.85)
+    spec = SheetSpec((p,), dpi=150.0, seed=3, specks=0, marks=(label,))
+    img, truths = render_sheet(spec)
+    r = ip.analyze_scan(ip.Scan(img, 25.4 / spec.dpi, "given"), sensitivity=False)
+    (pr,) = r.prints
+    errors = _errors(pr, truths[0])
+    assert "mark_on_edge" in pr.flags, errors
+    assert max(abs(e) for e in errors) < 0.03, errors
+
+
+# -- a ruler along a print through its tips ---------------------------------------------
+
+
+def test_sort_ink_ruler_along_a_print_keeps_its_ticks_out():
+    # independent set 1 file 96: a ruler (0.69 mm line, ticks every mm) along a
+    # print's rolling axis through both tips; the ticks beside a tip lay inside the
+    # print's hull while the line was in it and, the line out, along its outline,
+    # read as slivers of it (length +1.7 %). Ticks touching the band of a line taken
+    # out are the line's. On a file tread the ticks joined the print: length +48 %
+    a = math.radians(-23.0)
+    d = np.array([math.cos(a), math.sin(a)])
+    c = np.array([134.0, 130.0])
+    p = PrintSpec(71.0, 21.0, tuple(c), -23.0, "file", ink=0.8)
+    ruler = Line(tuple(c - 70 * d), tuple(c + 70 * d), 0.69, 0.85, 1.0)
+    spec = SheetSpec((p,), dpi=300.0, seed=5, specks=0, marks=(ruler,))
+    img, truths = render_sheet(spec)
+    r = ip.analyze_scan(ip.Scan(img, 25.4 / spec.dpi, "given"), sensitivity=False)
+    (pr,) = r.prints
+    errors = _errors(pr, truths[0])
+    assert abs(errors[0]) < 0.01 and abs(errors[1]) < 0.01 and abs(errors[2]) < 0.02, errors
