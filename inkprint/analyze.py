@@ -10,13 +10,12 @@ Each print is measured with :func:`contactpatch.measure` (the definitions shared
 the model) along its rolling direction: ``rolling_axis`` ``'x'`` or ``'y'`` (the
 sheet's axes: x across the image from left to right, y up it) or ``'auto'`` (each
 print's principal axis, the longer direction; the row says ``axis_source = auto``).
-A given axis is used as given: a print taped askew reads too wide along it (+4 % at
-3 degrees, +27 % at 10), so a print whose own axis (:func:`own_axis`: its hull's
-minimum-area rectangle, confirmed by the principal axis) is turned more than
-``axis_misaligned_deg`` (:class:`inkprint.AnalysisOptions`) from the given one is
-flagged ``axis_misaligned`` with
-the fix (``auto`` or square the print). The
-*gross* outline is the convex hull of the
+A given axis within ``axis_misaligned_deg`` (:class:`inkprint.AnalysisOptions`) of
+the print's own axis (:func:`own_axis`: its hull's minimum-area rectangle, confirmed
+by the principal axis) is snapped to it: a print taped square within a fraction of a
+degree is measured along itself. Farther, the axis is used as given: a print taped
+askew reads too wide along it (+4 % at 3 degrees, +27 % at 10), so it is flagged
+``axis_misaligned`` with the fix (``auto`` or square the print). The *gross* outline is the convex hull of the
 ink's sub-pixel edge (the iso-line half-way between the local paper and ink levels,
 :func:`edge_field`), the *net* area the ink pixel count (at most the hull's area).
 With the load and inflation pressure known, load / area is compared with the

@@ -110,6 +110,12 @@ THRESHOLDS = (
         "make are one print; near it the print is flagged grouping_uncertain",
     ),
     (
+        "--group-groove-max",
+        "group_groove_max_mm",
+        "MM",
+        "no groove inside a print is wider: tread-pattern and side-by-side joins stop here",
+    ),
+    (
         "--min-patch-area",
         "min_patch_area_mm2",
         "MM2",

@@ -75,6 +75,13 @@ TIP_ROUNDS = 4
 #: SMALL_PRINT_FILL of its hull (a letter, a ring, a tick does not)
 SMALL_PRINT_MM2 = 150.0
 SMALL_PRINT_FILL = 0.8
+#: a line of writing has at least this many letters spanning its width, and they
+#: hold this share of its ink (``text_line_aspect``); letters are at least
+#: TEXT_LETTER_MM high (a tiny print's file-tread diamonds, ~1 mm, are not letters)
+TEXT_LINE_LETTERS = 6
+TEXT_LINE_INK = 0.7
+TEXT_LINE_FILL = 0.6
+TEXT_LETTER_MM = 2.5
 
 
 @dataclass(frozen=True)
@@ -243,8 +250,8 @@ def linked_edges(graph: ElementGraph, *, options: AnalysisOptions | None = None)
     ----------
     graph : ElementGraph
     options : AnalysisOptions, optional
-        Uses ``group_mm``, ``group_distance_mm``, ``group_size_factor`` and
-        ``group_pattern_factor`` (defaults when None).
+        Uses ``group_mm``, ``group_distance_mm``, ``group_size_factor``,
+        ``group_pattern_factor`` and ``group_groove_max_mm`` (defaults when None).
 
     Returns
     -------
@@ -278,7 +285,11 @@ def linked_edges(graph: ElementGraph, *, options: AnalysisOptions | None = None)
     return (
         (g <= opts.group_distance_mm)
         | (g <= opts.group_size_factor * np.minimum(w[a], w[b]))
-        | (np.isfinite(pattern) & (g <= opts.group_pattern_factor * pattern))
+        | (
+            np.isfinite(pattern)
+            & (g <= opts.group_pattern_factor * pattern)
+            & (g <= opts.group_groove_max_mm)
+        )
     )
 
 
@@ -309,8 +320,8 @@ def join_tips(
     sizes : (n,) float
         Ink of each element (any unit).
     options : AnalysisOptions, optional
-        Uses ``group_tip_share``, ``group_pattern_factor`` and ``group_mm`` (none
-        joined with it).
+        Uses ``group_tip_share``, ``group_pattern_factor``,
+        ``group_groove_max_mm`` and ``group_mm`` (none joined with it).
 
     Returns
     -------
@@ -357,8 +368,10 @@ def _join_tips_once(graph: ElementGraph, comp, sizes, opts: AnalysisOptions) -> 
     src, dst, gap = src[order], dst[order], gap[order]
     first = np.flatnonzero(np.r_[True, src[1:] != src[:-1]]) if len(src) else np.zeros(0, int)
     s, d, g = src[first], dst[first], gap[first]  # each group's nearest neighbour
-    join = (ink[s] < opts.group_tip_share * ink[d]) & (
-        g <= opts.group_pattern_factor * np.nan_to_num(tread[d], nan=0.0)
+    join = (
+        (ink[s] < opts.group_tip_share * ink[d])
+        & (g <= opts.group_pattern_factor * np.nan_to_num(tread[d], nan=0.0))
+        & (g <= opts.group_groove_max_mm)
     )
     if not join.any():
         return comp
@@ -455,8 +468,8 @@ def join_side_by_side(
         Size of a pixel of the hulls.
     options : AnalysisOptions, optional
         Uses ``group_print_gap``, ``group_rib_overlap``, ``group_rib_gaps``,
-        ``group_rib_strokes``, ``stroke_width_mm`` and ``group_doubt_factor``
-        (defaults when None).
+        ``group_rib_strokes``, ``stroke_width_mm``, ``group_doubt_factor`` and
+        ``group_groove_max_mm`` (defaults when None).
 
     Returns
     -------
@@ -488,7 +501,9 @@ def join_side_by_side(
     tread = widest >= opts.group_rib_strokes * opts.stroke_width_mm
     links = []
     for g, p, q in sorted(pairs):
-        if pts[p] is None or pts[q] is None or g <= 0 or not (tread[p] and tread[q]):
+        if pts[p] is None or pts[q] is None or not 0 < g <= opts.group_groove_max_mm:
+            continue
+        if not (tread[p] and tread[q]):
             continue
         overlap, shorter = _side_by_side(pts[p], pts[q])
         if overlap >= opts.group_rib_overlap * shorter and overlap >= opts.group_rib_gaps * g:
@@ -696,6 +711,14 @@ def is_print(
         return PrintCheck(
             False, f"writing or marks ({100 * fill:.0f} % of its hull inked)", "writing"
         )
+    if length / width >= opts.text_line_aspect and _letters_in_a_row(
+        group.mask, pts, width_px=min(a, b) + 1, mm_per_px=mm_per_px, fill=fill, opts=opts
+    ):
+        return PrintCheck(
+            False,
+            f"a line of writing ({length:.0f} x {width:.1f} mm, letters across it)",
+            "writing",
+        )
     hull_mm2 = area_px_to_mm2(cv2.contourArea(hull), mm_per_px)
     if hull_mm2 < SMALL_PRINT_MM2 and fill < SMALL_PRINT_FILL:
         fill = max(fill, _main_blob_fill(group.mask))  # halo specks widen a tiny hull
@@ -710,6 +733,47 @@ def is_print(
             "writing",
         )
     return PrintCheck(True)
+
+
+def _letters_in_a_row(
+    mask: np.ndarray, pts: np.ndarray, *, width_px: float, mm_per_px: float, fill: float, opts
+) -> bool:
+    """Whether a long group's ink is letters in one row: :data:`TEXT_LINE_LETTERS`
+    or more pieces, each spanning half the group's width or more (and
+    :data:`TEXT_LETTER_MM`), holding :data:`TEXT_LINE_INK` of its ink, hollow: with
+    a median solidity below ``text_line_solidity``, or the group's ink ``fill``ing
+    less than :data:`TEXT_LINE_FILL` of its hull (a marker's bold letters are
+    solid, the gaps between them are not; a road tire's long print, the only kind
+    this slender, inks 0.7 of its hull or more). ``pts``: the group's outline
+    points."""
+    import cv2
+
+    n, lab, st, _ = components_with_stats(mask.view(np.uint8), connectivity=8)
+    area = st[1:, cv2.CC_STAT_AREA]
+    if n - 1 < TEXT_LINE_LETTERS or n - 1 > 50 * TEXT_LINE_LETTERS:
+        return False
+    # the direction across the row: the outline's minor principal axis
+    c = pts - pts.mean(0)
+    across = np.linalg.eigh(c.T @ c)[1][:, 0]
+    rows, cols = np.nonzero(lab)
+    ids = lab[rows, cols] - 1
+    t = cols * across[0] + rows * across[1]
+    lo = np.full(n - 1, np.inf)
+    hi = np.full(n - 1, -np.inf)
+    np.minimum.at(lo, ids, t)
+    np.maximum.at(hi, ids, t)
+    span = hi - lo + 1
+    tall = span >= max(0.5 * width_px, mm_to_px_length(TEXT_LETTER_MM, mm_per_px))
+    if np.count_nonzero(tall) < TEXT_LINE_LETTERS or area[tall].sum() < TEXT_LINE_INK * area.sum():
+        return False
+    if fill < TEXT_LINE_FILL:
+        return True
+    solid = []
+    for k in np.flatnonzero(tall) + 1:
+        x, y, w, h = st[k, :4]
+        hull = cv2.convexHull(outline_points(lab[y : y + h, x : x + w] == k))
+        solid.append(st[k, cv2.CC_STAT_AREA] / max(cv2.contourArea(hull) + 1.0, 1.0))
+    return float(np.median(solid)) < opts.text_line_solidity or fill < TEXT_LINE_FILL
 
 
 def _main_blob_fill(mask: np.ndarray) -> float:

@@ -36,12 +36,15 @@ _RULES = {
     "group_rib_gaps": (lambda v: v >= 0, ">= 0 (times the gap)"),
     "group_rib_strokes": (lambda v: v >= 0, ">= 0 (times stroke_width_mm)"),
     "group_doubt_factor": (lambda v: v >= 1, ">= 1 (a factor about group_print_gap)"),
+    "group_groove_max_mm": (lambda v: v > 0, "> 0 mm"),
     "min_patch_area_mm2": (lambda v: v >= 0, ">= 0 mm^2, or None to scale with the sheet"),
     "min_patch_sheet_fraction": (lambda v: 0 <= v < 1, "a fraction of the sheet in [0, 1)"),
     "min_patch_fraction": (lambda v: 0 <= v <= 1, "a fraction of the largest print in [0, 1]"),
     "min_patch_width_mm": (lambda v: v >= 0, ">= 0 mm"),
     "min_net_to_gross": (lambda v: 0 <= v <= 1, "a fraction in [0, 1]"),
     "max_patch_aspect": (lambda v: v >= 1, ">= 1 (length over width)"),
+    "text_line_aspect": (lambda v: v >= 1, ">= 1 (length over width)"),
+    "text_line_solidity": (lambda v: 0 <= v <= 1, "a fraction in [0, 1]"),
     "speck_area_mm2": (lambda v: v >= 0, ">= 0 mm^2"),
     "stroke_width_mm": (lambda v: v > 0, "> 0 mm"),
     "line_length_mm": (lambda v: v > 0, "> 0 mm"),
@@ -151,6 +154,12 @@ class AnalysisOptions:
         ``--group-mm``): 1.15, 0.157-0.207 x the footprint, between the car prints'
         grooves (<= 0.13) and two bicycle prints 25 mm apart (0.21 x a 120 mm long
         knobby pair side by side: 1.35 flagged such pairs).
+    group_groove_max_mm : float [mm]
+        No groove inside a print is wider: the tread-pattern, tip and side-by-side
+        joins stop at this gap (a bicycle's knobs are at most ~10 mm apart, a car's
+        circumferential grooves 4-15 mm). Three motorcycle prints, each one piece
+        37-47 mm apart, made a "pattern" of their own spacing and were joined into
+        one 231 x 149 mm print (held-out set 1, sheet 24). ``group_mm`` overrides.
     min_patch_area_mm2 : float or None [mm^2]
         A group with less ink is dust or a mark, not a print; None (default):
         ``min_patch_sheet_fraction`` of the sheet's area.
@@ -168,6 +177,15 @@ class AnalysisOptions:
         marks, not a print (wide-groove knobby prints ink ~12 % of their hull).
     max_patch_aspect : float [-]
         A group longer than this many widths is a line, not a contact patch.
+    text_line_aspect : float [-]
+        A group at least this many widths long whose ink is :data:`TEXT_LINE_LETTERS`
+        or more pieces each spanning most of its width, side by side in one row, and
+        hollow (median solidity below ``text_line_solidity``) is a line of writing,
+        not a print: a label in marker letters 4-6 mm high above the prints was
+        taken for a 113 x 6 mm print (held-out set 1, sheets 23 and 26) ...
+    text_line_solidity : float [-]
+        ... letters fill 0.3-0.6 of their own hull; a tread block, a rib or a
+        tiny print's ink ~0.8 or more.
     speck_area_mm2 : float [mm^2]
         Ink blobs smaller than this are paper grain or dust and are removed.
     stroke_width_mm : float [mm]
@@ -387,12 +405,15 @@ class AnalysisOptions:
     group_rib_gaps: float = 3.0
     group_rib_strokes: float = 3.0
     group_doubt_factor: float = 1.15
+    group_groove_max_mm: float = 20.0
     min_patch_area_mm2: float | None = None
     min_patch_sheet_fraction: float = 1e-4
     min_patch_fraction: float = 0.05
     min_patch_width_mm: float = 2.0
     min_net_to_gross: float = 0.06
     max_patch_aspect: float = 30.0
+    text_line_aspect: float = 5.0
+    text_line_solidity: float = 0.65
     speck_area_mm2: float = 0.05
     stroke_width_mm: float = 0.9
     line_length_mm: float = 12.0

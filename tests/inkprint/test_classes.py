@@ -18,7 +18,7 @@ from inkprint.analyze import own_axis
 from inkprint.batch import Job, Options, process_file
 from inkprint.synth import PrintSpec, SheetSpec, render_sheet, save_scan
 from inkprint.synth_cases import _band, make_case, write_case
-from inkprint.synth_effects import Light
+from inkprint.synth_effects import Light, Text
 
 FAST = Options(sensitivity=False)
 
@@ -225,6 +225,41 @@ def test_group_blobs_side_by_side_prints_near_the_limit_are_flagged(apart, n, fl
     )
     assert len(apart_.prints) == 2 and all(q.flags == () for q in apart_.prints)
     assert all(within(q.metrics, t) for q, t in zip(apart_.prints, truths, strict=True))
+
+
+def test_group_blobs_one_piece_prints_in_a_row_stay_apart():
+    # held-out set 1 sheet 24: three prints, each one piece of ink, 37-47 mm apart:
+    # each one's "pattern" gap was the spacing of the others, so the pattern rule
+    # linked them into one 231 x 149 mm print, unflagged. No groove inside a print
+    # is wider than group_groove_max_mm (20 mm)
+    p = [PrintSpec(80, 40, (70, 40 + 80 * i), 0.0, "slick", unevenness=0.0) for i in range(3)]
+    scan, truths = scan_of(SheetSpec(tuple(p), size=(140, 240), specks=0))
+    r = ip.analyze_scan(scan, sensitivity=False, rolling_axis="x")
+    assert len(r.prints) == 3 and all(q.flags == () for q in r.prints)
+    got = sorted(r.prints, key=lambda q: q.metrics.centroid[1])
+    assert all(within(q.metrics, t) for q, t in zip(got, truths, strict=True))
+    joined = ip.analyze_scan(
+        scan,
+        sensitivity=False,
+        rolling_axis="x",
+        options=ip.AnalysisOptions(group_groove_max_mm=1000.0),
+    )
+    assert len(joined.prints) == 1  # the rule without the limit: one "print"
+
+
+@pytest.mark.parametrize("stroke", [0.9, 1.4])
+def test_is_print_a_line_of_marker_letters_is_writing(stroke):
+    # held-out set 1 sheets 23 and 26: a tire's name in marker letters 5 mm high
+    # above the prints was taken for a 54 x 4 mm and a 113 x 6 mm print, status ok
+    label = Text("Michelin Road 6 2.3 bar 1424 N", (15.0, 20.0), height=5.0, stroke=stroke)
+    spec = PrintSpec(80, 35, (70, 80), 0.0, "slick", unevenness=0.0)
+    scan, truths = scan_of(SheetSpec((spec,), size=(170, 130), specks=0, marks=(label,)))
+    r = ip.analyze_scan(scan, sensitivity=False, rolling_axis="x")
+    assert len(r.prints) == 1 and within(r.prints[0].metrics, truths[0])
+    assert any(m.kind == "writing" for m in r.marks)
+    alone = SheetSpec((), size=(170, 60), specks=0, marks=(label,))
+    with pytest.raises(ip.NoInk, match="a line of writing"):
+        ip.analyze_scan(scan_of(alone)[0], sensitivity=False)
 
 
 def test_group_blobs_group_mm_overrides_the_footprint_rule():
