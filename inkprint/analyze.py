@@ -619,6 +619,7 @@ class _BandWindow:
     rows: slice
     cols: slice
     region: np.ndarray
+    fine_area_mm2: float = 0.0
 
 
 def _band_window(shape, g: Group, found: FoundPrints, mm_per_px: float, opts) -> _BandWindow:
@@ -636,7 +637,7 @@ def _band_window(shape, g: Group, found: FoundPrints, mm_per_px: float, opts) ->
     if found.grid is not None:  # at another threshold the lines are wider by a pixel
         near = cv2.dilate(found.grid.removed[rows, cols].view(np.uint8), np.ones((3, 3), np.uint8))
         region &= ~near.view(bool)
-    return _BandWindow(rows, cols, region)
+    return _BandWindow(rows, cols, region, g.fine_area_mm2)
 
 
 @dataclass(frozen=True)
@@ -709,7 +710,7 @@ def _band_at(ctx: _Context, win: _BandWindow, factor: float, *, grey, local: lis
     if not ink.any():
         return {}
     spots = edge_spots(
-        Group(win.rows, win.cols, ink),
+        Group(win.rows, win.cols, ink, fine_area_mm2=win.fine_area_mm2),
         _darkness(grey, ink),
         mm_per_px=s,
         options=opts,

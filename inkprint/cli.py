@@ -157,6 +157,13 @@ THRESHOLDS = (
         "thicker than this is its own",
     ),
     (
+        "--fine-element",
+        "fine_element_mm",
+        "MM",
+        "separate ink elements no longer than this in a dense regular field are a fine "
+        "tread (knurl, diamond file, dots), not dust or text (0: off)",
+    ),
+    (
         "--edge-mark",
         "edge_mark_mm",
         "MM",

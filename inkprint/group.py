@@ -111,6 +111,11 @@ class Group:
         (:func:`join_side_by_side`): the grouping is uncertain (0: it is not).
     doubt_joined : bool
         Whether that join was made (parts taken as one print) or not.
+    fine_area_mm2 : float [mm^2]
+        For a print with a fine tread (a dense regular field of small elements:
+        knurl, diamond file, dots; :func:`inkprint.marks.sort_ink`), the area above
+        which a blob is one of its elements: part of the core of the section 7.1.1
+        rule (:func:`edge_spots`), not an edge spot. 0: no fine tread.
     """
 
     rows: slice
@@ -121,6 +126,7 @@ class Group:
     line_along: float = 0.0
     doubt_gap_mm: float = 0.0
     doubt_joined: bool = False
+    fine_area_mm2: float = 0.0
 
     @property
     def n_pixels(self) -> int:
@@ -1223,7 +1229,10 @@ def edge_spots(
     # the rule is off when no blob can be faint and no distance too far (1 m)
     rule_on = opts.edge_spot_faintness > 0 or opts.edge_spot_distance_mm < 1e3
     along = mm_to_px_length(opts.mark_overhang_mm, mm_per_px)
-    parts = _thin_parts(group.mask, width, along, opts)  # thin_protrusions, both ways
+    # (a fine tread's elements are as thin as pen strokes: its edge rows are no
+    # strokes beside the print, the 7.1.1 rule judges them with its core)
+    fine = group.fine_area_mm2 > 0
+    parts = None if fine else _thin_parts(group.mask, width, along, opts)  # both ways
     if parts is None:
         return _spots(group, darkness, mm_per_px, opts, gap=tread_gap)
     gone = parts.dropped(dots=rule_on)  # of the thin pixels; with dots=False a subset
@@ -1252,6 +1261,8 @@ def _spots(
     if n_blobs <= 1:
         return EdgeSpots(group.mask, n_blobs, 0, 0)
     large = blobs.areas >= opts.edge_spot_area_mm2
+    if group.fine_area_mm2 > 0:  # a fine tread's elements are its core too
+        large |= blobs.areas >= group.fine_area_mm2
     if not large.any():
         large = blobs.areas == blobs.areas.max()
     ref = float(np.median(blobs.peak[large]))

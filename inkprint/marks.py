@@ -11,6 +11,14 @@ resolution.
    disks (where two lines cross, a letter's junction, a dust dot) does not count.
    The rest is *thin*: pen writing, ruler lines and their ticks, gridlines, dust,
    pixel noise, and the thin edges of prints (clipped knobs, rib tails, halo specks).
+   **Fine treads.** A knurl, diamond-file or dot-field tread prints as a dense
+   regular field of small separate elements (0.5-1.5 mm), each too thin or too
+   small to be thick: the thin pieces that make such a field (compact, alike in
+   size and spacing, with neighbours all round, their ink filling the field's area:
+   :func:`_fine_fields`, ``fine_*`` options) are thick ink, whole. Text is sparse
+   strokes in lines, dust isolated specks, pixel noise irregular: none is a field.
+   The print's blobs as large as a share of its elements are its core for the
+   edge-spot rule (``Group.fine_area_mm2``).
 2. **Footprints.** The thick elements are linked into prints by the footprint rule
    of :mod:`inkprint.group`.
    **Bold strokes.** A marker's letters (strokes wider than ``stroke_width_mm``) are
@@ -111,6 +119,22 @@ BOLD_PASSES = 3
 #: a thick sliver along a print's outline lies no deeper out of its body's hull than
 #: this many strokes
 SLIVER_STROKES = 3.0
+#: a fine tread's element is at least this long [mm] (pixel noise is smaller)
+FINE_ELEMENT_MIN_MM = 0.3
+#: ... fills at least this share of its box (a dot 0.79, a diamond 0.5; a letter's
+#: strokes less) ...
+FINE_FILL = 0.35
+#: ... and is at most this many times longer than wide
+FINE_ASPECT = 3.0
+#: a fine tread's elements are neighbours within this many times the nearest one's
+#: distance (a square lattice's diagonal: 1.41)
+FINE_RING = 1.5
+#: neighbours looked at per element (a hexagonal lattice has 6)
+FINE_K = 8
+#: a blob of a fine tread's print at least this share of its elements' median area
+#: is one of them (the outline cuts the edge rows' elements: 150 dpi knurl, half
+#: diamonds of 0.25 mm^2 left out as edge spots, length -14 %)
+FINE_PART = 0.25
 
 
 @dataclass(frozen=True)
@@ -235,6 +259,7 @@ class _Parts:
     thin_stats: np.ndarray
     core: np.ndarray
     thick_stats: np.ndarray
+    fine: np.ndarray | None = None  # (n_thick + 1,) bool: a fine tread's elements
 
 
 def _split(pooled: _Pooled, opts: AnalysisOptions) -> _Parts:
@@ -271,8 +296,74 @@ def _split(pooled: _Pooled, opts: AnalysisOptions) -> _Parts:
         new[~keep] = 0
         l1, n1, s1 = new[l1], int(keep.sum()), s1[keep]
     thin = m & (l1 == 0).view(np.uint8)
-    n2, l2, s2, _ = components_with_stats(thin, connectivity=8)
-    return _Parts(l1, n1 - 1, l2, n2 - 1, s2, core.view(bool) & (l1 > 0), s1)
+    n2, l2, s2, c2 = components_with_stats(thin, connectivity=8)
+    fine = _fine_fields(s2, c2, pooled.px_mm, opts)
+    fine_el = None
+    if fine.any():  # a fine tread's elements are thick ink, whole
+        fine_px = fine[l2]
+        n1, l1, s1, _ = components_with_stats((l1 > 0) | fine_px, connectivity=8)
+        fine_el = np.bincount(l1[fine_px], minlength=n1) > 0
+        fine_el[0] = False
+        thin = m & (l1 == 0).view(np.uint8)
+        n2, l2, s2, _ = components_with_stats(thin, connectivity=8)
+    return _Parts(l1, n1 - 1, l2, n2 - 1, s2, core.view(bool) & (l1 > 0), s1, fine_el)
+
+
+def _fine_fields(stats: np.ndarray, centroids: np.ndarray, px_mm: float, opts) -> np.ndarray:
+    """Which pieces (``stats``, ``centroids``: :func:`components_with_stats`'s, label 0
+    the background) are the elements of a fine tread: a dense regular field of small
+    similar elements (knurl, diamond file, dot field), each too thin or too small to
+    count as thick ink. (n,) bool.
+
+    An element is compact (at least :data:`FINE_ELEMENT_MIN_MM` and at most
+    ``fine_element_mm`` long, filling :data:`FINE_FILL` of its box, at most
+    :data:`FINE_ASPECT` times longer than wide) with a neighbour within
+    ``fine_spacing_mm``; elements within :data:`FINE_RING` times either's nearest
+    neighbour's distance are linked into fields. A field is tread when it holds
+    ``fine_min_elements``, is regular (``fine_regularity``: its spacings and areas
+    alike), two-dimensional (``fine_neighbours``) and dense (``fine_ink_share``).
+    Text is sparse strokes in lines, dust isolated specks, pixel noise irregular."""
+    from scipy.sparse import coo_matrix
+    from scipy.sparse.csgraph import connected_components
+    from scipy.spatial import cKDTree
+
+    out = np.zeros(len(stats), bool)
+    if opts.fine_element_mm <= 0 or len(stats) <= opts.fine_min_elements:
+        return out
+    w, h, area = (stats[:, k].astype(float) for k in (2, 3, 4))
+    long, short = np.maximum(w, h), np.minimum(w, h)
+    ext = px_to_mm_length(long, px_mm)
+    cand = (ext >= FINE_ELEMENT_MIN_MM) & (ext <= opts.fine_element_mm)
+    cand &= (area >= FINE_FILL * w * h) & (long <= FINE_ASPECT * short)
+    cand[0] = False
+    idx = np.flatnonzero(cand)
+    if len(idx) < opts.fine_min_elements:
+        return out
+    pts = px_to_mm_length(centroids[idx], px_mm)  # [mm]
+    k = min(FINE_K, len(idx) - 1)
+    d, j = cKDTree(pts).query(pts, k=k + 1, distance_upper_bound=opts.fine_spacing_mm)
+    d, j = d[:, 1:], j[:, 1:]
+    nn = d[:, 0]
+    ring = np.isfinite(d) & (d <= FINE_RING * nn[:, None])  # (inf: none that near)
+    ring &= d <= FINE_RING * nn[np.minimum(j, len(idx) - 1)]  # both ways
+    a = np.repeat(np.arange(len(idx)), k)[ring.ravel()]
+    n_comp, comp = connected_components(
+        coo_matrix((np.ones(len(a)), (a, j[ring])), shape=(len(idx),) * 2), directed=False
+    )
+    count = ring.sum(axis=1)
+    sizes = np.bincount(comp, minlength=n_comp)
+    for c in np.flatnonzero(sizes >= opts.fine_min_elements):
+        on = comp == c
+        sp, ar = np.percentile(nn[on], [20, 50, 80]), np.percentile(area[idx[on]], [20, 80])
+        ink = area_px_to_mm2(area[idx[on]].sum(), px_mm) / (on.sum() * sp[1] ** 2)
+        ok = (
+            sp[2] <= opts.fine_regularity * sp[0]
+            and ar[1] <= 2 * opts.fine_regularity * ar[0]
+            and np.median(count[on]) >= opts.fine_neighbours
+            and ink >= opts.fine_ink_share
+        )
+        out[idx[on]] = ok
+    return out
 
 
 def _straight_skinny(skinny: np.ndarray, pooled: _Pooled, opts: AnalysisOptions) -> np.ndarray:
@@ -1377,16 +1468,19 @@ def sort_ink(mask, *, mm_per_px: float, options: AnalysisOptions | None = None) 
     marks += _bold_marks(sorted_.bold_px, pooled)
     marks = [_clip_mark(m, shape) for m in marks]
     aside = _aside_ink(st, owner, len(sorted_.hulls), opts)
+    fine = _fine_areas(parts, sorted_.comp, len(sorted_.hulls), pooled.px_mm)
     groups = [
         dataclasses.replace(
             _lost_on_edge(g, lost) if lost is not None else g,
             aside_mm2=a,
             doubt_gap_mm=float(dg),
             doubt_joined=bool(dj),
+            fine_area_mm2=float(fa),
         )
-        for g, a, dg, dj in zip(
+        for g, a, fa, dg, dj in zip(
             _full_groups(mask, group_map, (sorted_.comp, owner), sorted_.hulls, pooled, opts),
             aside,
+            fine,
             *sorted_.doubt,
             strict=True,
         )
@@ -1394,6 +1488,20 @@ def sort_ink(mask, *, mm_per_px: float, options: AnalysisOptions | None = None) 
     ]
     groups.sort(key=lambda g: (g.rows.start + g.rows.stop, g.cols.start))
     return SortedInk(groups, marks, group_map.marks(), pooled.q, grazed)
+
+
+def _fine_areas(parts: _Parts, comp: np.ndarray, n: int, px_mm: float) -> np.ndarray:
+    """Per print: :data:`FINE_PART` of the median area [mm^2] of its fine tread's
+    elements (:func:`_fine_fields`; 0 for a print without one): blobs at least
+    that large are tread, not edge spots (``Group.fine_area_mm2``)."""
+    out = np.zeros(n)
+    if parts.fine is None or not n:
+        return out
+    fine = parts.fine[1:] & (comp >= 0)
+    areas = area_px_to_mm2(parts.thick_stats[1:, 4].astype(float), px_mm)
+    for g in np.unique(comp[fine]):
+        out[g] = FINE_PART * np.median(areas[fine & (comp == g)])
+    return out
 
 
 def _aside_ink(st: _ThinStats, owner: np.ndarray, n: int, opts: AnalysisOptions) -> np.ndarray:

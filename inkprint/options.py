@@ -82,6 +82,12 @@ _RULES = {
     "grid_graze_mm": (lambda v: v >= 0, ">= 0 mm"),
     "grid_ink_darker": (lambda v: 0 <= v <= 1, "a fraction in [0, 1]"),
     "dot_mm": (lambda v: v >= 0, ">= 0 mm"),
+    "fine_element_mm": (lambda v: v >= 0, ">= 0 mm"),
+    "fine_spacing_mm": (lambda v: v >= 0, ">= 0 mm"),
+    "fine_min_elements": (lambda v: v >= 2 and float(v).is_integer(), "a whole number >= 2"),
+    "fine_regularity": (lambda v: v >= 1, ">= 1 (a ratio of spacings)"),
+    "fine_neighbours": (lambda v: v >= 0, ">= 0 neighbours"),
+    "fine_ink_share": (lambda v: 0 <= v <= 1, "a fraction in [0, 1]"),
     "edge_uncertainty": (lambda v: 0 <= v < 1, "a relative change in [0, 1)"),
     "grid_aside_share": (lambda v: v >= 0, ">= 0 (a share of the print's hull area)"),
     "axis_uncertain_aspect": (lambda v: v >= 1, ">= 1 (length over width)"),
@@ -219,6 +225,31 @@ class AnalysisOptions:
         Thin ink no longer than this either way near a print is a dot (a halo
         speck, a clipped knob): the print's own, for the edge-spot rule to judge.
         On chart paper, dots do not keep a gridline under them as print ink.
+    fine_element_mm : float [mm]
+        A fine tread (knurl, diamond file, dot field) is a dense regular field of
+        small separate ink elements, each thinner than a pen stroke or too small to
+        count as thick ink: its elements are thin pieces no longer than this either
+        way (and compact), 0 to look for none. Such a field is tread - print ink -
+        not dust or text (:func:`inkprint.marks._fine_fields`).
+    fine_spacing_mm : float [mm]
+        ... whose centres lie at most this far from their nearest neighbour (a
+        dot-grid paper's dots lie 5 mm apart).
+    fine_min_elements : int
+        ... at least this many in one field (linked neighbour to neighbour).
+    fine_regularity : float [-]
+        ... regular: the field's 80th percentile of the nearest-neighbour
+        spacing at most this many times its 20th, and likewise the elements' areas
+        at most twice this (scattered dust or pixel noise: 2.7 and more; a line of
+        writing's letters differ in width and area).
+    fine_neighbours : float
+        ... two-dimensional: the median element has at least this many others
+        within 1.5 times its nearest neighbour's distance (a lattice: 4 to 8; a
+        diamond band two rows deep along a file tread's body: 3; a line of
+        letters: 2).
+    fine_ink_share : float [-]
+        ... dense: its elements' ink fills at least this share of the field's
+        area (the elements' count times the squared median spacing; a knurl or
+        dot field 0.25-0.6, a dot-grid paper's dots 0.01).
     edge_spot_area_mm2 : float [mm^2]
         Section 7.1.1 rule: blobs at least this large (and dark) form the print's
         core.
@@ -422,6 +453,12 @@ class AnalysisOptions:
     bold_fill: float = 0.4
     bold_body_fill: float = 0.75
     dot_mm: float = 1.5
+    fine_element_mm: float = 2.5
+    fine_spacing_mm: float = 3.0
+    fine_min_elements: int = 24
+    fine_regularity: float = 1.5
+    fine_neighbours: float = 3.0
+    fine_ink_share: float = 0.12
     edge_spot_area_mm2: float = 1.5
     edge_spot_faintness: float = 0.6
     edge_spot_distance_mm: float = 1.0
@@ -471,7 +508,7 @@ class AnalysisOptions:
                 continue
             if not (_finite(value) and ok(value)):
                 raise InvalidInput(name, value, allowed)
-        for name in ("max_pixels", "mark_near_px", "grid_min_lines"):
+        for name in ("max_pixels", "mark_near_px", "grid_min_lines", "fine_min_elements"):
             object.__setattr__(self, name, int(getattr(self, name)))
         if self.max_ink_fraction <= self.min_ink_fraction:
             raise InvalidInput(

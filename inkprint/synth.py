@@ -13,7 +13,8 @@ rolling direction, ``n`` = 2.4: blunter than an ellipse, like real prints) whose
 
 Tread styles fill the outline: ``slick``, ``ribbed`` (longitudinal grooves),
 ``file`` (a lattice of small voids), ``knobby`` (staggered knobs clipped by the
-outline), ``mtb`` (wide-groove knobs: gaps as wide as the knobs or wider) and ``car``
+outline), ``mtb`` (wide-groove knobs: gaps as wide as the knobs or wider), ``knurl``
+(a fine tread: separate small diamonds on a staggered lattice) and ``car``
 (ribs between circumferential grooves several mm wide, cut into blocks by lateral
 grooves). Ground truth is the exact ink geometry (shapely): its convex hull's
 length, width and area and its net area. The sheet adds uneven ink, halo spots near
@@ -49,7 +50,7 @@ from .synth_effects import (
     texture_page,
 )
 
-TREADS = ("slick", "ribbed", "file", "knobby", "mtb", "car")
+TREADS = ("slick", "ribbed", "file", "knobby", "mtb", "car", "knurl")
 LETTER = (215.9, 279.4)  # mm
 SUPERELLIPSE_N = 2.4
 KAPPA = 1.03
@@ -129,7 +130,7 @@ class PrintSpec:
         On the sheet (x right, y up from the bottom-left corner).
     angle : float [deg]
         Turns the rolling direction from +x (counter-clockwise).
-    tread : {'slick', 'ribbed', 'file', 'knobby'}
+    tread : {'slick', 'ribbed', 'file', 'knobby', 'mtb', 'car', 'knurl'}
     ink : float in (0, 1]
         Mean darkness of the ink.
     unevenness : float
@@ -141,6 +142,8 @@ class PrintSpec:
         Superellipse exponent.
     block, gap : float, optional [mm]
         ``mtb``: knob size and the groove between knobs (default 5 and 6);
+        ``knurl``: a diamond's length and the gap between two along the rolling
+        direction (default 1.2 and 0.6);
         ``car``: rib width and circumferential groove width (default 28 and 10).
     sipe : float, optional [mm]
         ``car``: each rib cut into blocks as long as the grooves are wide by lateral
@@ -276,11 +279,34 @@ def _tread(spec: PrintSpec, rng):
         # drop slivers a real knob edge would not print
         parts = [p for p in shapely.get_parts(ink) if p.area > 0.6]
         return shapely.union_all(parts)
+    if spec.tread == "knurl":
+        return _knurl(spec, outline)
     if spec.tread == "mtb":
         return _mtb(spec, outline)
     if spec.tread == "car":
         return _car(spec, outline)
     raise InvalidInput("tread", spec.tread, " | ".join(TREADS))
+
+
+def _knurl(spec: PrintSpec, outline):
+    """A fine tread: separate diamonds ``block`` mm long (default 1.2) and 0.7 of
+    that wide on a staggered lattice, ``gap`` mm apart along the rolling direction
+    (default 0.6); a diamond the outline cuts to under half of itself is dropped
+    (too small to print)."""
+    import shapely
+
+    b = spec.block or 1.2
+    g = spec.gap if spec.gap is not None else 0.6
+    a, c = 0.5 * b, 0.35 * b  # half-diagonals, along and across
+    pu, pv = 2 * a + g, c + 0.5 * g  # pitch along; rows across (staggered)
+    L, W = spec.length, spec.width
+    cells = []
+    for j, v in enumerate(np.arange(-W / 2 - pv, W / 2 + pv, pv)):
+        for u in np.arange(-L / 2 - pu + 0.5 * pu * (j % 2), L / 2 + pu, pu):
+            cells.append(shapely.Polygon([(u - a, v), (u, v - c), (u + a, v), (u, v + c)]))
+    ink = outline.intersection(shapely.union_all(cells))
+    parts = [p for p in shapely.get_parts(ink) if p.area >= a * c]  # half a diamond: 2ac
+    return shapely.union_all(parts)
 
 
 def _mtb(spec: PrintSpec, outline):

@@ -170,6 +170,13 @@ def test_options_change_single_calls(sheet_factory):
         ("axis_uncertain_aspect", 0.9),
         ("axis_misaligned_deg", 45.0),
         ("axis_misaligned_excess", -0.01),
+        ("fine_element_mm", -1.0),
+        ("fine_spacing_mm", math.nan),
+        ("fine_min_elements", 1),
+        ("fine_min_elements", 24.5),
+        ("fine_regularity", 0.9),
+        ("fine_neighbours", -1.0),
+        ("fine_ink_share", 1.5),
     ],
 )
 def test_invalid_option_names_its_field(field, value):

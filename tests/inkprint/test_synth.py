@@ -73,8 +73,11 @@ def test_rendered_print_has_its_true_area_place_orientation_and_extent(tread):
     a = math.radians(truth.angle)
     along, across = dx * math.cos(a) + dy * math.sin(a), dy * math.cos(a) - dx * math.sin(a)
     inked = cov > 0.5
-    assert abs(np.ptp(along[inked]) - truth.length) <= s  # pixel centres: within 1 px
-    assert abs(np.ptp(across[inked]) - truth.width) <= s
+    # pixel centres: within 1 px (2 for the knurl's diamonds: a pointed tip at the
+    # extreme covers under half of the pixels it crosses)
+    tol = 2 * s if tread == "knurl" else s
+    assert abs(np.ptp(along[inked]) - truth.length) <= tol
+    assert abs(np.ptp(across[inked]) - truth.width) <= tol
 
 
 def test_truths_come_top_to_bottom_whatever_the_spec_order():

@@ -1,0 +1,107 @@
+"""Fine treads: a dense regular field of small separate elements is a print.
+
+A knurl, diamond-file or dot-field tread prints as hundreds of ink elements
+0.5-1.5 mm across, each thinner than a pen stroke or too small to count as thick
+ink: taken one by one they were dust or text, and the print lost its edge rows or
+went missing with status ok (independent set 10 file 81 at 600 dpi: missing; file
+71 at 150 dpi: NoInk "set aside 196 text"). Text is sparse strokes in lines, dust
+isolated specks: neither is a field (:func:`inkprint.marks._fine_fields`).
+"""
+
+import cv2
+import numpy as np
+import pytest
+from numpy.testing import assert_allclose
+
+import inkprint as ip
+from inkprint.components import components_with_stats
+from inkprint.marks import _fine_fields
+from inkprint.options import AnalysisOptions
+from inkprint.read import Scan
+from inkprint.synth import PrintSpec, SheetSpec, render_sheet
+
+OPTS = AnalysisOptions()
+
+
+def _knurl_sheet(dpi: float, **kw):
+    p = PrintSpec(54.0, 24.0, (80.0, 120.0), 0.0, "knurl", **kw)
+    img, (t,) = render_sheet(SheetSpec((p,), dpi=dpi, size=(160.0, 240.0), specks=0))
+    return Scan(img, 25.4 / dpi, "given"), t
+
+
+@pytest.mark.parametrize("dpi", [150.0, 600.0])
+def test_analyze_scan_knurl_print_is_measured_whole(dpi):
+    scan, t = _knurl_sheet(dpi)
+    res = ip.analyze_scan(scan, rolling_axis="x", sensitivity=False)
+    (pr,) = res.prints
+    assert_allclose(pr.metrics.length, t.length, rtol=0.01)
+    assert_allclose(pr.metrics.width, t.width, rtol=0.01)
+    assert_allclose(pr.metrics.hull_area, t.hull_area, rtol=0.02)
+    assert "dust" not in res.rows()[0]["set_aside"]
+
+
+def test_analyze_scan_dot_field_print_at_400_dpi_is_measured_whole():
+    # round-ish dots 0.9 mm on a 1.3 mm lattice (held-out scan 45 page 2: NoInk,
+    # "set aside 457 dust")
+    scan, t = _knurl_sheet(400.0, block=0.9, gap=0.45)
+    (pr,) = ip.analyze_scan(scan, rolling_axis="x", sensitivity=False).prints
+    assert_allclose([pr.metrics.length, pr.metrics.width], [t.length, t.width], rtol=0.01)
+    assert_allclose(pr.metrics.hull_area, t.hull_area, rtol=0.02)
+
+
+def _fields(mask: np.ndarray, px_mm: float, opts=OPTS) -> np.ndarray:
+    _n, _lab, stats, cent = components_with_stats(mask.astype(np.uint8), connectivity=8)
+    return _fine_fields(stats, cent, px_mm, opts)
+
+
+PX = 0.1  # [mm] a pixel of the drawn fixtures
+
+
+def _dots(centres_mm, r_mm=0.45, shape=(600, 600)) -> np.ndarray:
+    m = np.zeros(shape, np.uint8)
+    for x, y in centres_mm:
+        cv2.circle(m, (round(x / PX), round(y / PX)), round(r_mm / PX), 1, -1)
+    return m.astype(bool)
+
+
+def test_fine_fields_lattice_of_dots_is_a_field():
+    xs, ys = np.meshgrid(np.arange(5, 55, 1.5), np.arange(5, 30, 1.3))
+    xs = xs + 0.75 * (np.arange(xs.shape[0])[:, None] % 2)  # staggered rows
+    found = _fields(_dots(np.column_stack([xs.ravel(), ys.ravel()])), PX)
+    assert found[1:].all()
+
+
+def test_fine_fields_scattered_specks_are_not_a_field():
+    # as many dots as the lattice, as dense, at random places: dust
+    rng = np.random.default_rng(1)
+    n = 33 * 20
+    pts = np.column_stack([rng.uniform(5, 55, n), rng.uniform(5, 30, n)])
+    assert not _fields(_dots(pts), PX).any()
+
+
+def test_fine_fields_lines_of_small_writing_are_not_a_field():
+    m = np.zeros((400, 900), np.uint8)
+    for k in range(8):  # a paragraph of 2 mm high letters, lines 3.5 mm apart
+        cv2.putText(
+            m,
+            "Conti GP5000 28mm 6.2 bar 640 N front",
+            (20, 40 + 35 * k),
+            cv2.FONT_HERSHEY_SIMPLEX,
+            0.6,
+            1,
+            2,
+        )
+    assert not _fields(m.astype(bool), PX).any()
+
+
+def test_fine_fields_dot_grid_paper_is_not_a_field():
+    # a dot-grid page's dots lie 5 mm apart: too sparse for a tread
+    xs, ys = np.meshgrid(np.arange(2, 58, 5.0), np.arange(2, 58, 5.0))
+    m = _dots(np.column_stack([xs.ravel(), ys.ravel()]), r_mm=0.3)
+    assert not _fields(m, PX).any()
+
+
+def test_fine_fields_off_when_fine_element_mm_is_zero():
+    xs, ys = np.meshgrid(np.arange(5, 55, 1.5), np.arange(5, 30, 1.3))
+    m = _dots(np.column_stack([xs.ravel(), ys.ravel()]))
+    assert not _fields(m, PX, OPTS.replace(fine_element_mm=0.0)).any()
