@@ -262,6 +262,23 @@ def test_is_print_a_line_of_marker_letters_is_writing(stroke):
         ip.analyze_scan(scan_of(alone)[0], sensitivity=False)
 
 
+@pytest.mark.parametrize(("gap", "linked"), [(5.0, True), (7.5, True), (11.81, False)])
+def test_linked_edges_a_lone_element_continues_a_pattern_across_one_groove(gap, linked):
+    # held-out set 1 sheet 37: a marker's letter (1.04 mm wide, no pattern of its
+    # own) 11.81 mm off a car rib (28 mm wide) whose blocks are 5.33 mm apart took
+    # the rib's pattern and joined it (width +12.6 %); a tip block the outline cut
+    # lies one groove off, where the next block would
+    from inkprint.group import ElementGraph, linked_edges
+
+    graph = ElementGraph(
+        widths=np.array([28.0, 28.0, 28.0, 1.04]),
+        a=np.array([0, 1, 0]),
+        b=np.array([1, 2, 3]),
+        gaps=np.array([5.33, 5.33, gap]),
+    )
+    assert linked_edges(graph).tolist() == [True, True, linked]
+
+
 def test_group_blobs_group_mm_overrides_the_footprint_rule():
     spec = PrintSpec(120, 140, (100, 110), 0.0, "car", exponent=4.0, block=25, gap=12)
     scan, _ = scan_of(SheetSpec((spec,), size=(200, 220), specks=0))
