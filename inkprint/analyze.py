@@ -1108,20 +1108,7 @@ def _sliver_excess(ctx: _Context, g: Group, kept: np.ndarray, m) -> float:
     both = own | extra
     fld = edge_field(grey, both, mm_per_px=s, options=opts, local=_local_range(grey, s, opts))
     fld = _paper_where_set_apart(fld, ink & ~both, both)
-    with_it = measure_mask(
-        both,
-        rows.start,
-        cols.start,
-        n_rows=h,
-        mm_per_px=s,
-        field=fld,
-        axis=m.metrics.orientation,
-        stations=(0.0,),
-    ).metrics
-    weights = {"length": 1.0, "width": 1.0, "hull_area": 0.5}
-    return max(
-        wt * (getattr(with_it, k) / getattr(m.metrics, k) - 1.0) for k, wt in weights.items()
-    )
+    return _excess_with(ctx, both, (rows.start, cols.start), fld, m)
 
 
 def _faint_excess(ctx: _Context, g: Group, spots, m, *, grey, local, aside, kept) -> float:
@@ -1136,20 +1123,27 @@ def _faint_excess(ctx: _Context, g: Group, spots, m, *, grey, local, aside, kept
     ink = kept | spots.faint_blocks
     fld = edge_field(grey, ink, mm_per_px=s, options=opts, local=local)
     fld = _paper_where_set_apart(fld, (g.mask & ~ink) | aside, ink)
-    with_blocks = measure_mask(
+    return _excess_with(ctx, ink, (g.rows.start, g.cols.start), fld, m)
+
+
+def _excess_with(ctx: _Context, ink: np.ndarray, at: tuple, fld: np.ndarray, m) -> float:
+    """How much larger the print ``m`` is measured as ``ink`` (a crop at ``at`` =
+    (row, col) with its edge field ``fld``), along ``m``'s direction: the largest
+    relative excess of length, width or hull area, the hull area counted half as for
+    ``edge_uncertainty`` (its bar is twice as wide)."""
+    with_it = measure_mask(
         ink,
-        g.rows.start,
-        g.cols.start,
+        at[0],
+        at[1],
         n_rows=ctx.page.work.shape[0],
-        mm_per_px=s,
+        mm_per_px=ctx.scan.mm_per_px,
         field=fld,
         axis=m.metrics.orientation,
         stations=(0.0,),
     ).metrics
-    # the hull area counted half, as for edge_uncertainty (its bar is twice as wide)
     weights = {"length": 1.0, "width": 1.0, "hull_area": 0.5}
     return max(
-        w * (getattr(with_blocks, k) / getattr(m.metrics, k) - 1.0) for k, w in weights.items()
+        wt * (getattr(with_it, k) / getattr(m.metrics, k) - 1.0) for k, wt in weights.items()
     )
 
 
