@@ -734,6 +734,11 @@ def is_print(
     hull_mm2 = area_px_to_mm2(cv2.contourArea(hull), mm_per_px)
     if hull_mm2 < SMALL_PRINT_MM2 and fill < SMALL_PRINT_FILL:
         fill = max(fill, _main_blob_fill(group.mask))  # halo specks widen a tiny hull
+    if hull_mm2 < SMALL_PRINT_MM2 and fill < SMALL_PRINT_FILL:
+        # a file tread's pores and notches are narrower than a pen stroke (a track
+        # tire's 14 x 2.9 mm print at 400 dpi: 71 % inked, 35 mm^2, missing)
+        stroke = mm_to_px_length(opts.stroke_width_mm, mm_per_px)
+        fill = max(fill, _closed_fill(group.mask, stroke))
     # a print cut by the image's edge need not be solid: measured, flagged clipped
     # (a knobby print's last 9 x 7 mm read as a letter and went missing)
     cut = image_shape is not None and _sides(group, image_shape, near=False) > 0
@@ -786,6 +791,24 @@ def _letters_in_a_row(
         hull = cv2.convexHull(outline_points(lab[y : y + h, x : x + w] == k))
         solid.append(st[k, cv2.CC_STAT_AREA] / max(cv2.contourArea(hull) + 1.0, 1.0))
     return float(np.median(solid)) < opts.text_line_solidity or fill < TEXT_LINE_FILL
+
+
+def _closed_fill(mask: np.ndarray, size_px: float) -> float:
+    """Inked share of the hull of the ink closed by a disk ``size_px`` [px] wide
+    (``stroke_width_mm``): a tiny file tread print's pores and the notches its
+    pattern cuts in the outline are narrower than a pen stroke and fill in; a
+    letter's counters and the room between its strokes are wider and stay."""
+    import cv2
+
+    d = max(3, round(size_px) | 1)
+    disk = cv2.getStructuringElement(cv2.MORPH_ELLIPSE, (d, d))
+    closed = cv2.morphologyEx(np.pad(mask.view(np.uint8), d), cv2.MORPH_CLOSE, disk)
+    pts = outline_points(closed)
+    if pts is None:
+        return 0.0
+    hull = cv2.convexHull(pts)
+    px = cv2.countNonZero(closed)
+    return px / max(cv2.contourArea(hull) + 0.5 * cv2.arcLength(hull, True) + 1.0, 1.0)
 
 
 def _main_blob_fill(mask: np.ndarray) -> float:
@@ -1042,14 +1065,16 @@ class _ThinParts:
     foot: np.ndarray  # (n,) bool: pieces holding thick ink too
     stroke: np.ndarray  # (n,) bool: pieces longer than a stroke is wide
     ends: np.ndarray  # (n,) bool: pieces off the print's ends or along its outline
+    tip: np.ndarray | None = None  # (k,) bool: a foot's thin ink that is a tapering tip
 
     def dropped(self, *, dots: bool) -> np.ndarray:
-        """Which of the thin pixels are dropped, (k,) bool: apart from the print,
+        """Which of the thin pixels are dropped, (k,) bool: joined to the print's
+        thick ink (a stroke's foot; not its tapering tip), or apart from the print,
         beside it: a stroke (longer than a stroke is wide) or, with ``dots``, a dot
         (a letter's bit, a halo speck)."""
         drop = self.foot | ((self.stroke | dots) & ~self.ends)
         drop[0] = False
-        return drop[self.ids]
+        return drop[self.ids] if self.tip is None else drop[self.ids] & ~self.tip
 
 
 def _thin_parts(
@@ -1103,7 +1128,77 @@ def _thin_parts(
             skip=foot | ends,
             opts=resolve_options(opts),
         )
-    return _ThinParts(at, ids, foot, stroke, ends)
+    tip, o = None, resolve_options(opts)
+    if (o.tip_taper_strokes > 0 or o.tread_teeth > 0) and foot[ids].any():
+        tip = _print_stubs(thin, (at, foot[ids]), hull_pts.reshape(-1, 2), width_px, o)
+    return _ThinParts(at, ids, foot, stroke, ends, tip)
+
+
+def _print_stubs(thin: np.ndarray, feet: tuple, hull_xy: np.ndarray, width_px: float, opts):
+    """Which of the thin pixels ``feet`` (flat indices ``at`` into ``thin`` and
+    whether each is a foot's) are the print's own: pieces of ``thin`` (the thin ink
+    outside the thick ink's hull ``hull_xy``, (x, y) [px]), all a foot's, that are
+
+    * a tapering tip: off the print's ends along its major axis, reaching no
+      farther than ``tip_taper_strokes`` x ``width_px`` out of the hull (the end of
+      a narrow print the opening cut short continues its outline; a stroke's foot
+      sticks out farther);
+    * its tread's teeth (:func:`_teeth`): a row of ``tread_teeth`` or more stubs
+      no deeper than a stroke on each side, along most of its length."""
+    import cv2
+
+    at, is_foot = feet
+    n, lab, _, cent = cv2.connectedComponentsWithStats(thin.view(np.uint8), connectivity=8)
+    ids = lab.ravel()[at]
+    ys, xs = np.divmod(at, thin.shape[1])
+    hull_xy = hull_xy.astype(float)
+    d = _outside_distance(np.column_stack([xs, ys]).astype(float), hull_xy)
+    far = np.full(n, -np.inf)
+    np.maximum.at(far, ids, d)
+    all_feet = np.ones(n, bool)
+    np.logical_and.at(all_feet, ids, is_foot)
+    all_feet[0] = False
+    ends = _off_the_tips(hull_xy, cent)
+    ok = all_feet & ends & (far <= opts.tip_taper_strokes * width_px)
+    if opts.tread_teeth > 0:
+        ok |= _teeth(hull_xy, cent, all_feet & ~ends & (far <= width_px), opts.tread_teeth)
+    return ok[ids]
+
+
+def _off_the_tips(hull_xy: np.ndarray, points: np.ndarray, *, end: float = 0.8) -> np.ndarray:
+    """Whether each point (x, y) lies off a hull's ends along its major axis: beyond
+    ``end`` x its half-length from the middle of its extent along the axis (the
+    vertices' mean, :func:`_at_the_ends`, leans towards a ragged tip's many
+    vertices: the other tip's last pixel was judged beside the print)."""
+    c = hull_xy.mean(axis=0)
+    w, v = np.linalg.eigh((hull_xy - c).T @ (hull_xy - c))
+    axis = v[:, np.argmax(w)]
+    proj = (hull_xy - c) @ axis
+    mid, half = 0.5 * (proj.max() + proj.min()), 0.5 * np.ptp(proj)
+    return np.abs((points - c) @ axis - mid) > end * half
+
+
+def _teeth(hull_xy: np.ndarray, cent: np.ndarray, stub: np.ndarray, least: int) -> np.ndarray:
+    """Which of the stubs (``stub``: (n,) bool over pieces with centres ``cent``,
+    (x, y)) are a tread's teeth: when at least ``least`` of them lie on each side
+    of the hull's major axis and each side's span along it covers half the hull's
+    length (a track tire's file tread print: a spine with a row of teeth down each
+    side, joined to it by a pixel; dropped as pen strokes' feet, width -27 %). A
+    label's letters touch one side."""
+    out = np.zeros(len(stub), bool)
+    if np.count_nonzero(stub) < 2 * least:
+        return out
+    c = hull_xy.mean(axis=0)
+    w, v = np.linalg.eigh((hull_xy - c).T @ (hull_xy - c))
+    axis = v[:, np.argmax(w)]
+    half = np.abs((hull_xy - c) @ axis).max()
+    along = (cent[stub] - c) @ axis
+    side = (cent[stub] - c) @ np.array([-axis[1], axis[0]]) > 0
+    for s in (side, ~side):
+        if np.count_nonzero(s) < least or np.ptp(along[s]) < half:
+            return out
+    out[stub] = True
+    return out
 
 
 def _along_outline(thin: tuple, lab, stats, hull, *, skip, opts: AnalysisOptions) -> np.ndarray:

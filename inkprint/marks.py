@@ -381,10 +381,15 @@ def _straight_skinny(skinny: np.ndarray, pooled: _Pooled, opts: AnalysisOptions)
     _n, lab, stats, _ = components_with_stats(skinny, connectivity=8)
     out = np.zeros(skinny.shape, np.uint8)
     long = np.maximum(stats[:, cv2.CC_STAT_WIDTH], stats[:, cv2.CC_STAT_HEIGHT])
-    for k in np.flatnonzero(px_to_mm_length(long, pooled.px_mm) >= opts.line_length_mm):
-        if k == 0:
-            continue
+    ks = np.flatnonzero(px_to_mm_length(long, pooled.px_mm) >= opts.line_length_mm)
+    ks = ks[ks > 0]
+    if not len(ks):
+        return out
+    _, ink, ink_st, _ = components_with_stats(pooled.mask.view(np.uint8), connectivity=8)
+    for k in ks:
         x, y, w, h = stats[k, :4]
+        if _tiny_print(ink, ink_st, ink[_first_pixel(lab, stats, k)], pooled.px_mm, opts):
+            continue  # the spine of a track tire's file tread print, not a line
         piece = (lab[y : y + h, x : x + w] == k).view(np.uint8)
         (_, _), (a, b), _ = cv2.minAreaRect(outline_points(piece))  # (the hull's points)
         narrow = px_to_mm_length(min(a, b) + 1, pooled.px_mm) <= 2.0 * opts.stroke_width_mm
@@ -393,6 +398,31 @@ def _straight_skinny(skinny: np.ndarray, pooled: _Pooled, opts: AnalysisOptions)
         elif not narrow:
             out[y : y + h, x : x + w] |= _line_run(piece, pooled.px_mm, opts)
     return out
+
+
+def _tiny_print(ink, ink_st, c: int, px_mm: float, opts: AnalysisOptions) -> bool:
+    """Whether ink piece ``c`` (``ink``: the pooled mask's pieces, ``ink_st`` their
+    stats) is a tiny print: its hull under ``SMALL_PRINT_MM2``, at least
+    ``min_patch_width_mm`` wide and inked over ``SMALL_PRINT_FILL`` of it once its
+    pores and notches narrower than a stroke are closed (a track tire's file tread
+    print, 12 x 2.8 mm at 150 dpi: its spine between the pattern's teeth is a
+    straight bar under two strokes wide, taken for a ruler's line; the print went
+    missing). A line with its ticks, or across a print, is wider or fills less."""
+    import cv2
+
+    from .group import SMALL_PRINT_FILL, SMALL_PRINT_MM2, _closed_fill
+
+    x, y, w, h = ink_st[c, :4]
+    piece = (ink[y : y + h, x : x + w] == c).view(np.uint8)
+    pts = outline_points(piece)
+    (_, _), (a, b), _ = cv2.minAreaRect(pts)
+    if px_to_mm_length(min(a, b) + 1, px_mm) < opts.min_patch_width_mm:
+        return False
+    if area_px_to_mm2(cv2.contourArea(cv2.convexHull(pts)), px_mm) >= SMALL_PRINT_MM2:
+        return False
+    return _closed_fill(piece.view(bool), mm_to_px_length(opts.stroke_width_mm, px_mm)) >= (
+        SMALL_PRINT_FILL
+    )
 
 
 def _line_run(piece: np.ndarray, px_mm: float, opts: AnalysisOptions) -> np.ndarray:
@@ -715,7 +745,7 @@ class _BoldJudge:
             if np.count_nonzero(c & el.view(bool)) >= 0.5 * np.count_nonzero(el):
                 is_body[i] = True
                 body |= c
-        return body, is_body
+        return _main_pieces(body, local), is_body
 
     def _rim(self, local, body, mine, shaved, hull) -> tuple:
         """The pieces of the body's elements outside the body: the strokes cut (bool
@@ -850,6 +880,25 @@ class _BoldJudge:
                 continue
             if _reach(piece.view(np.uint8), np.array([cols.start, rows.start]), hull) > 0:
                 cut[rows, cols] |= piece
+
+
+def _main_pieces(body: np.ndarray, local: np.ndarray) -> np.ndarray:
+    """Of the body (bool), each element's largest piece (``local``: the elements'
+    labels). An element is one piece of ink: its core in pieces means ink joined to
+    it by a neck narrower than two strokes - a bold letter's bowl touching a slick
+    print's tip (file 78 of independent set 10: a 'P' joined to the tip was part of
+    the body, length +5.3 %, unflagged), not the print's body."""
+    n, lab, st, _ = components_with_stats(body.view(np.uint8), connectivity=8)
+    if n <= 2:
+        return body
+    el_of = np.zeros(n, np.int64)
+    el_of[lab[body]] = local[body]
+    area = st[:, 4]
+    best = np.zeros(int(local.max()) + 1, area.dtype)
+    np.maximum.at(best, el_of[1:], area[1:])
+    keep = area >= best[el_of]
+    keep[0] = False
+    return keep[lab]
 
 
 def _hull_fill(inked: np.ndarray, own: np.ndarray, where: tuple) -> float:

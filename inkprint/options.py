@@ -68,6 +68,8 @@ _RULES = {
     "edge_window_mm": (lambda v: v > 0, "> 0 mm"),
     "edge_pip_jump": (lambda v: 0 < v <= 1, "a share of the paper-to-ink contrast in (0, 1]"),
     "tip_block_strokes": (lambda v: v >= 0, ">= 0 (times the stroke width)"),
+    "tip_taper_strokes": (lambda v: 0 <= v <= 1, "in [0, 1] (times the stroke width)"),
+    "tread_teeth": (lambda v: v >= 0 and float(v).is_integer(), "a whole number >= 0"),
     "sliver_solidity": (lambda v: 0 < v <= 1, "a fraction in (0, 1]"),
     "sliver_elongation": (lambda v: v >= 1, ">= 1 (length over thickness)"),
     "edge_mark_mm": (lambda v: v >= 0, ">= 0 mm"),
@@ -284,6 +286,21 @@ class AnalysisOptions:
         ``stroke_width_mm`` a side (squared); beside a one-piece print (slick,
         ribbed, file tread) it is a letter's stroke (a label at a slick print's tip
         read hull area +2.5 %).
+    tip_taper_strokes : float [-]
+        The pen-thin ink at a print's ends along its major axis, joined to its thick
+        ink and reaching no farther than this many ``stroke_width_mm`` out of the
+        hull of that thick ink, is the print's tapering tip (a stroke-wide opening
+        cuts a narrow tip short), not a pen stroke's foot: kept. A track tire's
+        3.3 mm wide print lost 0.13 mm at each tip so (0.2 strokes), length
+        -1.4 %; a stroke's foot reaches farther, and a mark set aside beyond a tip
+        flags the print (``mark_pull``). 0: every foot is dropped.
+    tread_teeth : int
+        Pen-thin stubs joined to a print, no deeper out of the hull of its thick ink
+        than a stroke, are its tread's teeth, not pen strokes' feet, when at least
+        this many lie on each side of its major axis, each side's row along half
+        its length or more (a track tire's file tread print: a spine with a row of
+        teeth down each side, joined to it by a pixel at 150 dpi, read width
+        -27 %); a label's letters touch one side. 0: never.
     sliver_solidity : float [-]
         A thin piece apart from a print, lying along its outline no thicker across
         it than ``mark_overhang_mm``, is a tread block the outline cut to a sliver
@@ -466,6 +483,8 @@ class AnalysisOptions:
     edge_window_mm: float = 0.6
     edge_pip_jump: float = 0.35
     tip_block_strokes: float = 2.0
+    tip_taper_strokes: float = 0.5
+    tread_teeth: int = 3
     sliver_solidity: float = 0.75
     sliver_elongation: float = 2.0
     edge_mark_mm: float = 2.5
@@ -508,7 +527,13 @@ class AnalysisOptions:
                 continue
             if not (_finite(value) and ok(value)):
                 raise InvalidInput(name, value, allowed)
-        for name in ("max_pixels", "mark_near_px", "grid_min_lines", "fine_min_elements"):
+        for name in (
+            "max_pixels",
+            "mark_near_px",
+            "grid_min_lines",
+            "fine_min_elements",
+            "tread_teeth",
+        ):
             object.__setattr__(self, name, int(getattr(self, name)))
         if self.max_ink_fraction <= self.min_ink_fraction:
             raise InvalidInput(
