@@ -78,9 +78,11 @@ TIP_ROUNDS = 4
 #: SMALL_PRINT_FILL of its hull (a letter, a ring, a tick does not)
 SMALL_PRINT_MM2 = 150.0
 SMALL_PRINT_FILL = 0.8
-#: a line of writing has at least this many letters spanning its width, and they
-#: hold this share of its ink (``text_line_aspect``); letters are at least
-#: TEXT_LETTER_MM high (a tiny print's file-tread diamonds, ~1 mm, are not letters)
+#: a line of writing has at least this many letters spanning its width, they hold
+#: this share of its ink and leave gaps: the ink fills less than TEXT_LINE_FILL of
+#: the hull (``text_line_aspect``; a road tire's slender print fills 0.7 or more, a
+#: chevron tread's 0.87); letters are at least TEXT_LETTER_MM high (a tiny print's
+#: file-tread diamonds, ~1 mm, are not letters)
 TEXT_LINE_LETTERS = 6
 TEXT_LINE_INK = 0.7
 TEXT_LINE_FILL = 0.6
@@ -723,8 +725,10 @@ def is_print(
         return PrintCheck(
             False, f"writing or marks ({100 * fill:.0f} % of its hull inked)", "writing"
         )
-    if length / width >= opts.text_line_aspect and _letters_in_a_row(
-        group.mask, pts, width_px=min(a, b) + 1, mm_per_px=mm_per_px, fill=fill, opts=opts
+    if (
+        length / width >= opts.text_line_aspect
+        and fill < TEXT_LINE_FILL
+        and _letters_in_a_row(group.mask, pts, width_px=min(a, b) + 1, mm_per_px=mm_per_px)
     ):
         return PrintCheck(
             False,
@@ -753,16 +757,12 @@ def is_print(
 
 
 def _letters_in_a_row(
-    mask: np.ndarray, pts: np.ndarray, *, width_px: float, mm_per_px: float, fill: float, opts
+    mask: np.ndarray, pts: np.ndarray, *, width_px: float, mm_per_px: float
 ) -> bool:
-    """Whether a long group's ink is letters in one row: :data:`TEXT_LINE_LETTERS`
-    or more pieces, each spanning half the group's width or more (and
-    :data:`TEXT_LETTER_MM`), holding :data:`TEXT_LINE_INK` of its ink, hollow: with
-    a median solidity below ``text_line_solidity``, or the group's ink ``fill``ing
-    less than :data:`TEXT_LINE_FILL` of its hull (a marker's bold letters are
-    solid, the gaps between them are not; a road tire's long print, the only kind
-    this slender, inks 0.7 of its hull or more). ``pts``: the group's outline
-    points."""
+    """Whether a long group's ink is :data:`TEXT_LINE_LETTERS` or more pieces in one
+    row, each spanning half the group's width or more (and :data:`TEXT_LETTER_MM`),
+    together :data:`TEXT_LINE_INK` of its ink (``pts``: the group's outline points).
+    Whether the pieces leave gaps (a hollow hull) is the caller's."""
     import cv2
 
     n, lab, st, _ = components_with_stats(mask.view(np.uint8), connectivity=8)
@@ -779,18 +779,11 @@ def _letters_in_a_row(
     hi = np.full(n - 1, -np.inf)
     np.minimum.at(lo, ids, t)
     np.maximum.at(hi, ids, t)
-    span = hi - lo + 1
-    tall = span >= max(0.5 * width_px, mm_to_px_length(TEXT_LETTER_MM, mm_per_px))
-    if np.count_nonzero(tall) < TEXT_LINE_LETTERS or area[tall].sum() < TEXT_LINE_INK * area.sum():
-        return False
-    if fill < TEXT_LINE_FILL:
-        return True
-    solid = []
-    for k in np.flatnonzero(tall) + 1:
-        x, y, w, h = st[k, :4]
-        hull = cv2.convexHull(outline_points(lab[y : y + h, x : x + w] == k))
-        solid.append(st[k, cv2.CC_STAT_AREA] / max(cv2.contourArea(hull) + 1.0, 1.0))
-    return float(np.median(solid)) < opts.text_line_solidity or fill < TEXT_LINE_FILL
+    tall = hi - lo + 1 >= max(0.5 * width_px, mm_to_px_length(TEXT_LETTER_MM, mm_per_px))
+    return (
+        np.count_nonzero(tall) >= TEXT_LINE_LETTERS
+        and area[tall].sum() >= TEXT_LINE_INK * area.sum()
+    )
 
 
 def _closed_fill(mask: np.ndarray, size_px: float) -> float:

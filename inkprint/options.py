@@ -44,7 +44,6 @@ _RULES = {
     "min_net_to_gross": (lambda v: 0 <= v <= 1, "a fraction in [0, 1]"),
     "max_patch_aspect": (lambda v: v >= 1, ">= 1 (length over width)"),
     "text_line_aspect": (lambda v: v >= 1, ">= 1 (length over width)"),
-    "text_line_solidity": (lambda v: 0 <= v <= 1, "a fraction in [0, 1]"),
     "speck_area_mm2": (lambda v: v >= 0, ">= 0 mm^2"),
     "stroke_width_mm": (lambda v: v > 0, "> 0 mm"),
     "line_length_mm": (lambda v: v > 0, "> 0 mm"),
@@ -187,13 +186,12 @@ class AnalysisOptions:
         A group longer than this many widths is a line, not a contact patch.
     text_line_aspect : float [-]
         A group at least this many widths long whose ink is :data:`TEXT_LINE_LETTERS`
-        or more pieces each spanning most of its width, side by side in one row, and
-        hollow (median solidity below ``text_line_solidity``) is a line of writing,
-        not a print: a label in marker letters 4-6 mm high above the prints was
-        taken for a 113 x 6 mm print (held-out set 1, sheets 23 and 26) ...
-    text_line_solidity : float [-]
-        ... letters fill 0.3-0.6 of their own hull; a tread block, a rib or a
-        tiny print's ink ~0.8 or more.
+        or more pieces each spanning most of its width, side by side in one row,
+        with gaps between them (the ink fills less than ``TEXT_LINE_FILL`` of the
+        hull), is a line of writing, not a print: a label in marker letters 4-6 mm
+        high above the prints was taken for a 113 x 6 mm print (held-out set 1,
+        sheets 23 and 26: 0.46-0.53 of the hull inked); a chevron tread's print
+        (25 ribs across a 129 x 23 mm print) inks 0.87 of it.
     speck_area_mm2 : float [mm^2]
         Ink blobs smaller than this are paper grain or dust and are removed.
     stroke_width_mm : float [mm]
@@ -461,7 +459,6 @@ class AnalysisOptions:
     min_net_to_gross: float = 0.06
     max_patch_aspect: float = 30.0
     text_line_aspect: float = 5.0
-    text_line_solidity: float = 0.65
     speck_area_mm2: float = 0.05
     stroke_width_mm: float = 0.9
     line_length_mm: float = 12.0

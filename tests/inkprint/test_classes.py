@@ -262,6 +262,25 @@ def test_is_print_a_line_of_marker_letters_is_writing(stroke):
         ip.analyze_scan(scan_of(alone)[0], sensitivity=False)
 
 
+def test_is_print_a_slender_chevron_print_is_not_a_line_of_writing():
+    # independent set 101 sheet 54: a 129 x 23 mm print whose chevron grooves cut
+    # it into 25 ribs across its width (each rib hollow, a "V") was set aside as a
+    # line of letters; its ink fills 0.87 of its hull, a line of letters' ~0.5
+    import cv2
+
+    px = 25.4 / 200
+    img = np.full((int(60 / px), int(160 / px)), 245, np.uint8)
+    centre = (int(80 / px), int(30 / px))
+    cv2.ellipse(img, centre, (int(64 / px), int(11.5 / px)), 0, 0, 360, 50, -1, cv2.LINE_AA)
+    for x in np.arange(20.0, 141.0, 4.8):
+        v = np.array([[x, 17.0], [x + 9.0, 30.0], [x, 43.0]]) / px
+        cv2.polylines(img, [v.astype(np.int32)], False, 245, int(1.0 / px), cv2.LINE_AA)
+    r = ip.analyze_scan(ip.Scan(img, px, "given"), sensitivity=False, rolling_axis="x")
+    assert len(r.prints) == 1 and r.prints[0].flags == ()
+    assert_allclose = np.testing.assert_allclose
+    assert_allclose([r.prints[0].metrics.length, r.prints[0].metrics.width], [128, 23], rtol=0.01)
+
+
 @pytest.mark.parametrize(("gap", "linked"), [(5.0, True), (7.5, True), (11.81, False)])
 def test_linked_edges_a_lone_element_continues_a_pattern_across_one_groove(gap, linked):
     # held-out set 1 sheet 37: a marker's letter (1.04 mm wide, no pattern of its
