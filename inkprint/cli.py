@@ -122,6 +122,7 @@ THRESHOLDS = (
         "less ink than this is not a print (default: scales with the sheet)",
     ),
     ("--min-patch-width", "min_patch_width_mm", "MM", "narrower than this is a line, not a print"),
+    ("--min-patch-length", "min_patch_length_mm", "MM", "shorter than this is a dot, not a print"),
     ("--speck-area", "speck_area_mm2", "MM2", "smaller ink blobs are specks (removed)"),
     (
         "--stroke-width",

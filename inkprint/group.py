@@ -688,7 +688,8 @@ def is_print(
     group : Group
     mm_per_px : float [mm / px]
     options : AnalysisOptions, optional
-        Uses ``min_patch_area_mm2``, ``min_patch_width_mm``, ``max_patch_aspect`` and
+        Uses ``min_patch_area_mm2``, ``min_patch_length_mm``, ``min_patch_width_mm``,
+        ``max_patch_aspect`` and
         ``min_net_to_gross`` (defaults when None).
     floor_mm2 : float, optional [mm^2]
         Ink-area floor (default: ``options.min_patch_area_mm2`` or 0).
@@ -715,6 +716,14 @@ def is_print(
     (_, _), (a, b), _ = cv2.minAreaRect(pts)
     length = px_to_mm_length(max(a, b) + 1, mm_per_px)
     width = px_to_mm_length(min(a, b) + 1, mm_per_px)
+    # (a print's end cut by the image's edge is measured and flagged clipped)
+    cut = image_shape is not None and _sides(group, image_shape, near=False) > 0
+    if length < opts.min_patch_length_mm and not cut:
+        return PrintCheck(
+            False,
+            f"a mark or a letter's piece ({length:.1f} mm long: shorter than a print)",
+            "writing",
+        )
     if width < opts.min_patch_width_mm:
         return PrintCheck(False, f"a line ({width:.2f} mm wide)", "line")
     if length / width > opts.max_patch_aspect:
@@ -745,7 +754,6 @@ def is_print(
         fill = max(fill, _closed_fill(group.mask, stroke))
     # a print cut by the image's edge need not be solid: measured, flagged clipped
     # (a knobby print's last 9 x 7 mm read as a letter and went missing)
-    cut = image_shape is not None and _sides(group, image_shape, near=False) > 0
     if hull_mm2 < SMALL_PRINT_MM2 and fill < SMALL_PRINT_FILL and not cut:
         return PrintCheck(
             False,

@@ -262,6 +262,23 @@ def test_is_print_a_line_of_marker_letters_is_writing(stroke):
         ip.analyze_scan(scan_of(alone)[0], sensitivity=False)
 
 
+@pytest.mark.parametrize(("length", "found"), [(5.0, False), (7.5, True)])
+def test_is_print_a_blob_shorter_than_a_print_is_a_dot(length, found):
+    # held-out set 2 sheets 22 and 115: 4.5-5.7 mm blobs of marker writing on
+    # pages of writing only were reported as prints; the smallest prints a tire
+    # makes are ~10 mm long (the independent generator's tiniest 7.1 mm)
+    spec = PrintSpec(length, 3.0, (30, 30), 0.0, "slick", unevenness=0.0)
+    scan, truths = scan_of(SheetSpec((spec,), size=(60, 60), specks=0, dpi=600.0))
+    if found:
+        r = ip.analyze_scan(scan, sensitivity=False, rolling_axis="x")
+        assert len(r.prints) == 1 and within(r.prints[0].metrics, truths[0])
+    else:
+        with pytest.raises(ip.NoInk, match="a letter's piece"):
+            ip.analyze_scan(scan, sensitivity=False, rolling_axis="x")
+    with pytest.raises(ip.InvalidInput, match="min_patch_length_mm"):
+        ip.AnalysisOptions(min_patch_length_mm=-1.0)
+
+
 def test_is_print_a_slender_chevron_print_is_not_a_line_of_writing():
     # independent set 101 sheet 54: a 129 x 23 mm print whose chevron grooves cut
     # it into 25 ribs across its width (each rib hollow, a "V") was set aside as a
