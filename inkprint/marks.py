@@ -979,10 +979,12 @@ def _first_pixel(labels: np.ndarray, stats: np.ndarray, k: int) -> tuple[int, in
     return int(y), int(x + np.argmax(labels[y, x : x + w] == k))
 
 
-def _compact_piece(piece: np.ndarray, aspect: float) -> bool:
-    """Whether a piece (uint8 crop) is a compact blob: convex, filling
-    :data:`COMPACT_SOLIDITY` of its hull after closing pinholes and one-pixel notches,
-    at most ``aspect`` times longer than wide."""
+def _piece_shape(piece: np.ndarray) -> tuple[float, float, float]:
+    """Solidity, longer and shorter side [px] of a piece (uint8 crop) after closing
+    pinholes and one-pixel notches: a tread block inked near the threshold
+    binarizes ragged (dpi72 seed 6 at 150 dpi: solidity 0.79 as is, set aside as a
+    pen mark, length -1.2 %); a letter's counter (the hole of an 'o') is several
+    pixels across and stays open."""
     import cv2
 
     crop = cv2.morphologyEx(
@@ -990,9 +992,16 @@ def _compact_piece(piece: np.ndarray, aspect: float) -> bool:
     )
     pts = cv2.findNonZero(crop)
     (_, _), (a, b), _ = cv2.minAreaRect(pts)
-    a, b = max(a, b) + 1.0, min(a, b) + 1.0
     hull = cv2.convexHull(pts)
     solid = len(pts) / max(cv2.contourArea(hull) + 0.5 * cv2.arcLength(hull, True) + 1.0, 1.0)
+    return solid, max(a, b) + 1.0, min(a, b) + 1.0
+
+
+def _compact_piece(piece: np.ndarray, aspect: float) -> bool:
+    """Whether a piece (uint8 crop) is a compact blob: convex, filling
+    :data:`COMPACT_SOLIDITY` of its hull (:func:`_piece_shape`), at most ``aspect``
+    times longer than wide."""
+    solid, a, b = _piece_shape(piece)
     return solid >= COMPACT_SOLIDITY and a <= aspect * b
 
 
@@ -1087,21 +1096,7 @@ def _compact(parts: _Parts, k: int, aspect: float | None = None, *, along: float
     it than ``mark_overhang_mm`` and ``sliver_elongation`` times longer), a sliver
     filling at least ``along`` (``sliver_solidity``) of its hull, of any length, is
     one too: a tread block the outline cut to a thin bar along the edge."""
-    import cv2
-
-    crop = _crop(parts.thin, parts.thin_stats, k).view(np.uint8)
-    # pinholes and one-pixel notches closed first: a tread block inked near the
-    # threshold binarizes ragged (dpi72 seed 6 at 150 dpi: solidity 0.79 as is,
-    # set aside as a pen mark, length -1.2 %); a letter's counter (the hole of an
-    # 'o') is several pixels across and stays open
-    crop = cv2.morphologyEx(
-        np.pad(crop, 1), cv2.MORPH_CLOSE, np.ones((3, 3), np.uint8), borderValue=0
-    )
-    pts = cv2.findNonZero(crop)
-    (_, _), (a, b), _ = cv2.minAreaRect(pts)
-    a, b = max(a, b) + 1.0, min(a, b) + 1.0
-    hull = cv2.convexHull(pts)
-    solid = len(pts) / max(cv2.contourArea(hull) + 0.5 * cv2.arcLength(hull, True) + 1.0, 1.0)
+    solid, a, b = _piece_shape(_crop(parts.thin, parts.thin_stats, k).view(np.uint8))
     if along > 0:
         return solid >= along
     return solid >= COMPACT_SOLIDITY and a <= (aspect or COMPACT_ASPECT) * b
