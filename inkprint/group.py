@@ -729,7 +729,7 @@ def is_print(
     if length / width > opts.max_patch_aspect:
         return PrintCheck(False, f"a line ({length / width:.0f} x longer than wide)", "line")
     hull = cv2.convexHull(pts)
-    fill = group.n_pixels / max(cv2.contourArea(hull) + 0.5 * cv2.arcLength(hull, True) + 1.0, 1.0)
+    fill = hull_fill(group.n_pixels, hull)
     if fill < opts.min_net_to_gross:
         return PrintCheck(
             False, f"writing or marks ({100 * fill:.0f} % of its hull inked)", "writing"
@@ -777,9 +777,9 @@ def _letters_in_a_row(
     area = st[1:, cv2.CC_STAT_AREA]
     if n - 1 < TEXT_LINE_LETTERS or n - 1 > 50 * TEXT_LINE_LETTERS:
         return False
-    # the direction across the row: the outline's minor principal axis
-    c = pts - pts.mean(0)
-    across = np.linalg.eigh(c.T @ c)[1][:, 0]
+    # the direction across the row: across the outline's major principal axis
+    _, along = _major_axis(pts.astype(float))
+    across = np.array([-along[1], along[0]])
     rows, cols = np.nonzero(lab)
     ids = lab[rows, cols] - 1
     t = cols * across[0] + rows * across[1]
@@ -808,8 +808,7 @@ def _closed_fill(mask: np.ndarray, size_px: float) -> float:
     if pts is None:
         return 0.0
     hull = cv2.convexHull(pts)
-    px = cv2.countNonZero(closed)
-    return px / max(cv2.contourArea(hull) + 0.5 * cv2.arcLength(hull, True) + 1.0, 1.0)
+    return hull_fill(cv2.countNonZero(closed), hull)
 
 
 def _main_blob_fill(mask: np.ndarray) -> float:
@@ -824,8 +823,7 @@ def _main_blob_fill(mask: np.ndarray) -> float:
     px = int(stats[k, cv2.CC_STAT_AREA])
     if px < 0.8 * int(stats[1:, cv2.CC_STAT_AREA].sum()):
         return 0.0
-    hull = cv2.convexHull(outline_points(lab == k))
-    return px / max(cv2.contourArea(hull) + 0.5 * cv2.arcLength(hull, True) + 1.0, 1.0)
+    return hull_fill(px, cv2.convexHull(outline_points(lab == k)))
 
 
 def _sides(group: Group, shape: tuple[int, int], *, near: bool = True) -> int:
@@ -962,6 +960,27 @@ def outline_points(mask: np.ndarray) -> np.ndarray | None:
     x = np.concatenate([left, right[two]])
     y = np.concatenate([rows, rows[two]])
     return np.stack([x, y], axis=1).astype(np.int32).reshape(-1, 1, 2)
+
+
+def hull_fill(n_pixels: int, hull: np.ndarray) -> float:
+    """Inked share of a convex hull (OpenCV points) holding ``n_pixels`` ink pixels:
+    over the pixels the hull covers, its area plus half its perimeter plus one (the
+    pixel centres on and inside a pixel polygon, as Pick's theorem counts them), so
+    that a solid blob fills about 1 whatever its size.
+
+    Parameters
+    ----------
+    n_pixels : int
+    hull : (k, 1, 2) int or float
+        ``cv2.convexHull`` of the ink's pixels [px].
+
+    Returns
+    -------
+    float
+    """
+    import cv2
+
+    return n_pixels / max(cv2.contourArea(hull) + 0.5 * cv2.arcLength(hull, True) + 1.0, 1.0)
 
 
 def _outside_core(blobs: _Blobs, core_mask: np.ndarray, faint: np.ndarray) -> np.ndarray:
@@ -1171,9 +1190,7 @@ def _off_the_tips(hull_xy: np.ndarray, points: np.ndarray, *, end: float = 0.8) 
     ``end`` x its half-length from the middle of its extent along the axis (the
     vertices' mean, :func:`_at_the_ends`, leans towards a ragged tip's many
     vertices: the other tip's last pixel was judged beside the print)."""
-    c = hull_xy.mean(axis=0)
-    w, v = np.linalg.eigh((hull_xy - c).T @ (hull_xy - c))
-    axis = v[:, np.argmax(w)]
+    c, axis = _major_axis(hull_xy)
     proj = (hull_xy - c) @ axis
     mid, half = 0.5 * (proj.max() + proj.min()), 0.5 * np.ptp(proj)
     return np.abs((points - c) @ axis - mid) > end * half
@@ -1189,9 +1206,7 @@ def _teeth(hull_xy: np.ndarray, cent: np.ndarray, stub: np.ndarray, least: int) 
     out = np.zeros(len(stub), bool)
     if np.count_nonzero(stub) < 2 * least:
         return out
-    c = hull_xy.mean(axis=0)
-    w, v = np.linalg.eigh((hull_xy - c).T @ (hull_xy - c))
-    axis = v[:, np.argmax(w)]
+    c, axis = _major_axis(hull_xy)
     half = np.abs((hull_xy - c) @ axis).max()
     along = (cent[stub] - c) @ axis
     side = (cent[stub] - c) @ np.array([-axis[1], axis[0]]) > 0
@@ -1230,7 +1245,7 @@ def _along_outline(thin: tuple, lab, stats, hull, *, skip, opts: AnalysisOptions
         x, y, w, h = stats[k, :4]
         pts = cv2.findNonZero((lab[y : y + h, x : x + w] == k).view(np.uint8))
         hull = cv2.convexHull(pts)
-        fill = len(pts) / max(cv2.contourArea(hull) + 0.5 * cv2.arcLength(hull, True) + 1.0, 1.0)
+        fill = hull_fill(len(pts), hull)
         long = max(cv2.minAreaRect(pts)[1]) + 1.0
         out[k] = fill >= opts.sliver_solidity and long >= opts.sliver_elongation * across[k]
     return out
@@ -1276,12 +1291,16 @@ def _block_pattern(thick: np.ndarray, side_px: float) -> bool:
 def _at_the_ends(hull_xy: np.ndarray, points: np.ndarray, *, end: float = 0.8) -> np.ndarray:
     """Whether each point (x, y) lies off a hull's ends along its major axis (beyond
     ``end`` x its half-length from the centre), not beside it."""
-    c = hull_xy.mean(axis=0)
-    d = hull_xy - c
-    w, v = np.linalg.eigh(d.T @ d)
-    axis = v[:, np.argmax(w)]
-    half = np.abs(d @ axis).max()
+    c, axis = _major_axis(hull_xy)
+    half = np.abs((hull_xy - c) @ axis).max()
     return np.abs((points - c) @ axis) > end * half
+
+
+def _major_axis(xy: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Centre (mean) and major principal axis (unit vector) of points (x, y)."""
+    c = xy.mean(axis=0)
+    w, v = np.linalg.eigh((xy - c).T @ (xy - c))
+    return c, v[:, np.argmax(w)]
 
 
 def _count_pieces(flat: np.ndarray, shape) -> int:
@@ -1403,6 +1422,7 @@ __all__ = [
     "edge_spots",
     "element_graph",
     "group_blobs",
+    "hull_fill",
     "is_print",
     "join_side_by_side",
     "join_tips",

@@ -77,6 +77,7 @@ from .group import (
     PartsJoined,
     _outside_distance,
     element_graph,
+    hull_fill,
     join_side_by_side,
     join_tips,
     linked_edges,
@@ -993,7 +994,7 @@ def _piece_shape(piece: np.ndarray) -> tuple[float, float, float]:
     pts = cv2.findNonZero(crop)
     (_, _), (a, b), _ = cv2.minAreaRect(pts)
     hull = cv2.convexHull(pts)
-    solid = len(pts) / max(cv2.contourArea(hull) + 0.5 * cv2.arcLength(hull, True) + 1.0, 1.0)
+    solid = hull_fill(len(pts), hull)
     return solid, max(a, b) + 1.0, min(a, b) + 1.0
 
 
