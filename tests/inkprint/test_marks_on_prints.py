@@ -30,6 +30,15 @@ def _errors(pr, t) -> tuple[float, float, float]:
     return (m.length / t.length - 1, m.width / t.width - 1, m.hull_area / t.hull_area - 1)
 
 
+def _one_print(spec: SheetSpec) -> tuple:
+    """The sheet rendered and analysed: its result, its one print and that print's
+    relative errors (length, width, hull area) against the truth."""
+    img, truths = render_sheet(spec)
+    r = ip.analyze_scan(ip.Scan(img, 25.4 / spec.dpi, "given"), sensitivity=False)
+    (pr,) = r.prints
+    return r, pr, _errors(pr, truths[0])
+
+
 # -- a pen label's letters on the edge (mixed sets) ----------------------------------
 
 
@@ -81,10 +90,8 @@ def test_measure_print_lone_stroke_off_a_slick_tip_is_flagged():
     p = PrintSpec(60.0, 14.0, (100.0, 120.0), 0.0, "slick", ink=0.85)
     stroke = Line((131.2, 120.0), (133.7, 120.5), 0.3, 0.85)
     spec = SheetSpec((p,), dpi=300.0, seed=2, specks=0, marks=(stroke,))
-    img, truths = render_sheet(spec)
-    r = ip.analyze_scan(ip.Scan(img, 25.4 / spec.dpi, "given"), sensitivity=False)
-    (pr,) = r.prints
-    assert max(abs(e) for e in _errors(pr, truths[0])) < 0.003
+    r, pr, errors = _one_print(spec)
+    assert max(abs(e) for e in errors) < 0.003
     assert "mark_on_edge" in pr.flags
     assert any("alone off its tip" in w for w in pr.warnings), pr.warnings
     assert any(m.kind == "sliver" for m in r.marks)
@@ -114,10 +121,7 @@ def test_sort_ink_bold_label_touching_a_slick_print_is_set_aside(dpi):
     # strokes survive the stroke-wide opening) touching a slick print were linked to
     # it: width +60 %, +97 %, +23 %, unflagged. Here at 300 dpi: width +13 %
     spec = _bold_label_sheet(dpi)
-    img, truths = render_sheet(spec)
-    r = ip.analyze_scan(ip.Scan(img, 25.4 / spec.dpi, "given"), sensitivity=False)
-    (pr,) = r.prints
-    errors = _errors(pr, truths[0])
+    r, pr, errors = _one_print(spec)
     assert "mark_on_edge" in pr.flags or (
         abs(errors[0]) <= 0.01 and abs(errors[1]) <= 0.01 and abs(errors[2]) <= 0.02
     ), errors
@@ -130,10 +134,7 @@ def test_sort_ink_bold_label_left_on_the_edge_is_flagged():
     # on the edge is measured out (the ink under the label), and the edge there,
     # hidden, bounded by the tangents on either side beyond edge_uncertainty
     spec = _bold_label_sheet(150.0, theta=100.0)
-    img, truths = render_sheet(spec)
-    r = ip.analyze_scan(ip.Scan(img, 25.4 / spec.dpi, "given"), sensitivity=False)
-    (pr,) = r.prints
-    errors = _errors(pr, truths[0])
+    _r, pr, errors = _one_print(spec)
     assert "mark_on_edge" in pr.flags, errors
     assert max(abs(e) for e in errors) < 0.015, errors
 
@@ -148,10 +149,7 @@ def test_sort_ink_bold_label_lying_along_a_slick_print_is_never_silent():
     w, _ = text_extent(text)
     label = Text(text.text, (100.0 - 0.3 * w, 132.0 - 0.3), 6.0, 1.2, 0.85)
     spec = SheetSpec((p,), dpi=150.0, seed=3, specks=0, marks=(label,))
-    img, truths = render_sheet(spec)
-    r = ip.analyze_scan(ip.Scan(img, 25.4 / spec.dpi, "given"), sensitivity=False)
-    (pr,) = r.prints
-    errors = _errors(pr, truths[0])
+    _r, pr, errors = _one_print(spec)
     assert "mark_on_edge" in pr.flags, errors
     assert max(abs(e) for e in errors) < 0.03, errors
 
@@ -171,8 +169,5 @@ def test_sort_ink_ruler_along_a_print_keeps_its_ticks_out():
     p = PrintSpec(71.0, 21.0, tuple(c), -23.0, "file", ink=0.8)
     ruler = Line(tuple(c - 70 * d), tuple(c + 70 * d), 0.69, 0.85, 1.0)
     spec = SheetSpec((p,), dpi=300.0, seed=5, specks=0, marks=(ruler,))
-    img, truths = render_sheet(spec)
-    r = ip.analyze_scan(ip.Scan(img, 25.4 / spec.dpi, "given"), sensitivity=False)
-    (pr,) = r.prints
-    errors = _errors(pr, truths[0])
+    _r, _pr, errors = _one_print(spec)
     assert abs(errors[0]) < 0.01 and abs(errors[1]) < 0.01 and abs(errors[2]) < 0.02, errors
