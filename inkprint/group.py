@@ -76,8 +76,20 @@ LONE_PATTERN_FACTOR = 0.5
 TIP_ROUNDS = 4
 #: a print with a hull under this [mm^2] (a tiny print) is solid: it inks at least
 #: SMALL_PRINT_FILL of its hull (a letter, a ring, a tick does not)
+#: a punch hole's diameter range [mm], roundness (length / width at most), solid
+#: share of its hull at least, and its centre's distance from the image's edge at
+#: most [mm] (ISO 838: 12 mm; a US punch: 13 mm; a skewed or shifted page: more)
+PUNCH_HOLE_MM = (4.5, 9.0)
+PUNCH_HOLE_ROUND = 1.2
+PUNCH_HOLE_FILL = 0.9
+PUNCH_HOLE_EDGE_MM = 25.0
 SMALL_PRINT_MM2 = 150.0
 SMALL_PRINT_FILL = 0.8
+#: ... or inks SMALL_BODY_FILL of it around one body: the widest disk in its ink is
+#: SMALL_BODY_SHARE of its width or more (a tread's scallops; writing's strokes reach
+#: 0.2-0.59 of it, at most 0.49 where they ink 0.7 of their hull: held-out set 1)
+SMALL_BODY_FILL = 0.7
+SMALL_BODY_SHARE = 0.7
 #: a line of writing has at least this many letters spanning its width, they hold
 #: this share of its ink and leave gaps: the ink fills less than TEXT_LINE_FILL of
 #: the hull (``text_line_aspect``; a road tire's slender print fills 0.7 or more, a
@@ -277,6 +289,11 @@ def linked_edges(graph: ElementGraph, *, options: AnalysisOptions | None = None)
     first, second, who = _pattern_gaps(graph, n)
     pa = np.where(who[a] == b, second[a], first[a])  # a's pattern gap without b
     pb = np.where(who[b] == a, second[b], first[b])
+    # a gap wider than a groove is no tread's: two slick prints 39 mm apart made a
+    # "pattern" whose half let a letter 19 mm off one join it (held-out set 1
+    # sheet 114: both prints and their label one 112 x 82 mm print)
+    pa[pa > opts.group_groove_max_mm] = np.inf
+    pb[pb > opts.group_groove_max_mm] = np.inf
     # two pattern neighbours (no farther apart than PATTERN_REACH x the narrower's
     # width) continue the wider of their two patterns: a knobby print's tip blocks,
     # split by a 1-2 mm sipe, face the next row across its 3-8 mm gap (with the
@@ -724,6 +741,14 @@ def is_print(
             f"a mark or a letter's piece ({length:.1f} mm long: shorter than a print)",
             "writing",
         )
+    if image_shape is not None and _punch_hole(
+        group, pts, (length, width), mm_per_px, image_shape
+    ):
+        return PrintCheck(
+            False,
+            f"a punch hole ({0.5 * (length + width):.1f} mm round, solid, near the edge)",
+            "hole",
+        )
     if width < opts.min_patch_width_mm:
         return PrintCheck(False, f"a line ({width:.2f} mm wide)", "line")
     if length / width > opts.max_patch_aspect:
@@ -746,12 +771,7 @@ def is_print(
         )
     hull_mm2 = area_px_to_mm2(cv2.contourArea(hull), mm_per_px)
     if hull_mm2 < SMALL_PRINT_MM2 and fill < SMALL_PRINT_FILL:
-        fill = max(fill, _main_blob_fill(group.mask))  # halo specks widen a tiny hull
-    if hull_mm2 < SMALL_PRINT_MM2 and fill < SMALL_PRINT_FILL:
-        # a file tread's pores and notches are narrower than a pen stroke (a track
-        # tire's 14 x 2.9 mm print at 400 dpi: 71 % inked, 35 mm^2, missing)
-        stroke = mm_to_px_length(opts.stroke_width_mm, mm_per_px)
-        fill = max(fill, _closed_fill(group.mask, stroke))
+        fill = _small_print_fill(group.mask, fill, min(a, b) + 1, mm_per_px, opts)
     # a print cut by the image's edge need not be solid: measured, flagged clipped
     # (a knobby print's last 9 x 7 mm read as a letter and went missing)
     if hull_mm2 < SMALL_PRINT_MM2 and fill < SMALL_PRINT_FILL and not cut:
@@ -762,6 +782,47 @@ def is_print(
             "writing",
         )
     return PrintCheck(True)
+
+
+def _small_print_fill(mask: np.ndarray, fill: float, width_px: float, mm_per_px, opts) -> float:
+    """The inked share of a tiny print's hull as judged (``fill``: of the hull of
+    ``mask``; ``width_px``: its width [px]): with its halo specks left out, its pores
+    and notches closed, or, scalloped by its tread deeper than a stroke, as solid
+    when it is one body (``SMALL_PRINT_FILL`` then)."""
+    fill = max(fill, _main_blob_fill(mask))  # halo specks widen a tiny hull
+    if fill < SMALL_PRINT_FILL:
+        # a file tread's pores and notches are narrower than a pen stroke (a track
+        # tire's 14 x 2.9 mm print at 400 dpi: 71 % inked, 35 mm^2, missing)
+        stroke = mm_to_px_length(opts.stroke_width_mm, mm_per_px)
+        fill = max(fill, _closed_fill(mask, stroke))
+    if SMALL_BODY_FILL <= fill < SMALL_PRINT_FILL:
+        # a disk nearly its width fits in it, in no letter's strokes (a track tire's
+        # 10.4 x 2.2 mm file print at 200 dpi: 80 % inked, missing)
+        if _body_share(mask, width_px) >= SMALL_BODY_SHARE:
+            fill = SMALL_PRINT_FILL
+    return fill
+
+
+def _punch_hole(group: Group, pts: np.ndarray, size: tuple, mm_per_px: float, shape) -> bool:
+    """Whether a group is a punch hole of the page (the scanner's dark lid showing
+    through it): a solid round disc :data:`PUNCH_HOLE_MM` across (ISO 838 and the
+    US three-hole punch: 5.5-8 mm) whose centre lies within
+    :data:`PUNCH_HOLE_EDGE_MM` of the image's edge. No tire print is a solid disc:
+    the smallest (a track tire's) are 2.5-4 mm wide and 10-18 mm long.
+    ``pts``: the outline points; ``size``: (length, width) of its rectangle [mm]."""
+    import cv2
+
+    length, width = size
+    lo, hi = PUNCH_HOLE_MM
+    if not (lo <= width and length <= hi and length <= PUNCH_HOLE_ROUND * width):
+        return False
+    if hull_fill(group.n_pixels, cv2.convexHull(pts)) < PUNCH_HOLE_FILL:
+        return False
+    h, w = shape
+    r = 0.5 * (group.rows.start + group.rows.stop)
+    c = 0.5 * (group.cols.start + group.cols.stop)
+    edge = px_to_mm_length(min(r, c, h - r, w - c), mm_per_px)
+    return edge <= PUNCH_HOLE_EDGE_MM
 
 
 def _letters_in_a_row(
@@ -792,6 +853,16 @@ def _letters_in_a_row(
         np.count_nonzero(tall) >= TEXT_LINE_LETTERS
         and area[tall].sum() >= TEXT_LINE_INK * area.sum()
     )
+
+
+def _body_share(mask: np.ndarray, width_px: float) -> float:
+    """The widest disk in the ink (twice the largest distance to the paper) as a
+    share of the group's width ``width_px`` [px]: about 1 for a solid bar, a
+    stroke's width over the letter's for writing."""
+    import cv2
+
+    dist = cv2.distanceTransform(np.pad(mask.view(np.uint8), 1), cv2.DIST_L2, 5)
+    return 2.0 * float(dist.max()) / max(width_px, 1.0)
 
 
 def _closed_fill(mask: np.ndarray, size_px: float) -> float:

@@ -45,6 +45,17 @@ RING_PX = 3
 EDGE_NEAR_MM = 10.0
 #: Jacobi sweeps of the harmonic fill under an ink region at most
 RELAX_SWEEPS = 80
+#: a scanner bed's strip along a side of a scan is at most this share of the image
+#: across (a page shifted or skewed on the glass shows a few mm to a few cm)
+BED_STRIP_MAX = 0.25
+#: a bed strip runs along this share of its side at least (from a corner)
+BED_STRIP_SHARE = 0.2
+#: a bed strip may be deeper than its edge along this share of its side (punch
+#: holes that meet it, besides the other strips at its ends)
+BED_HOLES = 0.15
+#: a bed strip's inner edge (the page's) lies within this of a straight line [px of
+#: the ~2 mm grid]
+BED_EDGE_PX = 1.5
 #: passes of the basin fill at most (a sheet on the 2 mm grid converges in < 200)
 _FILL_MAX_PASSES = 2000
 
@@ -166,12 +177,15 @@ def find_page(small: np.ndarray, paper: float) -> _Frame | None:
 
     h, w = small.shape
     b = max(2, int(0.02 * min(h, w)))
-    ring = np.concatenate(
-        [small[:b].ravel(), small[-b:].ravel(), small[:, :b].ravel(), small[:, -b:].ravel()]
-    )
-    table = float(np.median(ring))
-    if table > 0.6 * paper:
-        return None
+    sides = (small[:b], small[-b:], small[:, :b], small[:, -b:])
+    table = float(np.median(np.concatenate([v.ravel() for v in sides])))
+    # no table all round: a scanner's bed along a side, or a page running off a photo?
+    bed = max(float(np.median(v)) for v in sides) > 0.6 * paper
+    if bed:
+        strips = _bed_strips(small, paper)
+        if strips is None:
+            return None
+        table, beyond = strips
     bright = (small > 0.5 * (table + paper)).astype(np.uint8)
     n, lab, stats, _ = components_with_stats(bright, connectivity=4)
     if n < 2:
@@ -182,15 +196,93 @@ def find_page(small: np.ndarray, paper: float) -> _Frame | None:
     page = (lab == k).astype(np.uint8)
     contours, _ = cv2.findContours(page, cv2.RETR_EXTERNAL, cv2.CHAIN_APPROX_NONE)
     outline = max(contours, key=cv2.contourArea)
-    if not _sharp(small, outline.reshape(-1, 2), paper - table, b):
+    # (a bed's strip can be thinner than the ring: its edge is judged to the rim)
+    if not _sharp(small, outline.reshape(-1, 2), paper - table, 0 if bed else b):
         return None  # a soft edge: shade, not the page's edge on a table
     hull = cv2.convexHull(outline)
     mask = np.zeros_like(page)
     cv2.fillPoly(mask, [hull], 1)
+    if bed:  # the page's edges as fitted: where a strip thins under a pixel too
+        mask = beyond.astype(np.uint8)
+        hull = cv2.convexHull(cv2.findNonZero(mask))
     quad = cv2.approxPolyDP(hull, 0.01 * cv2.arcLength(hull, True), True).reshape(-1, 2)
+    if bed:  # the page runs off the image: only its own corners tell its angles
+        inner = (quad[:, 0] > b) & (quad[:, 0] < w - 1 - b) & (quad[:, 1] > b)
+        inner &= quad[:, 1] < h - 1 - b
+        angles = _corner_angles(quad.astype(float))
+        return _Frame(mask.astype(bool), quad.astype(float), tuple(np.compress(inner, angles)))
     if len(quad) != 4:
         return _Frame(mask.astype(bool), None, ())
     return _Frame(mask.astype(bool), quad.astype(float), _corner_angles(quad.astype(float)))
+
+
+def _bed_strips(small: np.ndarray, paper: float) -> tuple[float, np.ndarray] | None:
+    """The grey of a scanner's bed or lid showing beside a page that does not cover
+    the glass (None: none shows). A bed strip runs along a side of the image from
+    one of its corners over :data:`BED_STRIP_SHARE` of it or more, dark (below 0.6 of the paper)
+    from the image's edge in to a straight line (the page's edge, skewed or not:
+    a strip as wide as :data:`BED_STRIP_MAX` of the image at most, its inner edge
+    within :data:`BED_EDGE_PX` of a line, deeper only at its ends and where punch
+    holes meet it, :data:`BED_HOLES`). A print cut by the image's edge is no
+    strip: its edge is curved, its tread breaks the run.
+
+    Parameters
+    ----------
+    small : (h, w) uint8
+        The image at ~2 mm per pixel.
+    paper : float
+        The paper's grey level.
+
+    Returns
+    -------
+    (level, page) or None
+        The median grey of the strips (float) and the page, (h, w) bool: the image
+        beyond every strip's fitted inner edge.
+    """
+    dark = small < 0.6 * paper
+    if not dark.any():
+        return None
+    bed = float(np.median(small[dark]))
+    strips = np.zeros(small.shape, bool)
+    page = np.ones(small.shape, bool)
+    for k in range(4):  # each side, turned to the top
+        d = np.rot90(dark, k)
+        inward, n = d.shape
+        run = np.where(d.all(axis=0), inward, np.argmin(d, axis=0))  # dark run [px]
+        # to a fraction of a pixel: the first pixel past the run is the edge's mixed
+        # one (an integer depth on the 2 mm grid put a skewed page 1.6 deg off square)
+        nxt = np.rot90(small, k)[np.minimum(run, inward - 1), np.arange(n)].astype(float)
+        part = np.clip((paper - nxt) / max(paper - bed, 1.0), 0.0, 1.0)
+        depth = np.where(run < inward, run + part, run)
+        depth[depth < 0.5] = 0.0  # (paper's own noise: no strip)
+        # deeper only near its ends, where the strip of a side beside it runs
+        corner = int(BED_STRIP_MAX * n)
+        t = np.arange(n)
+        mid = (t >= corner) & (t < n - corner)
+        if (depth[mid] > BED_STRIP_MAX * inward).any():
+            continue
+        fit = (depth > 0) & (depth <= BED_STRIP_MAX * inward)
+        if np.count_nonzero(fit) < BED_STRIP_SHARE * n:
+            continue  # too short a strip to tell from a print's cut edge
+        line = np.polyfit(t[fit], depth[fit], 1)
+        for _ in range(2):  # without what lies deeper: the corner's other strip, holes
+            off = depth - np.maximum(np.polyval(line, t), 0.0)
+            fit &= off <= BED_EDGE_PX
+            line = np.polyfit(t[fit], depth[fit], 1)
+        # a straight inner edge all along: where the strip thins out (the page's
+        # edge skewed off the image) the line comes to 0 too; no break in it, and
+        # deeper only at its ends or where a punch hole meets it
+        off = depth - np.maximum(np.polyval(line, t), 0.0)
+        deeper = off > BED_EDGE_PX
+        if off.min() < -BED_EDGE_PX or np.count_nonzero(deeper & mid) > BED_HOLES * n:
+            continue  # a curved or broken edge (a print's)
+        s = np.rot90(strips, k)  # views: written through
+        s[:] |= np.arange(inward)[:, None] < run[None, :]
+        edge = np.polyval(line, np.arange(n)) + 1.0  # past the edge's mixed pixel
+        np.rot90(page, k)[:] &= np.arange(inward)[:, None] >= edge[None, :]
+    if not strips.any():
+        return None
+    return float(np.median(small[strips])), page
 
 
 def _sharp(small: np.ndarray, pts: np.ndarray, contrast: float, border: int) -> bool:
@@ -441,7 +533,7 @@ def _frame_warnings(frame: _Frame | None, opts: AnalysisOptions) -> tuple[tuple,
             "a page on a darker surround was found but its outline is not a clean "
             "quadrilateral: perspective not checked",
         )
-    worst = max(abs(a - 90.0) for a in frame.angles)
+    worst = max((abs(a - 90.0) for a in frame.angles), default=0.0)
     if worst > opts.perspective_tolerance_deg:
         lo, hi = min(frame.angles), max(frame.angles)
         return ("perspective",), (

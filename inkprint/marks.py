@@ -87,6 +87,13 @@ from .group import (
 )
 from .options import AnalysisOptions, resolve_options
 
+#: a tread's bars (not lines): at least BAR_FIELD_MIN straight narrow pieces side by
+#: side, turned alike within BAR_ANGLE_DEG, each centre within BAR_SPACING widths of
+#: its neighbour's line, none longer than BAR_MAX_MM (see ``_bar_field``)
+BAR_FIELD_MIN = 4
+BAR_ANGLE_DEG = 5.0
+BAR_SPACING = 4.0
+BAR_MAX_MM = 40.0
 #: a line is fitted to at most about this many of a piece's pixels (a subsample)
 LINE_FIT_POINTS = 2000
 #: the pooled grid has this many pixels across a stroke (``stroke_width_mm``)
@@ -418,18 +425,67 @@ def _straight_skinny(skinny: np.ndarray, pooled: _Pooled, opts: AnalysisOptions)
     if not len(ks):
         return out
     _, ink, ink_st, _ = components_with_stats(pooled.mask.view(np.uint8), connectivity=8)
+    bars = []  # the straight narrow pieces: ((y, x), piece, rectangle)
     for k in ks:
         x, y, w, h = stats[k, :4]
         if _tiny_print(ink, ink_st, ink[_first_pixel(lab, stats, k)], pooled.px_mm, opts):
             continue  # the spine of a track tire's file tread print, not a line
         piece = (lab[y : y + h, x : x + w] == k).view(np.uint8)
-        (_, _), (a, b), _ = cv2.minAreaRect(outline_points(piece))  # (the hull's points)
+        rect = cv2.minAreaRect(outline_points(piece))  # (the hull's points)
+        (_, _), (a, b), _ = rect
         narrow = px_to_mm_length(min(a, b) + 1, pooled.px_mm) <= 2.0 * opts.stroke_width_mm
         if narrow and px_to_mm_length(max(a, b) + 1, pooled.px_mm) >= opts.line_length_mm:
-            out[y : y + h, x : x + w] |= piece
+            bars.append(((y, x), piece, rect))
         elif not narrow:
             out[y : y + h, x : x + w] |= _line_run(piece, pooled.px_mm, opts)
+    tread = _bar_field([r for _, _, r in bars], [c for c, _, _ in bars], pooled.px_mm)
+    for ((y, x), piece, _), bar in zip(bars, tread, strict=True):
+        if not bar:
+            out[y : y + piece.shape[0], x : x + piece.shape[1]] |= piece
     return out
+
+
+def _bar_field(rects: list, corners: list, px_mm: float) -> np.ndarray:
+    """Which straight narrow pieces are the bars of a tread, not lines: at least
+    :data:`BAR_FIELD_MIN` of them side by side, each turned as its neighbour within
+    :data:`BAR_ANGLE_DEG`, as long within a factor 2, no longer than
+    :data:`BAR_MAX_MM`, its centre within :data:`BAR_SPACING` widths of the
+    neighbour's line and within half its length along it (a herringbone tread's
+    1.4 mm bars 3 mm apart at 160 dpi were 36 "ruler lines"; the print went
+    missing). A ruler is one line; chart paper's gridlines are taken out before,
+    and run across the page. ``rects``: OpenCV's ``minAreaRect`` of each, in its
+    box at ``corners`` ((row, col) [px]). (k,) bool."""
+    n = len(rects)
+    out = np.zeros(n, bool)
+    if n < BAR_FIELD_MIN:
+        return out
+    centre = np.array(
+        [[r[0][0] + c[1], r[0][1] + c[0]] for r, c in zip(rects, corners, strict=True)]
+    )
+    size = np.array([r[1] for r in rects], float)
+    long, wide = size.max(axis=1) + 1, size.min(axis=1) + 1
+    angle = np.radians([r[2] + (90.0 if r[1][1] > r[1][0] else 0.0) for r in rects])
+    u = np.column_stack([np.cos(angle), np.sin(angle)])  # along each bar
+    d = centre[None, :, :] - centre[:, None, :]  # (i, j): j's centre from i's
+    along = np.abs(np.einsum("ijk,ik->ij", d, u))
+    across = np.abs(np.einsum("ijk,ik->ij", d, u[:, ::-1] * [-1, 1]))
+    turn = np.degrees(np.abs(np.angle(np.exp(2j * (angle[:, None] - angle[None, :]))))) / 2
+    side = (
+        (turn <= BAR_ANGLE_DEG)
+        & (across <= BAR_SPACING * wide[:, None])
+        & (along <= 0.5 * long[:, None])
+        & (
+            np.maximum(long[:, None], long[None, :])
+            <= 2 * np.minimum(long[:, None], long[None, :])
+        )
+    )
+    np.fill_diagonal(side, False)
+    side &= side.T
+    short = px_to_mm_length(long, px_mm) <= BAR_MAX_MM
+    i, j = np.nonzero(side & short[:, None] & short[None, :])
+    comp = union_labels(n, i, j)
+    sizes = np.bincount(comp, minlength=n)
+    return sizes[comp] >= BAR_FIELD_MIN
 
 
 def _tiny_print(ink, ink_st, c: int, px_mm: float, opts: AnalysisOptions) -> bool:

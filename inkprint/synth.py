@@ -47,6 +47,7 @@ from .synth_effects import (
     draw_text,
     illumination,
     photograph,
+    scanner_bed,
     texture_page,
 )
 
@@ -198,6 +199,8 @@ class SheetSpec:
         Uneven illumination (multiplies the whole image).
     photo : synth_effects.Photo, optional
         The sheet photographed on a table (border, perspective).
+    bed : synth_effects.Bed, optional
+        A scan with the scanner's bed showing along sides and in punch holes.
     texture : {'noise', 'texture'}, optional
         A page of noise or texture (the prints, if any, are drawn over it).
     """
@@ -215,6 +218,7 @@ class SheetSpec:
     light: object = None
     photo: object = None
     texture: str | None = None
+    bed: object = None
 
 
 @dataclass(frozen=True)
@@ -582,6 +586,8 @@ def render_sheet(spec: SheetSpec) -> tuple[np.ndarray, list[PrintTruth]]:
         _draw_label(out, spec.label, grid)
     if spec.ruler:
         _draw_ruler(out, grid)
+    if spec.bed is not None:
+        out = scanner_bed(out, spec.bed, grid, rng=extra)
     if spec.photo is not None:
         out = photograph(out, spec.photo, grid, rng=extra)
         b = spec.photo.border

@@ -46,7 +46,7 @@ from .synth import (
     render_sheet,
     save_scan,
 )
-from .synth_effects import Grid, Light, Line, Photo, Text, text_extent
+from .synth_effects import Bed, Grid, Light, Line, Photo, Text, text_extent
 
 MEASURE, CLIPPED, PERSPECTIVE = "measure", "clipped", "perspective"
 MISALIGNED = "axis_misaligned"
@@ -381,6 +381,27 @@ def _case_noise(rng, dpi: float) -> Case:
     return Case("noise", (sheet,), ".png", min(dpi, 200.0), {}, (), "NoInk")
 
 
+def _case_scanner(rng, dpi: float) -> Case:
+    """A page shifted and skewed (up to 1.5 degrees) on the scanner's glass: the
+    dark bed shows along one or two sides as straight wedges (1-8 mm at one end,
+    ending before the other corner where the skew takes the page's edge off the
+    image), often through two or three punch holes; the prints keep clear of it."""
+    n = int(rng.integers(1, 3))
+    ys = (190.0, 90.0)[:n] if n == 2 else (140.0,)
+    prints = [_bicycle(rng, (float(rng.uniform(95, 120)), y), angle=None) for y in ys]
+    sides = [str(rng.choice(["top", "bottom"])), str(rng.choice(["left", "right"]))]
+    sides = sides[: int(rng.integers(1, 3))] if rng.random() < 0.7 else sides[1:]
+    # the page turned by ``skew`` (clockwise on the image): every edge by as much
+    t = math.tan(math.radians(rng.uniform(-1.5, 1.5)))
+    w, h = LETTER
+    grow = {"top": w * t, "right": h * t, "bottom": -w * t, "left": -h * t}
+    starts = {s: float(rng.uniform(1, 8)) + max(-grow[s], 0.0) * rng.random() for s in sides}
+    strips = tuple((s, starts[s], starts[s] + grow[s]) for s in sides)
+    bed = Bed(strips, holes=int(rng.choice([0, 2, 3])), level=float(rng.uniform(0.15, 0.4)))
+    sheet = _sheet(prints, dpi, rng, bed=bed)
+    return Case("scanner", (sheet,), ".png", dpi, {}, ((MEASURE,) * n,))
+
+
 def _case_tips(rng, dpi: float) -> Case:
     """Knobby prints whose tip blocks are small but dark (load-bearing), and faint
     specks touching the edge (not)."""
@@ -411,11 +432,12 @@ CLASSES = {
     "noise": _case_noise,
     "tips": _case_tips,
     "shade": _case_shade,
+    "scanner": _case_scanner,
 }
 #: each class's place in the random seed of its cases: the classes' sorted order
 #: when there were 18, later classes after them (a new class leaves the old ones'
 #: cases, and the tests' seeds that name them, as they were)
-_SEED_ORDER = (*sorted(k for k in CLASSES if k != "shade"), "shade")
+_SEED_ORDER = (*sorted(k for k in CLASSES if k not in ("shade", "scanner")), "shade", "scanner")
 
 
 def make_case(kind: str, *, seed: int = 0, dpi: float | None = None) -> Case:

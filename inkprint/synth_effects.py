@@ -10,6 +10,9 @@ from the bottom-left corner), drawn by :func:`inkprint.synth.render_sheet`:
   paper and ink alike, as light does);
 * :class:`Photo` - the sheet photographed on a dark table, optionally not flat-on
   (a perspective homography of the page's corners);
+* :class:`Bed` - the scanner's bed showing where the page does not cover the
+  glass: dark wedges along one or two sides (a page shifted or skewed on it) and
+  punch holes;
 * ``SheetSpec.texture`` - a page of noise or texture with no print at all.
 
 None of these is in the prints' truth: marks are not prints, light and texture are
@@ -135,6 +138,68 @@ class Photo:
     border: float = 25.0
     tilt: float = 0.0
     table: float = 0.25
+
+
+@dataclass(frozen=True)
+class Bed:
+    """The scanner's bed (or its dark lid) showing beside a page that does not
+    cover the glass, and through its punch holes.
+
+    Attributes
+    ----------
+    strips : tuple of (side, start, end)
+        A dark wedge along ``side`` ('top', 'bottom', 'left' or 'right') of the
+        image, ``start`` [mm] wide at the side's first end (left or top) and
+        ``end`` [mm] at its other (a skewed page: a straight inner edge).
+    holes : int
+        Punch holes 6 mm across, 12 mm in from the left edge, spread over its
+        height.
+    level : float in [0, 1]
+        Grey level of the bed.
+    """
+
+    strips: tuple = (("top", 5.0, 9.0),)
+    holes: int = 0
+    level: float = 0.25
+
+
+def scanner_bed(img: np.ndarray, bed: Bed, grid, *, rng) -> np.ndarray:
+    """The scan with the bed showing (see :class:`Bed`).
+
+    Parameters
+    ----------
+    img : (rows, cols) uint8
+    bed : Bed
+    grid : inkprint.synth raster
+        ``px(mm) -> px``.
+    rng : numpy Generator
+
+    Returns
+    -------
+    (rows, cols) uint8
+    """
+    import cv2
+
+    rows, cols = img.shape
+    shade = np.zeros(img.shape, np.uint8)
+    for side, a, b in bed.strips:
+        a, b = grid.px(a), grid.px(b)
+        quad = {
+            "top": [(0, 0), (cols, 0), (cols, b), (0, a)],
+            "bottom": [(0, rows), (cols, rows), (cols, rows - b), (0, rows - a)],
+            "left": [(0, 0), (0, rows), (b, rows), (a, 0)],
+            "right": [(cols, 0), (cols, rows), (cols - b, rows), (cols - a, 0)],
+        }[side]
+        cv2.fillPoly(
+            shade, [np.round(np.asarray(quad) * 16).astype(np.int32)], 255, cv2.LINE_AA, 4
+        )
+    for k in range(bed.holes):
+        y = rows * (k + 1) / (bed.holes + 1)
+        c = (round(16 * grid.px(12.0)), round(16 * y))
+        cv2.circle(shade, c, round(16 * grid.px(3.0)), 255, -1, cv2.LINE_AA, 4)
+    lid = bed.level * 255 + 6 * rng.standard_normal(img.shape)
+    cover = shade.astype(np.float32) / 255.0  # anti-aliased edges
+    return np.clip(img * (1 - cover) + lid * cover, 0, 255).astype(np.uint8)
 
 
 def _check_unit(name: str, v: float) -> None:
@@ -366,6 +431,7 @@ def texture_page(kind: str, grid, rng) -> np.ndarray:
 
 
 __all__ = [
+    "Bed",
     "Grid",
     "Light",
     "Line",
@@ -376,6 +442,7 @@ __all__ = [
     "draw_text",
     "illumination",
     "photograph",
+    "scanner_bed",
     "text_extent",
     "texture_page",
 ]

@@ -8,9 +8,11 @@ mark on its outline) must be flagged, never a silent wrong number.
 
 import dataclasses
 import math
+import re
 
 import numpy as np
 import pytest
+from numpy.testing import assert_allclose
 
 import inkprint as ip
 from inkprint.accuracy import SILENT, compare
@@ -313,6 +315,22 @@ def test_linked_edges_a_lone_element_continues_a_pattern_across_one_groove(gap, 
         gaps=np.array([5.33, 5.33, gap]),
     )
     assert linked_edges(graph).tolist() == [True, True, linked]
+
+
+def test_linked_edges_prints_farther_apart_than_a_groove_make_no_pattern():
+    # held-out set 1 sheet 114: two slick prints (19.3 and 18.3 mm wide) 38.75 mm
+    # apart made a "pattern" of their gap; a marker's letter 19.2 mm off one and
+    # 13.8 mm off the other continued half of it and joined both (one 112 x 82 mm
+    # print for two); no gap over group_groove_max_mm is a tread's
+    from inkprint.group import ElementGraph, linked_edges
+
+    graph = ElementGraph(
+        widths=np.array([19.26, 18.34, 1.31]),
+        a=np.array([0, 0, 1]),
+        b=np.array([1, 2, 2]),
+        gaps=np.array([38.75, 19.19, 13.8]),
+    )
+    assert linked_edges(graph).tolist() == [False, False, False]
 
 
 def test_group_blobs_group_mm_overrides_the_footprint_rule():
@@ -625,6 +643,43 @@ def test_prepare_page_flags_a_photo_not_taken_flat_on(tmp_path):
     assert_passes(results)  # every print flagged
     assert all(r["status"] == "flagged" and "perspective" in r["flags"] for r in rows)
     assert "not flat-on" in rows[0]["warnings"]
+
+
+@pytest.mark.parametrize("seed", [4, 16, 18, 24])
+def test_prepare_page_scanner_bed_along_the_sides(tmp_path, seed):
+    # a page shifted and skewed on the glass: the dark bed along one or two sides
+    # (seed 18: one strip thins out before its corner; 24: one ends halfway) and
+    # punch holes. Before, the strips joined the prints (a whole-page "texture": every
+    # print missing) or stayed as 1-3 mm "prints" cut by the edge; a page's corner
+    # on the image's edge is no corner (an 88.3 deg angle flagged perspective)
+    results, rows = outcomes(tmp_path, "scanner", seed, dpi=200.0)
+    assert_passes(results)
+    assert all(r["status"] == "ok" for r in rows)
+    holes = make_case("scanner", seed=seed, dpi=200.0).sheets[0].bed.holes
+    assert sum(int(n) for n in re.findall(r"(\d+) holes?", rows[0]["set_aside"])) == holes
+
+
+def test_find_page_bed_strip_is_the_page_edge():
+    # the strip's inner edge as fitted, on the ~2 mm grid: the page beyond it
+    from inkprint.light import find_page
+
+    small = np.full((140, 108), 230, np.uint8)
+    edge = 6 + 0.05 * np.arange(108)  # the top strip: 12 mm to 22.8 mm, skewed 2.9 deg
+    small[np.arange(140)[:, None] < edge[None, :].astype(int)] = 60
+    frame = find_page(small, 230.0)
+    assert frame is not None and frame.angles == ()  # no corner of the page inside
+    top = np.argmax(frame.mask, axis=0)  # the first page row of each column
+    assert_allclose(top, np.ceil(edge + 1.0), atol=1)
+
+
+def test_find_page_print_cut_by_the_edge_is_no_bed():
+    # a print run off the left edge: dark from the edge in, but a curved edge
+    from inkprint.light import find_page
+
+    small = np.full((140, 108), 230, np.uint8)
+    rr, cc = np.mgrid[:140, :108]
+    small[((rr - 70) / 50.0) ** 2 + (cc / 12.0) ** 2 <= 1] = 30
+    assert find_page(small, 230.0) is None
 
 
 @pytest.mark.parametrize("dpi", [72, 96])

@@ -145,3 +145,26 @@ def test_nearest_hull_by_clusters_equals_one_transform_over_all_hulls():
         want = _nearest_hull_whole_box(hull_map, reach, at)
         np.testing.assert_array_equal(got[0], want[0])
         np.testing.assert_array_equal(got[1], want[1])
+
+
+def test_bar_field_a_tread_s_parallel_bars_are_no_lines():
+    # held-out set 1 sheet 119 (160 dpi) and set 3 sheet 12 (300 dpi): a herringbone
+    # print's straight bars, narrower than two strokes and longer than a line, were
+    # 18-36 "ruler lines" and the print went missing. Side by side, turned alike and
+    # as long, they are a tread's bars: 1.4 mm wide, 3 mm apart, 14-19 mm long
+    from inkprint.marks import _bar_field
+
+    px = 25.4 / 160.0
+    n = 8
+    rects = [((0.0, 0.0), (17.0 / px, 1.4 / px), 45.0) for _ in range(n)]
+    step = 3.0 / px / np.sqrt(2)  # centres 3 mm apart across the bars
+    corners = [(round(k * step), round(-k * step)) for k in range(n)]  # (row, col)
+    assert _bar_field(rects, corners, px).all()
+    # a ruler and lines drawn apart are lines: too few, not side by side, not alike
+    assert not _bar_field(rects[:3], corners[:3], px).any()
+    far = [(round(k * 8 * step), round(-k * 8 * step)) for k in range(n)]
+    assert not _bar_field(rects, far, px).any()
+    turned = [((0.0, 0.0), (17.0 / px, 1.4 / px), 10.0 * k) for k in range(n)]
+    assert not _bar_field(turned, corners, px).any()
+    long = [((0.0, 0.0), (60.0 / px, 1.4 / px), 45.0) for _ in range(n)]
+    assert not _bar_field(long, corners, px).any()  # longer than a tread's bar

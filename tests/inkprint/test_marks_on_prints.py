@@ -171,3 +171,28 @@ def test_sort_ink_ruler_along_a_print_keeps_its_ticks_out():
     spec = SheetSpec((p,), dpi=300.0, seed=5, specks=0, marks=(ruler,))
     _r, _pr, errors = _one_print(spec)
     assert abs(errors[0]) < 0.01 and abs(errors[1]) < 0.01 and abs(errors[2]) < 0.02, errors
+
+
+# -- a label between two prints -----------------------------------------------------------
+
+
+@pytest.mark.parametrize("dpi", [150.0, 254.0])
+def test_sort_ink_label_between_two_slick_prints_joins_neither(dpi):
+    # held-out set 1 sheet 114: a pen label between two slick prints 39 mm apart,
+    # 6-19 mm from them, linked both to one 112 x 82 mm "print" (the two missing):
+    # the prints' gap made a "pattern" the letters continued
+    p = PrintSpec(70.0, 22.0, (100.0, 185.0), 0.0, "slick", ink=0.85)
+    q = PrintSpec(66.0, 24.0, (100.0, 129.0), 0.0, "slick", ink=0.85)
+    label = Text("Vittoria 25c", (72.0, 154.0), 4.5, 1.3, 0.85)  # a marker's
+    spec = SheetSpec((p, q), dpi=dpi, seed=5, specks=0, size=(200.0, 260.0), marks=(label,))
+    img, truths = render_sheet(spec)
+    r = ip.analyze_scan(ip.Scan(img, 25.4 / dpi, "given"), sensitivity=False)
+    assert len(r.prints) == 2
+    for pr, t in zip(r.prints, truths, strict=True):
+        m = pr.metrics
+        assert_ok = (
+            abs(m.length / t.length - 1) <= 0.01
+            and abs(m.width / t.width - 1) <= 0.01
+            and abs(m.hull_area / t.hull_area - 1) <= 0.02
+        )
+        assert assert_ok, (m.length, t.length, m.width, t.width)

@@ -169,6 +169,45 @@ def test_is_print_tiny_file_tread_print_notched_by_its_pattern():
     assert not is_print(g, mm_per_px=mm).ok
 
 
+def test_is_print_tiny_print_scalloped_by_its_tread():
+    # held-out set 1 file 90 at 200 dpi: a 10.4 x 2.2 mm file print, its sides
+    # scalloped by its tread (bites wider than a stroke: closing leaves them), inks
+    # 79 % of its hull: "a print this small is solid", missing. One body: the
+    # widest disk in it spans 0.74-0.8 of its width, in writing's strokes 0.2-0.6
+    import cv2
+
+    from inkprint.group import _body_share
+
+    mm = 25.4 / 200.0
+    mask = np.zeros((int(6 / mm), int(14 / mm)), np.uint8)
+    cy, cx = mask.shape[0] // 2, mask.shape[1] // 2
+    cv2.ellipse(mask, (cx, cy), (round(5.2 / mm), round(1.1 / mm)), 0, 0, 360, 1, -1)
+    for x in np.arange(cx - 4.2 / mm, cx + 4.3 / mm, 1.0 / mm):
+        for side in (-1, 1):  # 0.4 mm deep bites 1 mm apart: 76 % of the hull inked
+            cv2.circle(mask, (round(x), round(cy + side * 1.2 / mm)), round(0.5 / mm), 0, -1)
+    g = Group(slice(0, mask.shape[0]), slice(0, mask.shape[1]), mask.view(bool))
+    width = 2.2 / mm
+    assert _body_share(g.mask, width) > 0.7
+    assert is_print(g, mm_per_px=mm).ok
+    # a marker's 'D' as long and as inked is writing: its strokes are 1.2 mm wide
+    d = np.zeros((int(14 / mm), int(12 / mm)), np.uint8)
+    cv2.ellipse(
+        d,
+        (round(3 / mm), round(7 / mm)),
+        (round(4.4 / mm), round(5.4 / mm)),
+        0,
+        -90,
+        90,
+        1,
+        round(1.2 / mm),
+    )
+    cv2.line(
+        d, (round(3 / mm), round(1.6 / mm)), (round(3 / mm), round(12.4 / mm)), 1, round(1.2 / mm)
+    )
+    g = Group(slice(0, d.shape[0]), slice(0, d.shape[1]), d.view(bool))
+    assert not is_print(g, mm_per_px=mm).ok
+
+
 # -- a bold letter touching a print's tip ---------------------------------------------
 
 
