@@ -98,29 +98,26 @@ def components_with_stats_in(mask, box: tuple, *, connectivity: int = 8):
     """
     import cv2
 
-    mb = mask if mask.dtype == bool else mask.astype(bool)
-    h, w = mb.shape
+    h, w = mask.shape
     labels = np.zeros((h, w), np.int32)
     r0, c0 = box[0].start - box[0].start % 2, box[1].start - box[1].start % 2
     box = (slice(r0, box[0].stop), slice(c0, box[1].stop))  # (OpenCV's blocks)
-    sub = mb[box]
+    sub = np.ascontiguousarray(mask[box]).astype(bool, copy=False)
     n = 1
     flat = np.zeros(0, np.int64)
     if sub.size:
-        n, sub_lab = cv2.connectedComponents(
-            np.ascontiguousarray(sub).view(np.uint8), connectivity=connectivity
-        )
+        n, sub_lab = cv2.connectedComponents(sub.view(np.uint8), connectivity=connectivity)
         labels[box] = sub_lab
         at = np.flatnonzero(sub)
-        r, c = np.divmod(at, sub.shape[1])
-        flat = (r + box[0].start) * w + (c + box[1].start)  # ascending, as ``at``
+        bw = sub.shape[1]
+        flat = at + (at // bw) * (w - bw) + (r0 * w + c0)  # ascending, as ``at``
     stats = np.zeros((n, 5), np.int64)
     cent = np.zeros((n, 2))
     sums = (0, 0)
     if n > 1:
         seg_stats, seg_cent, sums = _segment_stats(flat, labels.ravel()[flat], n, w)
         stats[1:], cent[1:] = seg_stats[1:], seg_cent[1:]
-    stats[0], cent[0] = _background(mb, len(flat), sums)
+    stats[0], cent[0] = _background(mask, len(flat), sums)  # (non-zero: ink)
     return n, labels, stats.astype(np.int32), cent
 
 
@@ -233,7 +230,8 @@ def reduce_at(ufunc, out: np.ndarray, labels: np.ndarray, *, values: np.ndarray)
 
 
 def _background(mb: np.ndarray, n_ink: int, sums: tuple):
-    """Statistics and centroid of the zero pixels of ``mb`` (bool), from its ink's
+    """Statistics and centroid of the zero pixels of ``mb`` (bool, or uint8 with
+    non-zero ink), from its ink's
     count and the sums of the ink's columns and rows (``sums``)."""
     h, w = mb.shape
     n0 = h * w - n_ink

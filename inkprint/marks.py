@@ -300,30 +300,52 @@ def _split(pooled: _Pooled, opts: AnalysisOptions) -> _Parts:
     check = np.flatnonzero(keep & (area < SMALL_THICK_DISKS * disk))
     thin = m.copy()  # the ink less the thick elements (none outside the box)
     thin[box] &= (l1[box] == 0).view(np.uint8)
+    pieces = None  # the thin pieces, once labelled
     if len(check):
-        _, l2, s2, _ = components_with_stats(thin, connectivity=8)
+        pieces = components_with_stats(thin, connectivity=8)
         for k in check:
-            keep[k] = _attached_thin(l1, l2, s2, s1, k) <= 0.5 * area[k]
+            keep[k] = _attached_thin(l1, pieces[1], pieces[2], s1, k) <= 0.5 * area[k]
     if not keep[1:].all():  # drop pieces: the others keep their order (raster)
         keep[0] = True
         new = np.cumsum(keep, dtype=np.int32) - 1
         new[~keep] = 0
         l1[box], n1, s1 = new[l1[box]], int(keep.sum()), s1[keep]  # (0 stays 0)
-        thin[box] = m[box] & (l1[box] == 0).view(np.uint8)  # (else the same as before)
-    n2, l2, s2, c2 = components_with_stats(thin, connectivity=8)
+        thin[box] = m[box] & (l1[box] == 0).view(np.uint8)
+        pieces = None  # (else the thin ink and its pieces are the same as before)
+    n2, l2, s2, c2 = pieces or components_with_stats(thin, connectivity=8)
     fine = _fine_fields(s2, c2, pooled.px_mm, opts)
     fine_el = None
     if fine.any():  # a fine tread's elements are thick ink, whole
-        fine_px = fine[l2]
-        n1, l1, s1, _ = components_with_stats((l1 > 0) | fine_px, connectivity=8)
-        box = (slice(0, l1.shape[0]), slice(0, l1.shape[1]))  # (thick ink anywhere)
-        fine_el = np.bincount(l1[fine_px], minlength=n1) > 0
+        # (the box grows to hold them, with the same margin of paper)
+        box = _box_with(box, s2[np.flatnonzero(fine)], core_disk.shape[0] // 2, m.shape)
+        fine_px = np.zeros(l1.shape, bool)
+        fine_px[box] = fine[l2[box]]
+        thick = np.zeros(l1.shape, bool)
+        thick[box] = (l1[box] > 0) | fine_px[box]
+        n1, l1, s1, _ = components_with_stats_in(thick, box, connectivity=8)
+        fine_el = np.bincount(l1[box][fine_px[box]], minlength=n1) > 0
         fine_el[0] = False
-        thin = m & (l1 == 0).view(np.uint8)
+        thin = m.copy()
+        thin[box] &= (l1[box] == 0).view(np.uint8)
         n2, l2, s2, _ = components_with_stats(thin, connectivity=8)
     cored = np.zeros(l1.shape, bool)
     cored[box] = core[box].view(bool) & (l1[box] > 0)
     return _Parts(l1, n1 - 1, l2, n2 - 1, s2, cored, s1, fine_el, box)
+
+
+def _box_with(box: tuple, stats: np.ndarray, margin: int, shape) -> tuple[slice, slice]:
+    """``box`` (rows, cols slices; empty: none) grown to hold the pieces of ``stats``
+    (OpenCV's left, top, width, height, ...; at least one) with ``margin`` [px]
+    around them, within an image of ``shape``."""
+    r0 = max(int((stats[:, 1] - margin).min()), 0)
+    c0 = max(int((stats[:, 0] - margin).min()), 0)
+    r1 = min(int((stats[:, 1] + stats[:, 3] + margin).max()), shape[0])
+    c1 = min(int((stats[:, 0] + stats[:, 2] + margin).max()), shape[1])
+    rows, cols = box
+    if rows.stop > rows.start and cols.stop > cols.start:
+        r0, r1 = min(r0, rows.start), max(r1, rows.stop)
+        c0, c1 = min(c0, cols.start), max(c1, cols.stop)
+    return slice(r0, r1), slice(c0, c1)
 
 
 def _ink_box(mask: np.ndarray, margin: int) -> tuple[slice, slice]:
@@ -786,7 +808,8 @@ class _BoldJudge:
     def __init__(self, parts: _Parts, comp: np.ndarray, pooled: _Pooled, opts):
         st, px = parts.thick_stats, pooled.px_mm
         self.parts, self.pooled, self.opts, self.st = parts, pooled, opts, st
-        core_px = np.bincount(parts.thick[parts.core], minlength=parts.n_thick + 1)
+        box = parts.box if parts.box is not None else (slice(None), slice(None))
+        core_px = np.bincount(parts.thick[box][parts.core[box]], minlength=parts.n_thick + 1)
         self.cored = core_px[1:] >= 0.5 * st[1:, 4]
         self.long = px_to_mm_length(np.maximum(st[1:, 2], st[1:, 3]), px) >= opts.line_length_mm
         self.lut = np.r_[0, comp]  # an element's print, -1: set aside

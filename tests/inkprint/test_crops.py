@@ -12,6 +12,7 @@ from numpy.testing import assert_array_equal
 from inkprint.components import components_with_stats, components_with_stats_in
 from inkprint.group import _element_widths
 from inkprint.marks import (
+    _box_with,
     _disk,
     _hulls,
     _ink_box,
@@ -37,9 +38,14 @@ def _sheet_mask(seed: int, treads=("knobby", "ribbed"), line=True) -> np.ndarray
     return mask
 
 
-@pytest.fixture(scope="module", params=[1, 2])
+@pytest.fixture(
+    scope="module",
+    params=[(1, ("knobby", "ribbed")), (2, ("knobby", "ribbed")), (3, ("file", "knurl"))],
+)
 def pooled(request):
-    return _pool(_sheet_mask(request.param), 25.4 / 300.0, AnalysisOptions())
+    # (a file and a knurl tread: fine tread elements join the thick ink, _split's box grows)
+    seed, treads = request.param
+    return _pool(_sheet_mask(seed, treads), 25.4 / 300.0, AnalysisOptions())
 
 
 def _random_mask(seed: int, shape, share: float) -> np.ndarray:
@@ -133,6 +139,19 @@ def test_split_box_holds_the_thick_ink_with_paper_around(pooled):
     assert parts.n_thick > 0
     assert not (parts.thick[~inside] > 0).any()
     assert not parts.core[~inside].any()
+    # a pixel of paper around the thick ink within the box (or the image's edge)
+    frame = inside & ~cv2.erode(inside.view(np.uint8), np.ones((3, 3), np.uint8)).view(bool)
+    h, w = inside.shape
+    frame[[0, h - 1], :] = frame[:, [0, w - 1]] = False
+    assert not (parts.thick[frame] > 0).any()
+
+
+def test_box_with_holds_the_box_and_the_pieces():
+    stats = np.array([[10, 20, 5, 4, 9], [40, 2, 3, 3, 5]])  # left, top, width, height
+    rows, cols = _box_with((slice(30, 50), slice(30, 60)), stats, 2, (100, 70))
+    assert (rows, cols) == (slice(0, 50), slice(8, 60))
+    rows, cols = _box_with((slice(0, 0), slice(0, 0)), stats[:1], 2, (100, 70))
+    assert (rows, cols) == (slice(18, 26), slice(8, 17))
 
 
 def test_hulls_and_widths_in_the_box_equal_the_whole_sheet(pooled):
