@@ -929,7 +929,7 @@ def _reach_beyond_body(ctx: _Context, ink: np.ndarray, angle: float) -> float:
     # knobby prints reach up to +65 % beyond their bodies so)
     hull = cv2.fillConvexPoly(np.zeros_like(box), cv2.convexHull(outline_points(body)), 1)
     out = box & (1 - cv2.dilate(hull, np.ones((3, 3), np.uint8)))
-    _, _, st, _ = cv2.connectedComponentsWithStats(out, connectivity=8)
+    _, _, st, _ = components_with_stats(out, connectivity=8)  # (OpenCV's stats, from the ink)
     bar = mm_to_px_length(ctx.opts.line_length_mm, ctx.scan.mm_per_px)
     long = np.hypot(st[1:, cv2.CC_STAT_WIDTH], st[1:, cv2.CC_STAT_HEIGHT]) >= bar
     thin = st[1:, cv2.CC_STAT_AREA] <= 2.5 * stroke * np.hypot(

@@ -171,7 +171,9 @@ class ElementGraph:
     gaps: np.ndarray
 
 
-def element_graph(labels: np.ndarray, n: int, *, px_mm: float, step: int = 1) -> ElementGraph:
+def element_graph(
+    labels: np.ndarray, n: int, *, px_mm: float, step: int = 1, box: tuple | None = None
+) -> ElementGraph:
     """Voronoi neighbours of labelled elements and their gaps.
 
     Parameters
@@ -185,6 +187,10 @@ def element_graph(labels: np.ndarray, n: int, *, px_mm: float, step: int = 1) ->
     step : int
         Sample every ``step``-th pixel for the partition (coarser, faster; each
         element must keep a sample: elements wider than ``step`` px).
+    box : (rows, cols) slice, optional
+        A box holding every element with at least a pixel of paper around them
+        (or the image's edge), where their widths are found (the same widths:
+        :func:`_element_widths`); the partition is the whole image's.
 
     Returns
     -------
@@ -192,7 +198,7 @@ def element_graph(labels: np.ndarray, n: int, *, px_mm: float, step: int = 1) ->
     """
     import cv2
 
-    widths = _element_widths(labels, n, px_mm)
+    widths = _element_widths(labels if box is None else labels[box], n, px_mm)
     lab = labels[::step, ::step] if step > 1 else labels
     ink = lab > 0
     dist, nearest = cv2.distanceTransformWithLabels(
@@ -236,12 +242,17 @@ def _touching(owner, dist) -> tuple:
 
 
 def _element_widths(labels: np.ndarray, n: int, px_mm: float) -> np.ndarray:
-    """Twice the largest inscribed radius of each element [mm]."""
+    """Twice the largest inscribed radius of each element [mm].
+
+    The same in any box of ``labels`` holding the elements with a pixel of paper
+    around them (or the image's edge): the distance transform's passes give an
+    element's pixels the same values from that paper on, whatever lies beyond it
+    (paper, 0 too)."""
     import cv2
 
-    dt = cv2.distanceTransform((labels > 0).astype(np.uint8), cv2.DIST_L2, 3)
-    best = np.zeros(n + 1, np.float32)
     ink = labels > 0
+    dt = cv2.distanceTransform(ink.view(np.uint8), cv2.DIST_L2, 3)
+    best = np.zeros(n + 1, np.float32)
     reduce_at(np.maximum, best, labels[ink], values=dt[ink])
     return px_to_mm_length(2.0 * best[1:].astype(float), px_mm)
 
@@ -1236,10 +1247,11 @@ def _print_stubs(thin: np.ndarray, feet: tuple, hull_xy: np.ndarray, width_px: f
       sticks out farther);
     * its tread's teeth (:func:`_teeth`): a row of ``tread_teeth`` or more stubs
       no deeper than a stroke on each side, along most of its length."""
-    import cv2
 
     at, is_foot = feet
-    n, lab, _, cent = cv2.connectedComponentsWithStats(thin.view(np.uint8), connectivity=8)
+    # (OpenCV's labels and centroids, from the thin pixels only: OpenCV's own
+    # statistics sum over every pixel of the window)
+    n, lab, _, cent = components_with_stats(thin, connectivity=8)
     ids = lab.ravel()[at]
     ys, xs = np.divmod(at, thin.shape[1])
     hull_xy = hull_xy.astype(float)

@@ -70,7 +70,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .components import components_with_stats
+from .components import components_with_stats, components_with_stats_in
 from .coords import area_px_to_mm2, binned_mm_per_px, mm_to_px_length, px_to_mm_length
 from .group import (
     Group,
@@ -238,9 +238,11 @@ def _pool(mask: np.ndarray, mm_per_px: float, opts: AnalysisOptions) -> _Pooled:
         return _Pooled(m8.astype(bool, copy=False), 1, mm_per_px)
     h, w = mask.shape
     hh, ww = -(-h // q), -(-w // q)
-    padded = cv2.copyMakeBorder(
-        m8 * np.uint8(255), 0, hh * q - h, 0, ww * q - w, cv2.BORDER_CONSTANT, value=0
-    )
+    padded = m8 * np.uint8(255)
+    if hh * q > h or ww * q > w:  # (a sheet a multiple of q a side needs no copy)
+        padded = cv2.copyMakeBorder(
+            padded, 0, hh * q - h, 0, ww * q - w, cv2.BORDER_CONSTANT, value=0
+        )
     small = cv2.resize(padded, (ww, hh), interpolation=cv2.INTER_AREA)
     return _Pooled(small >= 128, q, binned_mm_per_px(mm_per_px, q))
 
@@ -268,6 +270,9 @@ class _Parts:
     core: np.ndarray
     thick_stats: np.ndarray
     fine: np.ndarray | None = None  # (n_thick + 1,) bool: a fine tread's elements
+    # (rows, cols) slices: a box holding every thick pixel with a margin of paper
+    # (:func:`_ink_box`); None: the whole mask
+    box: tuple | None = None
 
 
 def _split(pooled: _Pooled, opts: AnalysisOptions) -> _Parts:
@@ -284,37 +289,101 @@ def _split(pooled: _Pooled, opts: AnalysisOptions) -> _Parts:
     kernel = _disk(mm_to_px_length(opts.stroke_width_mm, pooled.px_mm))
     disk = int(kernel.sum())
     opened = cv2.morphologyEx(m, cv2.MORPH_OPEN, kernel)
+    # the thick ink lies in the opened ink's box: what is found of it alone is found
+    # there (the paper around it left out, the same result: :func:`_ink_box`)
+    core_disk = _disk(mm_to_px_length(2 * opts.stroke_width_mm, pooled.px_mm))
+    box = _ink_box(opened, core_disk.shape[0] // 2)
     # the prints' bodies: thick ink wider than two strokes
-    core = cv2.morphologyEx(
-        opened, cv2.MORPH_OPEN, _disk(mm_to_px_length(2 * opts.stroke_width_mm, pooled.px_mm))
-    )
-    opened &= ~_straight_skinny(opened & ~core, pooled, opts)
-    n1, l1, s1, _ = components_with_stats(opened, connectivity=8)
+    core = np.zeros_like(opened)
+    if opened[box].size:
+        core[box] = cv2.morphologyEx(opened[box], cv2.MORPH_OPEN, core_disk)
+        skinny = opened[box] & ~core[box]
+        origin = (box[0].start, box[1].start)
+        opened[box] &= ~_straight_skinny(skinny, pooled, opts, origin=origin)
+    n1, l1, s1, _ = components_with_stats_in(opened, box, connectivity=8)
     area = s1[:, cv2.CC_STAT_AREA]
     keep = area >= MIN_THICK_DISKS * disk
     keep[0] = False
     check = np.flatnonzero(keep & (area < SMALL_THICK_DISKS * disk))
+    thin = m.copy()  # the ink less the thick elements (none outside the box)
+    thin[box] &= (l1[box] == 0).view(np.uint8)
+    pieces = None  # the thin pieces, once labelled
     if len(check):
-        _, l2, s2, _ = components_with_stats(m & (l1 == 0).view(np.uint8), connectivity=8)
+        pieces = components_with_stats(thin, connectivity=8)
         for k in check:
-            keep[k] = _attached_thin(l1, l2, s2, s1, k) <= 0.5 * area[k]
+            keep[k] = _attached_thin(l1, pieces[1], pieces[2], s1, k) <= 0.5 * area[k]
     if not keep[1:].all():  # drop pieces: the others keep their order (raster)
         keep[0] = True
         new = np.cumsum(keep, dtype=np.int32) - 1
         new[~keep] = 0
-        l1, n1, s1 = new[l1], int(keep.sum()), s1[keep]
-    thin = m & (l1 == 0).view(np.uint8)
-    n2, l2, s2, c2 = components_with_stats(thin, connectivity=8)
+        l1[box], n1, s1 = new[l1[box]], int(keep.sum()), s1[keep]  # (0 stays 0)
+        thin[box] = m[box] & (l1[box] == 0).view(np.uint8)
+        pieces = None  # (else the thin ink and its pieces are the same as before)
+    n2, l2, s2, c2 = pieces or components_with_stats(thin, connectivity=8)
     fine = _fine_fields(s2, c2, pooled.px_mm, opts)
     fine_el = None
     if fine.any():  # a fine tread's elements are thick ink, whole
-        fine_px = fine[l2]
-        n1, l1, s1, _ = components_with_stats((l1 > 0) | fine_px, connectivity=8)
-        fine_el = np.bincount(l1[fine_px], minlength=n1) > 0
+        # (the box grows to hold them, with the same margin of paper)
+        box = _box_with(box, s2[np.flatnonzero(fine)], core_disk.shape[0] // 2, m.shape)
+        fine_px = np.zeros(l1.shape, bool)
+        fine_px[box] = fine[l2[box]]
+        thick = np.zeros(l1.shape, bool)
+        thick[box] = (l1[box] > 0) | fine_px[box]
+        n1, l1, s1, _ = components_with_stats_in(thick, box, connectivity=8)
+        fine_el = np.bincount(l1[box][fine_px[box]], minlength=n1) > 0
         fine_el[0] = False
-        thin = m & (l1 == 0).view(np.uint8)
+        thin = m.copy()
+        thin[box] &= (l1[box] == 0).view(np.uint8)
         n2, l2, s2, _ = components_with_stats(thin, connectivity=8)
-    return _Parts(l1, n1 - 1, l2, n2 - 1, s2, core.view(bool) & (l1 > 0), s1, fine_el)
+    cored = np.zeros(l1.shape, bool)
+    cored[box] = core[box].view(bool) & (l1[box] > 0)
+    return _Parts(l1, n1 - 1, l2, n2 - 1, s2, cored, s1, fine_el, box)
+
+
+def _box_with(box: tuple, stats: np.ndarray, margin: int, shape) -> tuple[slice, slice]:
+    """``box`` (rows, cols slices; empty: none) grown to hold the pieces of ``stats``
+    (OpenCV's left, top, width, height, ...; at least one) with ``margin`` [px]
+    around them, within an image of ``shape``."""
+    r0 = max(int((stats[:, 1] - margin).min()), 0)
+    c0 = max(int((stats[:, 0] - margin).min()), 0)
+    r1 = min(int((stats[:, 1] + stats[:, 3] + margin).max()), shape[0])
+    c1 = min(int((stats[:, 0] + stats[:, 2] + margin).max()), shape[1])
+    rows, cols = box
+    if rows.stop > rows.start and cols.stop > cols.start:
+        r0, r1 = min(r0, rows.start), max(r1, rows.stop)
+        c0, c1 = min(c0, cols.start), max(c1, cols.stop)
+    return slice(r0, r1), slice(c0, c1)
+
+
+def _ink_box(mask: np.ndarray, margin: int) -> tuple[slice, slice]:
+    """The box of a mask's ink grown by ``margin`` [px] on every side (within the
+    image): (rows, cols); empty slices without ink.
+
+    An opening (or erosion, dilation) by a kernel reaching at most ``margin`` from
+    its centre gives the same pixels in this box as on the whole mask, and none
+    outside it: an ink pixel's kernel lies in the box (or runs off the image, the
+    same way in both), and the result is ink only within ``margin`` of the ink.
+    Labelling the ink's pieces there numbers them the same (in raster order).
+
+    Parameters
+    ----------
+    mask : (h, w) uint8 or bool
+    margin : int [px]
+
+    Returns
+    -------
+    rows, cols : slice
+    """
+    import cv2
+
+    x, y, w, h = cv2.boundingRect(mask.view(np.uint8))
+    if w == 0 or h == 0:
+        return slice(0, 0), slice(0, 0)
+    rows, cols = mask.shape
+    return (
+        slice(max(y - margin, 0), min(y + h + margin, rows)),
+        slice(max(x - margin, 0), min(x + w + margin, cols)),
+    )
 
 
 def _fine_fields(stats: np.ndarray, centroids: np.ndarray, px_mm: float, opts) -> np.ndarray:
@@ -405,9 +474,12 @@ def _nearest_within(pts: np.ndarray, k: int, radius: float) -> tuple:
     return d, j
 
 
-def _straight_skinny(skinny: np.ndarray, pooled: _Pooled, opts: AnalysisOptions) -> np.ndarray:
-    """Of the thick ink narrower than two strokes (``skinny``, uint8), the straight
-    lines: pieces at least ``line_length_mm`` long and at most two strokes wide along
+def _straight_skinny(
+    skinny: np.ndarray, pooled: _Pooled, opts: AnalysisOptions, *, origin: tuple = (0, 0)
+) -> np.ndarray:
+    """Of the thick ink narrower than two strokes (``skinny``, uint8, a box of the
+    pooled mask whose first row and column are ``origin``), the straight
+    lines (uint8 over the box): pieces at least ``line_length_mm`` long and at most two strokes wide along
     their whole length (a ruler's or a drawn line thick enough to survive the
     opening, where it crosses a print too; a rib follows the outline or is wider).
 
@@ -424,11 +496,12 @@ def _straight_skinny(skinny: np.ndarray, pooled: _Pooled, opts: AnalysisOptions)
     ks = ks[ks > 0]
     if not len(ks):
         return out
-    _, ink, ink_st, _ = components_with_stats(pooled.mask.view(np.uint8), connectivity=8)
     bars = []  # the straight narrow pieces: ((y, x), piece, rectangle)
     for k in ks:
         x, y, w, h = stats[k, :4]
-        if _tiny_print(ink, ink_st, ink[_first_pixel(lab, stats, k)], pooled.px_mm, opts):
+        r, c = _first_pixel(lab, stats, k)
+        whole = _piece_at(pooled.mask, (r + origin[0], c + origin[1]))  # (the whole mask's)
+        if _tiny_print(whole, pooled.px_mm, opts):
             continue  # the spine of a track tire's file tread print, not a line
         piece = (lab[y : y + h, x : x + w] == k).view(np.uint8)
         rect = cv2.minAreaRect(outline_points(piece))  # (the hull's points)
@@ -488,9 +561,40 @@ def _bar_field(rects: list, corners: list, px_mm: float) -> np.ndarray:
     return sizes[comp] >= BAR_FIELD_MIN
 
 
-def _tiny_print(ink, ink_st, c: int, px_mm: float, opts: AnalysisOptions) -> bool:
-    """Whether ink piece ``c`` (``ink``: the pooled mask's pieces, ``ink_st`` their
-    stats) is a tiny print: its hull under ``SMALL_PRINT_MM2``, at least
+def _piece_at(mask: np.ndarray, seed: tuple[int, int]) -> np.ndarray:
+    """The 8-connected piece of ``mask`` holding pixel ``seed``, cropped to its box.
+
+    The same pixels as the piece of ``components_with_stats(mask)`` holding ``seed``
+    (``labels[box] == labels[seed]``), found by a flood fill from the seed: its cost
+    is the piece's, not the whole mask's labelling (a pooled letter sheet, 2 Mpx).
+
+    Parameters
+    ----------
+    mask : (h, w) bool
+        Ink.
+    seed : (row, col) int [px]
+        An ink pixel.
+
+    Returns
+    -------
+    (bh, bw) uint8
+        1 on the piece, 0 elsewhere, in the piece's bounding box.
+    """
+    import cv2
+
+    h, w = mask.shape
+    fill = np.zeros((h + 2, w + 2), np.uint8)  # (OpenCV's frame of one pixel)
+    flags = 8 | cv2.FLOODFILL_MASK_ONLY | (1 << 8)  # 8-connected, the mask set to 1
+    img = np.ascontiguousarray(mask).view(np.uint8)
+    _, _, _, (x, y, bw, bh) = cv2.floodFill(
+        img, fill, (int(seed[1]), int(seed[0])), 1, 0, 0, flags
+    )
+    return fill[y + 1 : y + 1 + bh, x + 1 : x + 1 + bw].copy()
+
+
+def _tiny_print(piece: np.ndarray, px_mm: float, opts: AnalysisOptions) -> bool:
+    """Whether an ink piece (``piece``: uint8 crop of its box, :func:`_piece_at`)
+    is a tiny print: its hull under ``SMALL_PRINT_MM2``, at least
     ``min_patch_width_mm`` wide and inked over ``SMALL_PRINT_FILL`` of it once its
     pores and notches narrower than a stroke are closed (a track tire's file tread
     print, 12 x 2.8 mm at 150 dpi: its spine between the pattern's teeth is a
@@ -500,8 +604,6 @@ def _tiny_print(ink, ink_st, c: int, px_mm: float, opts: AnalysisOptions) -> boo
 
     from .group import SMALL_PRINT_FILL, SMALL_PRINT_MM2, _closed_fill
 
-    x, y, w, h = ink_st[c, :4]
-    piece = (ink[y : y + h, x : x + w] == c).view(np.uint8)
     pts = outline_points(piece)
     (_, _), (a, b), _ = cv2.minAreaRect(pts)
     if px_to_mm_length(min(a, b) + 1, px_mm) < opts.min_patch_width_mm:
@@ -572,25 +674,31 @@ def _groups_of_elements(
     n = parts.n_thick
     if n == 0:
         return PartsJoined(np.zeros(0, int), np.zeros(0), np.zeros(0, bool))
-    labels = parts.thick
+    labels, box = parts.thick, parts.box
     if drop is not None:
-        labels = np.where(np.r_[False, drop][labels], 0, labels).astype(labels.dtype)
+        labels = labels.copy()  # (no element outside the box)
+        sub = labels[box] if box is not None else labels
+        sub[...] = np.where(np.r_[False, drop][sub], 0, sub)
     own = labels  # (the hulls: without the bridges)
     if bridge is not None and bridge.any():
         reach = mm_to_px_length(
             opts.stroke_width_mm + BRIDGE_MM, pooled.px_mm
         )  # a line's width, a groove
         labels = _bridged(labels, bridge, reach)
+        wbox = None  # (the bridges may reach out of the box)
+    else:
+        wbox = box
     step = max(1, int(mm_to_px_length(GRAPH_STEP_MM, pooled.px_mm)))
-    graph = element_graph(labels, n, px_mm=pooled.px_mm, step=step)
+    graph = element_graph(labels, n, px_mm=pooled.px_mm, step=step, box=wbox)
     link = linked_edges(graph, options=opts)
     comp = union_labels(n, graph.a[link], graph.b[link])
-    comp = merge_overlapping(_hulls(own, comp), comp)
+    comp = merge_overlapping(_hulls(own, comp, box=box), comp)
     sizes = parts.thick_stats[1:, cv2.CC_STAT_AREA].astype(float)
     comp = join_tips(graph, comp, sizes, options=opts)
-    joined = join_side_by_side(graph, comp, _hulls(own, comp), px_mm=pooled.px_mm, options=opts)
+    hulls = _hulls(own, comp, box=box)
+    joined = join_side_by_side(graph, comp, hulls, px_mm=pooled.px_mm, options=opts)
     if joined.comp is not comp:
-        merged = merge_overlapping(_hulls(own, joined.comp), joined.comp)
+        merged = merge_overlapping(_hulls(own, joined.comp, box=box), joined.comp)
         if merged is not joined.comp:
             # the hull of joined ribs overlapping another group: one print with it
             joined = _regrouped(joined, merged)
@@ -652,12 +760,20 @@ def _nearest_label(labels: np.ndarray) -> tuple:
     return dist, nearest, lut
 
 
-def _hulls(labels: np.ndarray, comp: np.ndarray, core=None) -> list:
+def _hulls(labels: np.ndarray, comp: np.ndarray, core=None, *, box=None) -> list:
     """Convex hull (cv2 float32 points, pooled x=col, y=row) of each group, from the
     ``core`` pixels of its elements where given and they are most of the element
-    (a fine tread like a file pattern has little core: whole)."""
+    (a fine tread like a file pattern has little core: whole). ``box``: (rows, cols)
+    slices holding every element with a margin of paper (:func:`_ink_box`), where
+    the outlines are traced (the same outlines: traced in raster order from their
+    first pixel; OpenCV's one-pixel frame of paper is paper there too)."""
     import cv2
 
+    offset = (0, 0)
+    if box is not None:
+        labels = labels[box]
+        core = core[box] if core is not None else None
+        offset = (box[1].start, box[0].start)
     ink = labels > 0
     src = ink.view(np.uint8)
     if core is not None:
@@ -673,11 +789,11 @@ def _hulls(labels: np.ndarray, comp: np.ndarray, core=None) -> list:
         src = np.zeros(labels.size, np.uint8)
         src[on[keep]] = 1
         src = src.reshape(labels.shape)
-    contours, _ = cv2.findContours(src, cv2.RETR_EXTERNAL, cv2.CHAIN_APPROX_SIMPLE)
+    contours, _ = cv2.findContours(src, cv2.RETR_EXTERNAL, cv2.CHAIN_APPROX_SIMPLE, offset=offset)
     pts: list[list] = [[] for _ in range(int(comp.max()) + 1 if len(comp) else 0)]
     for c in contours:
         x, y = c[0, 0]
-        g = comp[labels[y, x] - 1]
+        g = comp[labels[y - offset[1], x - offset[0]] - 1]
         if g >= 0:  # (an element set aside belongs to no print)
             pts[g].append(c)
     return [cv2.convexHull(np.concatenate(p)).astype(np.float32) if p else None for p in pts]
@@ -748,7 +864,8 @@ class _BoldJudge:
     def __init__(self, parts: _Parts, comp: np.ndarray, pooled: _Pooled, opts):
         st, px = parts.thick_stats, pooled.px_mm
         self.parts, self.pooled, self.opts, self.st = parts, pooled, opts, st
-        core_px = np.bincount(parts.thick[parts.core], minlength=parts.n_thick + 1)
+        box = parts.box if parts.box is not None else (slice(None), slice(None))
+        core_px = np.bincount(parts.thick[box][parts.core[box]], minlength=parts.n_thick + 1)
         self.cored = core_px[1:] >= 0.5 * st[1:, 4]
         self.long = px_to_mm_length(np.maximum(st[1:, 2], st[1:, 3]), px) >= opts.line_length_mm
         self.lut = np.r_[0, comp]  # an element's print, -1: set aside
@@ -1375,7 +1492,7 @@ def _sort_pooled(pooled: _Pooled, opts: AnalysisOptions, network=None, bridge=No
             break
         bold = _Bold(bold.elements | more.elements, _either(bold.pixels, more.pixels))
     comp = joined.comp
-    hulls = _hulls(parts.thick, comp, parts.core) if len(comp) else []
+    hulls = _hulls(parts.thick, comp, parts.core, box=parts.box) if len(comp) else []
     hull_map = _hull_map(hulls, pooled.mask.shape)
     on = np.flatnonzero(parts.thin > 0)  # the thin pixels, flat
     reach = mm_to_px_length(opts.line_length_mm, pooled.px_mm)
