@@ -746,12 +746,6 @@ def is_print(
     width = px_to_mm_length(min(a, b) + 1, mm_per_px)
     # (a print's end cut by the image's edge is measured and flagged clipped)
     cut = image_shape is not None and _sides(group, image_shape, near=False) > 0
-    if length < opts.min_patch_length_mm and not cut:
-        return PrintCheck(
-            False,
-            f"a mark or a letter's piece ({length:.1f} mm long: shorter than a print)",
-            "writing",
-        )
     if image_shape is not None and _punch_hole(
         group, pts, (length, width), mm_per_px, image_shape
     ):
@@ -759,6 +753,12 @@ def is_print(
             False,
             f"a punch hole ({0.5 * (length + width):.1f} mm round, solid, near the edge)",
             "hole",
+        )
+    if length < opts.min_patch_length_mm and not cut:
+        return PrintCheck(
+            False,
+            f"a mark or a letter's piece ({length:.1f} mm long: shorter than a print)",
+            "writing",
         )
     if width < opts.min_patch_width_mm:
         return PrintCheck(False, f"a line ({width:.2f} mm wide)", "line")

@@ -847,3 +847,18 @@ def test_sort_ink_line_filling_its_own_box_is_measured(tmp_path):
     # the sheet (OverflowError); now measured and flagged clipped
     results, _ = outcomes(tmp_path, "clipped", 6)
     assert_passes(results)
+
+
+def test_sort_ink_punch_hole_beside_a_knobby_print_joins_none():
+    # held-out set 5 sheet 87: a punch hole 5 mm off a knobby print's side continued
+    # its knobs' pattern and joined it (width +26.7 %, unflagged); a hole is a group
+    # of its own, set aside
+    from inkprint.synth_effects import Bed
+
+    p = PrintSpec(110.0, 48.0, (42.0, 186.0), 90.0, "mtb", block=5.0, gap=4.0)  # 3 mm off
+    spec = SheetSpec((p,), dpi=200.0, seed=4, specks=0, bed=Bed((), holes=2, level=0.3))
+    scan, (truth,) = scan_of(spec)
+    r = ip.analyze_scan(scan, sensitivity=False, rolling_axis="y")
+    (pr,) = r.prints
+    assert within(pr.metrics, truth), (pr.metrics.length, pr.metrics.width, truth.width)
+    assert sum(m.kind == "hole" for m in r.marks) == 2
