@@ -61,16 +61,8 @@ def components_with_stats(mask, *, connectivity: int = 8):
     if cv2.countNonZero(mb.view(np.uint8)) > DENSE * mb.size:  # OpenCV's is faster
         return cv2.connectedComponentsWithStats(mb.view(np.uint8), connectivity=connectivity)
     n, labels = cv2.connectedComponents(mb.view(np.uint8), connectivity=connectivity)
-    w = labels.shape[1]
     flat = np.flatnonzero(mb)  # (numpy's nonzero is ~8x faster on bool than on uint8)
-    stats = np.zeros((n, 5), np.int64)
-    cent = np.zeros((n, 2))
-    sums = (0, 0)
-    if n > 1:
-        seg_stats, seg_cent, sums = _segment_stats(flat, labels.ravel()[flat], n, w)
-        stats[1:], cent[1:] = seg_stats[1:], seg_cent[1:]
-    stats[0], cent[0] = _background(mb, len(flat), sums)
-    return n, labels, stats.astype(np.int32), cent
+    return (n, labels, *_stats_of(mb, labels, flat, n))
 
 
 def components_with_stats_in(mask, box: tuple, *, connectivity: int = 8):
@@ -111,14 +103,20 @@ def components_with_stats_in(mask, box: tuple, *, connectivity: int = 8):
         at = np.flatnonzero(sub)
         bw = sub.shape[1]
         flat = at + (at // bw) * (w - bw) + (r0 * w + c0)  # ascending, as ``at``
+    return (n, labels, *_stats_of(mask, labels, flat, n))  # (non-zero: ink)
+
+
+def _stats_of(mask, labels: np.ndarray, flat: np.ndarray, n: int) -> tuple:
+    """OpenCV's statistics (int32) and centroids of the ``n`` labels of ``mask``
+    (background 0) from its ink pixels ``flat`` (flat indices, ascending)."""
     stats = np.zeros((n, 5), np.int64)
     cent = np.zeros((n, 2))
     sums = (0, 0)
     if n > 1:
-        seg_stats, seg_cent, sums = _segment_stats(flat, labels.ravel()[flat], n, w)
+        seg_stats, seg_cent, sums = _segment_stats(flat, labels.ravel()[flat], n, labels.shape[1])
         stats[1:], cent[1:] = seg_stats[1:], seg_cent[1:]
-    stats[0], cent[0] = _background(mask, len(flat), sums)  # (non-zero: ink)
-    return n, labels, stats.astype(np.int32), cent
+    stats[0], cent[0] = _background(mask, len(flat), sums)
+    return stats.astype(np.int32), cent
 
 
 def piece_stats(labels: np.ndarray, flat: np.ndarray, n: int) -> tuple:

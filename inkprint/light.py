@@ -23,6 +23,11 @@ whether the camera looked at it flat-on. A page whose corner angles depart from
 90 degrees by more than ``perspective_tolerance_deg`` has no single mm scale: its
 prints are flagged ``perspective`` rather than measured silently wrong. A print
 touching the page's edge (or the image's) is ``clipped``.
+
+A scan of a page that does not cover the glass shows the scanner's dark bed (or
+lid) as straight strips along one or two sides, wedges when the page is skewed: the
+page is taken beyond their fitted inner edges, and only its corners inside the image
+are judged for perspective (where its edge leaves the image is no corner).
 """
 
 from __future__ import annotations
@@ -160,7 +165,9 @@ def _corner_angles(quad: np.ndarray) -> tuple:
 
 
 def find_page(small: np.ndarray, paper: float) -> _Frame | None:
-    """The page of a photo on a darker table, on the small image (None: a scan).
+    """The page of a photo on a darker table, or of a scan whose dark bed shows
+    along one or more sides (:func:`_bed_strips`), on the small image (None: the
+    whole image is the page).
 
     Parameters
     ----------
