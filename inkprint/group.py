@@ -74,8 +74,6 @@ PATTERN_REACH = 3.0
 LONE_PATTERN_FACTOR = 0.5
 #: rounds of :func:`join_tips` (a chain of tip blocks joins block by block)
 TIP_ROUNDS = 4
-#: a print with a hull under this [mm^2] (a tiny print) is solid: it inks at least
-#: SMALL_PRINT_FILL of its hull (a letter, a ring, a tick does not)
 #: a punch hole's diameter range [mm], roundness (length / width at most), solid
 #: share of its hull at least, and its centre's distance from the image's edge at
 #: most [mm] (ISO 838: 12 mm; a US punch: 13 mm; a skewed or shifted page: more)
@@ -83,6 +81,8 @@ PUNCH_HOLE_MM = (4.5, 9.0)
 PUNCH_HOLE_ROUND = 1.2
 PUNCH_HOLE_FILL = 0.9
 PUNCH_HOLE_EDGE_MM = 25.0
+#: a print with a hull under this [mm^2] (a tiny print) is solid: it inks at least
+#: SMALL_PRINT_FILL of its hull (a letter, a ring, a tick does not)
 SMALL_PRINT_MM2 = 150.0
 SMALL_PRINT_FILL = 0.8
 #: ... or inks SMALL_BODY_FILL of it around one body: the widest disk in its ink is
@@ -744,10 +744,11 @@ def is_print(
     (_, _), (a, b), _ = cv2.minAreaRect(pts)
     length = px_to_mm_length(max(a, b) + 1, mm_per_px)
     width = px_to_mm_length(min(a, b) + 1, mm_per_px)
+    hull = cv2.convexHull(pts)
     # (a print's end cut by the image's edge is measured and flagged clipped)
     cut = image_shape is not None and _sides(group, image_shape, near=False) > 0
     if image_shape is not None and _punch_hole(
-        group, pts, (length, width), mm_per_px, image_shape
+        group, hull, (length, width), mm_per_px, image_shape
     ):
         return PrintCheck(
             False,
@@ -764,7 +765,6 @@ def is_print(
         return PrintCheck(False, f"a line ({width:.2f} mm wide)", "line")
     if length / width > opts.max_patch_aspect:
         return PrintCheck(False, f"a line ({length / width:.0f} x longer than wide)", "line")
-    hull = cv2.convexHull(pts)
     fill = hull_fill(group.n_pixels, hull)
     if fill < opts.min_net_to_gross:
         return PrintCheck(
@@ -814,26 +814,40 @@ def _small_print_fill(mask: np.ndarray, fill: float, width_px: float, mm_per_px,
     return fill
 
 
-def _punch_hole(group: Group, pts: np.ndarray, size: tuple, mm_per_px: float, shape) -> bool:
+def _punch_hole(group: Group, hull: np.ndarray, size: tuple, mm_per_px: float, shape) -> bool:
     """Whether a group is a punch hole of the page (the scanner's dark lid showing
-    through it): a solid round disc :data:`PUNCH_HOLE_MM` across (ISO 838 and the
-    US three-hole punch: 5.5-8 mm) whose centre lies within
-    :data:`PUNCH_HOLE_EDGE_MM` of the image's edge. No tire print is a solid disc:
-    the smallest (a track tire's) are 2.5-4 mm wide and 10-18 mm long.
-    ``pts``: the outline points; ``size``: (length, width) of its rectangle [mm]."""
-    import cv2
-
-    length, width = size
-    lo, hi = PUNCH_HOLE_MM
-    if not (lo <= width and length <= hi and length <= PUNCH_HOLE_ROUND * width):
-        return False
-    if hull_fill(group.n_pixels, cv2.convexHull(pts)) < PUNCH_HOLE_FILL:
-        return False
+    through it): a solid disc (:func:`_hole_sized`) filling :data:`PUNCH_HOLE_FILL`
+    of its ``hull`` (OpenCV points). No tire print is a solid disc: the smallest (a
+    track tire's) are 2.5-4 mm wide and 10-18 mm long. ``size``: (length, width)
+    of its rectangle [mm]."""
     h, w = shape
     r = 0.5 * (group.rows.start + group.rows.stop)
     c = 0.5 * (group.cols.start + group.cols.stop)
     edge = px_to_mm_length(min(r, c, h - r, w - c), mm_per_px)
-    return edge <= PUNCH_HOLE_EDGE_MM
+    return bool(_hole_sized(*size, edge)) and hull_fill(group.n_pixels, hull) >= PUNCH_HOLE_FILL
+
+
+def _hole_sized(long_mm, short_mm, edge_mm):
+    """Whether ink of extents ``long_mm`` x ``short_mm`` [mm] whose centre lies
+    ``edge_mm`` from the image's edge has a punch hole's size and place: round
+    (:data:`PUNCH_HOLE_ROUND`), :data:`PUNCH_HOLE_MM` across (ISO 838 and the US
+    three-hole punch: 5.5-8 mm), within :data:`PUNCH_HOLE_EDGE_MM` of the edge.
+
+    Parameters
+    ----------
+    long_mm, short_mm, edge_mm : float or (n,) float [mm]
+
+    Returns
+    -------
+    bool or (n,) bool
+    """
+    lo, hi = PUNCH_HOLE_MM
+    return (
+        (short_mm >= lo)
+        & (long_mm <= hi)
+        & (long_mm <= PUNCH_HOLE_ROUND * short_mm)
+        & (edge_mm <= PUNCH_HOLE_EDGE_MM)
+    )
 
 
 def _letters_in_a_row(

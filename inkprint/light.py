@@ -185,7 +185,6 @@ def find_page(small: np.ndarray, paper: float) -> _Frame | None:
     h, w = small.shape
     b = max(2, int(0.02 * min(h, w)))
     sides = (small[:b], small[-b:], small[:, :b], small[:, -b:])
-    table = float(np.median(np.concatenate([v.ravel() for v in sides])))
     # no table all round: a scanner's bed along a side, or a page running off a photo?
     bed = max(float(np.median(v)) for v in sides) > 0.6 * paper
     if bed:
@@ -193,6 +192,8 @@ def find_page(small: np.ndarray, paper: float) -> _Frame | None:
         if strips is None:
             return None
         table, beyond = strips
+    else:
+        table = float(np.median(np.concatenate([v.ravel() for v in sides])))
     bright = (small > 0.5 * (table + paper)).astype(np.uint8)
     n, lab, stats, _ = components_with_stats(bright, connectivity=4)
     if n < 2:
@@ -206,12 +207,13 @@ def find_page(small: np.ndarray, paper: float) -> _Frame | None:
     # (a bed's strip can be thinner than the ring: its edge is judged to the rim)
     if not _sharp(small, outline.reshape(-1, 2), paper - table, 0 if bed else b):
         return None  # a soft edge: shade, not the page's edge on a table
-    hull = cv2.convexHull(outline)
-    mask = np.zeros_like(page)
-    cv2.fillPoly(mask, [hull], 1)
     if bed:  # the page's edges as fitted: where a strip thins under a pixel too
         mask = beyond.astype(np.uint8)
         hull = cv2.convexHull(cv2.findNonZero(mask))
+    else:
+        hull = cv2.convexHull(outline)
+        mask = np.zeros_like(page)
+        cv2.fillPoly(mask, [hull], 1)
     quad = cv2.approxPolyDP(hull, 0.01 * cv2.arcLength(hull, True), True).reshape(-1, 2)
     if bed:  # the page runs off the image: only its own corners tell its angles
         inner = (quad[:, 0] > b) & (quad[:, 0] < w - 1 - b) & (quad[:, 1] > b)
@@ -285,7 +287,7 @@ def _bed_strips(small: np.ndarray, paper: float) -> tuple[float, np.ndarray] | N
             continue  # a curved or broken edge (a print's)
         s = np.rot90(strips, k)  # views: written through
         s[:] |= np.arange(inward)[:, None] < run[None, :]
-        edge = np.polyval(line, np.arange(n)) + 1.0  # past the edge's mixed pixel
+        edge = np.polyval(line, t) + 1.0  # past the edge's mixed pixel
         np.rot90(page, k)[:] &= np.arange(inward)[:, None] >= edge[None, :]
     if not strips.any():
         return None

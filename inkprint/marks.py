@@ -73,8 +73,12 @@ import numpy as np
 from .components import components_with_stats, components_with_stats_in
 from .coords import area_px_to_mm2, binned_mm_per_px, mm_to_px_length, px_to_mm_length
 from .group import (
+    SMALL_PRINT_FILL,
+    SMALL_PRINT_MM2,
     Group,
     PartsJoined,
+    _closed_fill,
+    _hole_sized,
     _outside_distance,
     element_graph,
     hull_fill,
@@ -604,8 +608,6 @@ def _tiny_print(piece: np.ndarray, px_mm: float, opts: AnalysisOptions) -> bool:
     missing). A line with its ticks, or across a print, is wider or fills less."""
     import cv2
 
-    from .group import SMALL_PRINT_FILL, SMALL_PRINT_MM2, _closed_fill
-
     pts = outline_points(piece)
     (_, _), (a, b), _ = cv2.minAreaRect(pts)
     if px_to_mm_length(min(a, b) + 1, px_mm) < opts.min_patch_width_mm:
@@ -670,7 +672,7 @@ def _groups_of_elements(
     if not holes.any():
         return _joined_elements(parts, pooled, opts, bridge, drop)
     joined = _joined_elements(parts, pooled, opts, bridge, _either(drop, holes))
-    return _own_groups(joined, holes & (drop is None or ~drop))
+    return _own_groups(joined, holes if drop is None else holes & ~drop)
 
 
 def _joined_elements(
@@ -722,25 +724,20 @@ def _joined_elements(
 
 
 def _punch_holes(parts: _Parts, pooled: _Pooled) -> np.ndarray:
-    """Which thick elements are punch holes of the page: solid round discs
-    (``inkprint.group.PUNCH_HOLE_*``; as much ink as the disc inscribed in their
-    box, to :data:`HOLE_DISC`) near the image's edge. A hole 5 mm off a knobby print
-    continued its knobs' pattern and joined it (held-out set 5 sheet 87: width
-    +26.7 %); a knob is square (4 / pi of its disc), a letter hollow. (n,) bool."""
-    from .group import PUNCH_HOLE_EDGE_MM, PUNCH_HOLE_MM, PUNCH_HOLE_ROUND
-
+    """Which thick elements are punch holes of the page: discs of a hole's size and
+    place (:func:`inkprint.group._hole_sized`) as much inked as the disc inscribed in
+    their box, to :data:`HOLE_DISC`. A hole 5 mm off a knobby print continued its
+    knobs' pattern and joined it (held-out set 5 sheet 87: width +26.7 %); a knob
+    is square (4 / pi of its disc), a letter hollow. (n,) bool."""
     st = parts.thick_stats[1:].astype(float)
     w, h, area = st[:, 2], st[:, 3], st[:, 4]
-    big, small = np.maximum(w, h), np.minimum(w, h)
-    lo, hi = PUNCH_HOLE_MM
-    size = px_to_mm_length(small, pooled.px_mm) >= lo
-    size &= px_to_mm_length(big, pooled.px_mm) <= hi
-    disc = np.abs(area / (0.25 * np.pi * w * h) - 1.0) <= HOLE_DISC
     rows, cols = pooled.mask.shape
     cx, cy = st[:, 0] + 0.5 * w, st[:, 1] + 0.5 * h
     edge = np.minimum.reduce([cx, cy, cols - cx, rows - cy])
-    near = px_to_mm_length(edge, pooled.px_mm) <= PUNCH_HOLE_EDGE_MM
-    return size & disc & (big <= PUNCH_HOLE_ROUND * small) & near
+    sized = _hole_sized(
+        *(px_to_mm_length(v, pooled.px_mm) for v in (np.maximum(w, h), np.minimum(w, h), edge))
+    )
+    return sized & (np.abs(area / (0.25 * np.pi * w * h) - 1.0) <= HOLE_DISC)
 
 
 def _own_groups(joined: PartsJoined, elements: np.ndarray) -> PartsJoined:

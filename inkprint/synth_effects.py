@@ -140,6 +140,10 @@ class Photo:
     table: float = 0.25
 
 
+#: the sides of a scan a bed strip may run along
+BED_SIDES = ("top", "bottom", "left", "right")
+
+
 @dataclass(frozen=True)
 class Bed:
     """The scanner's bed (or its dark lid) showing beside a page that does not
@@ -180,6 +184,17 @@ def scanner_bed(img: np.ndarray, bed: Bed, grid, *, rng) -> np.ndarray:
     """
     import cv2
 
+    for side, a, b in bed.strips:
+        if side not in BED_SIDES:
+            raise InvalidInput("side", side, " | ".join(BED_SIDES))
+        if not (np.isfinite(a) and np.isfinite(b)):
+            raise InvalidInput(
+                "strips", (a, b), "finite widths [mm] (negative: ends off the image)"
+            )
+    if not (float(bed.holes).is_integer() and bed.holes >= 0):
+        raise InvalidInput("holes", bed.holes, "a whole number >= 0")
+    if not (np.isfinite(bed.level) and 0 <= bed.level <= 1):
+        raise InvalidInput("level", bed.level, "a grey level in [0, 1]")
     rows, cols = img.shape
     shade = np.zeros(img.shape, np.uint8)
     for side, a, b in bed.strips:

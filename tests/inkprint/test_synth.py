@@ -110,3 +110,21 @@ def test_outline_law_invalid(args, match):
 
     with pytest.raises(InvalidInput, match=match):
         outline_law(*args)
+
+
+@pytest.mark.parametrize(
+    ("bed", "match"),
+    [
+        ({"strips": (("middle", 2.0, 5.0),)}, "side"),
+        ({"strips": (("top", 2.0, float("nan")),)}, "strips"),
+        ({"holes": 1.5}, "holes"),
+        ({"level": 1.5}, "level"),
+    ],
+)
+def test_scanner_bed_invalid(bed, match):
+    import inkprint as ip
+    from inkprint.synth_effects import Bed
+
+    spec = SheetSpec((), dpi=100.0, size=(60.0, 80.0), bed=Bed(**bed))
+    with pytest.raises(ip.InvalidInput, match=match):
+        render_sheet(spec)
