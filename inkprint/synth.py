@@ -153,6 +153,9 @@ class PrintSpec:
         ``mtb``: the knobs on the centre line split lengthwise by a sipe this wide.
     halo_touching : int
         Faint specks touching the outline (bore no load; not in the truth).
+    rib : float, optional [mm]
+        ``knurl``: a solid centre strip this wide along the rolling direction (a
+        road tire's slick centre between its file shoulders).
     """
 
     length: float
@@ -168,6 +171,7 @@ class PrintSpec:
     gap: float | None = None
     halo_touching: int = 0
     sipe: float | None = None
+    rib: float | None = None
 
 
 @dataclass(frozen=True)
@@ -296,7 +300,7 @@ def _knurl(spec: PrintSpec, outline):
     """A fine tread: separate diamonds ``block`` mm long (default 1.2) and 0.7 of
     that wide on a staggered lattice, ``gap`` mm apart along the rolling direction
     (default 0.6); a diamond the outline cuts to under half of itself is dropped
-    (too small to print)."""
+    (too small to print); ``rib``: a solid centre strip."""
     import shapely
 
     b = spec.block or 1.2
@@ -310,6 +314,8 @@ def _knurl(spec: PrintSpec, outline):
             cells.append(shapely.Polygon([(u - a, v), (u, v - c), (u + a, v), (u, v + c)]))
     ink = outline.intersection(shapely.union_all(cells))
     parts = [p for p in shapely.get_parts(ink) if p.area >= a * c]  # half a diamond: 2ac
+    if spec.rib:
+        parts.append(outline.intersection(shapely.box(-L, -0.5 * spec.rib, L, 0.5 * spec.rib)))
     return shapely.union_all(parts)
 
 

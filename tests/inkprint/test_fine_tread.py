@@ -125,3 +125,44 @@ def test_nearest_within_equals_brute_force(n):
     found = np.isfinite(d)
     np.testing.assert_allclose(full[np.nonzero(found)[0], j[found]], d[found], rtol=1e-12)
     assert (j[~found] == n).all()
+
+
+@pytest.mark.parametrize(
+    "dpi, length, width, rib, block",
+    [(150.0, 64.5, 20.0, 6.0, 2.2), (300.0, 48.0, 25.0, 9.0, 1.8), (600.0, 64.5, 20.0, 6.0, 2.2)],
+)
+def test_analyze_scan_file_shoulders_beside_a_slick_rib_are_measured(
+    dpi, length, width, rib, block
+):
+    # a road tire's slick centre rib between file shoulders (held-out 6 sheet 87):
+    # the shoulders' diamonds reached out of the rib's body like a marker's letters
+    # and were set aside with the rim pieces joined to the rib (width -33 % to
+    # -65 %, flagged mark_on_edge: a useless result)
+    p = PrintSpec(length, width, (80.0, 120.0), 0.0, "knurl", block=block, gap=0.5, rib=rib)
+    img, (t,) = render_sheet(SheetSpec((p,), dpi=dpi, size=(160.0, 240.0), specks=0))
+    res = ip.analyze_scan(Scan(img, 25.4 / dpi, "given"), rolling_axis="x", sensitivity=False)
+    (pr,) = res.prints
+    assert pr.status == "ok", pr.warnings
+    m = pr.metrics
+    assert_allclose([m.length, m.width], [t.length, t.width], rtol=0.01)
+    assert_allclose(m.hull_area, t.hull_area, rtol=0.02)
+
+
+def test_fine_fields_tips_shaved_off_thick_ink_are_no_elements():
+    # a lattice of dots with, among them, the bits an opening shaved off thick
+    # elements (a diamond's tips: held-out 6 sheet 87, 20 of 0.1 mm^2 beside 40
+    # diamonds of 1.9 mm^2): counted as elements, the field's areas are irregular
+    pts = [(10 + 1.3 * i + 0.65 * (j % 2), 10 + 1.3 * j) for i in range(30) for j in range(6)]
+    m = _dots(pts).astype(np.uint8)
+    for i in range(30):  # small bits in the gaps of two rows, 0.3 x 0.3 mm
+        for y_mm in (10.3, 12.9):
+            x, y = round((10.5 + 1.3 * i) / PX), round(y_mm / PX)
+            m[y : y + 3, x : x + 3] = 1
+    _n, _lab, stats, cent = components_with_stats(m, connectivity=8)
+    bits = stats[:, cv2.CC_STAT_AREA] <= 9
+    bits[0] = False
+    dots = ~bits
+    dots[0] = False
+    assert not _fine_fields(stats, cent, PX, OPTS)[dots].all()  # the rows with bits lost
+    whole = _fine_fields(stats, cent, PX, OPTS, whole=~bits)
+    assert whole[dots].all() and not whole[bits].any()

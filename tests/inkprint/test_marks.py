@@ -4,7 +4,14 @@ import cv2
 import numpy as np
 from numpy.testing import assert_allclose
 
-from inkprint.marks import _hull_box, _hull_map, _line_run, _nearest_hull, _nearest_label
+from inkprint.marks import (
+    _hull_box,
+    _hull_map,
+    _line_run,
+    _nearest_hull,
+    _nearest_label,
+    sort_ink,
+)
 from inkprint.options import AnalysisOptions
 from tests.inkprint.test_classes import outcomes
 
@@ -168,3 +175,13 @@ def test_bar_field_a_tread_s_parallel_bars_are_no_lines():
     assert not _bar_field(turned, corners, px).any()
     long = [((0.0, 0.0), (60.0 / px, 1.4 / px), 45.0) for _ in range(n)]
     assert not _bar_field(long, corners, px).any()  # longer than a tread's bar
+
+
+def test_sort_ink_pixel_noise_without_thick_ink_sorts():
+    # no piece survives the stroke-wide opening: the thick ink's box is empty (the
+    # fine tread's look for tips shaved off thick ink dilated an empty array: an
+    # internal error on 23 noise pages)
+    rng = np.random.default_rng(3)
+    mask = rng.random((400, 300)) < 0.03
+    ink = sort_ink(mask, mm_per_px=0.1)
+    assert not ink.groups and ink.marks
