@@ -929,15 +929,35 @@ def _reach_beyond_body(ctx: _Context, ink: np.ndarray, angle: float) -> float:
     # knobby prints reach up to +65 % beyond their bodies so)
     hull = cv2.fillConvexPoly(np.zeros_like(box), cv2.convexHull(outline_points(body)), 1)
     out = box & (1 - cv2.dilate(hull, np.ones((3, 3), np.uint8)))
-    _, _, st, _ = components_with_stats(out, connectivity=8)  # (OpenCV's stats, from the ink)
+    _, lab, st, _ = components_with_stats(out, connectivity=8)  # (OpenCV's stats, from the ink)
     bar = mm_to_px_length(ctx.opts.line_length_mm, ctx.scan.mm_per_px)
     long = np.hypot(st[1:, cv2.CC_STAT_WIDTH], st[1:, cv2.CC_STAT_HEIGHT]) >= bar
     thin = st[1:, cv2.CC_STAT_AREA] <= 2.5 * stroke * np.hypot(
         st[1:, cv2.CC_STAT_WIDTH], st[1:, cv2.CC_STAT_HEIGHT]
     )
-    if not (long & thin).any():
+    if not (long & thin).any() or _bar_tread(lab, st, 1 + np.flatnonzero(long & thin), ctx):
         return 0.0
     return _mask_excess(box, body, angle)
+
+
+def _bar_tread(lab: np.ndarray, st: np.ndarray, ks: np.ndarray, ctx: _Context) -> bool:
+    """Whether the long thin pieces ``ks`` (labels in ``lab``, OpenCV's stats
+    ``st``) are all a tread's bars side by side (:func:`inkprint.marks._bar_field`),
+    not a line: a herringbone print's bars off its centre rib reach 3 x beyond it."""
+    import cv2
+
+    from .marks import BAR_FIELD_MIN, _bar_field
+
+    if len(ks) < BAR_FIELD_MIN:
+        return False
+    rects, corners = [], []
+    for k in ks:
+        x, y, w, h = st[k, :4]
+        rects.append(
+            cv2.minAreaRect(outline_points((lab[y : y + h, x : x + w] == k).view(np.uint8)))
+        )
+        corners.append((y, x))
+    return bool(_bar_field(rects, corners, ctx.scan.mm_per_px).all())
 
 
 def _under_text(ctx: _Context, g: Group, kept: np.ndarray) -> np.ndarray | None:

@@ -2,8 +2,10 @@
 
 import cv2
 import numpy as np
+import pytest
 from numpy.testing import assert_allclose
 
+import inkprint as ip
 from inkprint.marks import (
     _hull_box,
     _hull_map,
@@ -185,3 +187,49 @@ def test_sort_ink_pixel_noise_without_thick_ink_sorts():
     mask = rng.random((400, 300)) < 0.03
     ink = sort_ink(mask, mm_per_px=0.1)
     assert not ink.groups and ink.marks
+
+
+def _herringbone(dpi: float, bar: float, ss: int = 4) -> tuple:
+    """A 70 x 28 mm elliptical herringbone print: a 6 mm slick centre rib and bars
+    ``bar`` mm wide at 45 degrees, 4 mm apart, standing ``bar`` mm off the rib either
+    side; grey image (area coverage of a ``ss`` x finer drawing), mm per px and the
+    truth (length, width, hull area) of the drawn ink."""
+    mm = 25.4 / dpi / ss
+    h, w = int(60 / mm), int(100 / mm)
+    cx, cy = w / 2, h / 2
+    ink = np.zeros((h, w), np.uint8)
+    cv2.rectangle(ink, (0, round(cy - 3 / mm)), (w, round(cy + 3 / mm)), 1, -1)
+    for x in np.arange(-70.0, 70.0, 4.0):
+        for side in (-1, 1):
+            y0, y1 = side * (3 + 1.5 * bar), side * 17.0
+            p0 = (round(cx + x / mm), round(cy + y0 / mm))
+            p1 = (round(cx + (x + abs(y1 - y0)) / mm), round(cy + y1 / mm))
+            cv2.line(ink, p0, p1, 1, max(1, round(bar / mm)))
+    outline = np.zeros_like(ink)
+    cv2.ellipse(
+        outline, (round(cx), round(cy)), (round(35 / mm), round(14 / mm)), 0, 0, 360, 1, -1
+    )
+    ink &= outline
+    pts = cv2.findNonZero(ink).reshape(-1, 2)
+    truth = (
+        (np.ptp(pts[:, 0]) + 1) * mm,
+        (np.ptp(pts[:, 1]) + 1) * mm,
+        cv2.contourArea(cv2.convexHull(pts)) * mm * mm,
+    )
+    cover = cv2.resize(ink.astype(np.float32), (w // ss, h // ss), interpolation=cv2.INTER_AREA)
+    rng = np.random.default_rng(0)
+    grey = 0.92 - 0.75 * cover + rng.normal(0, 0.01, cover.shape)
+    return grey.astype(np.float32), 25.4 / dpi, truth
+
+
+@pytest.mark.parametrize("dpi, bar", [(160.0, 1.0), (200.0, 1.2), (300.0, 1.5)])
+def test_analyze_scan_herringbone_bars_off_a_rib_are_tread(dpi, bar):
+    # bars as wide as a marker's stroke standing off a centre rib were set aside as
+    # bold letters (the print came out as its rib alone: width -78 %, flagged), then
+    # read as lines reaching 3 x beyond the rib's body (flagged mark_on_edge)
+    grey, mm, (length, width, area) = _herringbone(dpi, bar)
+    res = ip.analyze_scan(ip.Scan(grey, mm, "given"), rolling_axis="x", sensitivity=False)
+    (pr,) = res.prints
+    assert pr.status == "ok", pr.warnings
+    assert_allclose([pr.metrics.length, pr.metrics.width], [length, width], rtol=0.01)
+    assert_allclose(pr.metrics.hull_area, area, rtol=0.02)
