@@ -107,28 +107,28 @@ SMALL_BODY_SHARE = 0.7
 TEXT_LINE_LETTERS = 6
 TEXT_LINE_INK = 0.7
 TEXT_LINE_FILL = 0.6
+TEXT_LETTER_MM = 2.5
+#: in a row of writing among others, a letter spans this share of the row or more
+#: (a lower-case letter without ascender nor descender: 0.49 of its row on held-out
+#: 6 sheet 79)
+TEXT_ROW_SPAN = 0.4
+#: ... and each row holds this many letters or more (held-out 6 sheet 8: 'F = 299 N')
+TEXT_ROW_LETTERS = 4
+#: the direction across rows of writing is looked for at these turns [deg] from the
+#: least rectangle's, on about this many of the ink's pixels
+TEXT_ROW_TURNS = np.arange(-3.0, 3.01, 0.5)
+TEXT_ROW_SAMPLE = 5000
+#: a bar fills this share of its least rectangle or more and is this many times
+#: longer than wide: half the largest pieces of rows of writing are no bars (an 'l',
+#: a '1', a '-' are), a tread's bars in rows all are
+TEXT_BAR_FILL = 0.8
+TEXT_BAR_ASPECT = 2.5
 #: A tread's teeth (:func:`_teeth`) line each side of a print along at least this
 #: share of its length. An elliptic outline cuts a file tread's shoulder rows to
 #: teeth over 0.43-0.45 of it (held-out 6 sheets 19 and 81: asked for half, they
 #: were dropped as strokes' feet; width -2.9 % -> -2.5 %, -8.9 % -> -8.2 %, the rest
 #: being the outer row's dots); a label touches one side.
 TEETH_SPAN = 0.4
-TEXT_LETTER_MM = 2.5
-#: in a row of writing among others, a letter spans this share of the row or more
-#: (a lower-case letter without ascender nor descender: 0.49 of its row on held-out
-#: 6 sheet 79)
-TEXT_ROW_SPAN = 0.4
-#: the direction across rows of writing is looked for at these turns [deg] from the
-#: least rectangle's, on about this many of the ink's pixels
-TEXT_ROW_TURNS = np.arange(-3.0, 3.01, 0.5)
-TEXT_ROW_SAMPLE = 5000
-#: ... and each row holds this many letters or more (held-out 6 sheet 8: 'F = 299 N')
-TEXT_ROW_LETTERS = 4
-#: a bar fills this share of its least rectangle or more and is this many times
-#: longer than wide: half the largest pieces of rows of writing are no bars (an 'l',
-#: a '1', a '-' are), a tread's bars in rows all are
-TEXT_BAR_FILL = 0.8
-TEXT_BAR_ASPECT = 2.5
 
 
 @dataclass(frozen=True)
@@ -957,10 +957,10 @@ def _rows_of_letters(mask: np.ndarray, pts: np.ndarray, mm_per_px: float, opts) 
     :data:`TEXT_ROW_SPAN` of it, :data:`TEXT_LINE_INK` of its ink), inking
     less than :data:`TEXT_LINE_FILL` of its rectangle; its median piece no wider
     than two strokes (``stroke_width_mm``), half its largest pieces no bars
-    (:data:`TEXT_BAR_FILL`, :data:`TEXT_BAR_ASPECT`): a label's lines of marker letters joined into
-    one group (held-out 6 sheet 79: 'Compass Stampede Pass 32' over 'p = 5.3 bar',
-    an 86 x 15 mm "print" on a page of writing only). A car print's ribs are
-    solid; a knobby print's rows of knobs are wider than strokes."""
+    (:data:`TEXT_BAR_FILL`, :data:`TEXT_BAR_ASPECT`): a label's lines of marker
+    letters joined into one group (held-out 6 sheet 79: 'Compass Stampede Pass 32'
+    over 'p = 5.3 bar', an 86 x 15 mm "print" on a page of writing only). A car
+    print's ribs are solid; a knobby print's rows of knobs are wider than strokes."""
     import cv2
 
     (_, _), (a, b), angle = cv2.minAreaRect(pts.astype(np.float32))
@@ -979,8 +979,8 @@ def _rows_of_letters(mask: np.ndarray, pts: np.ndarray, mm_per_px: float, opts) 
     inked = np.bincount(across) > 0
     edges = np.flatnonzero(np.diff(np.r_[False, inked, False].astype(np.int8)))
     bands = edges.reshape(-1, 2)  # [start, stop) of the inked runs across
-    tall_mm = mm_to_px_length(TEXT_LETTER_MM, mm_per_px)
-    bands = bands[bands[:, 1] - bands[:, 0] >= tall_mm]
+    tall_px = mm_to_px_length(TEXT_LETTER_MM, mm_per_px)
+    bands = bands[bands[:, 1] - bands[:, 0] >= tall_px]
     if len(bands) < 2:  # (most prints: no paper along them; the pieces not needed)
         return False
     n, lab, st, _ = components_with_stats(mask.view(np.uint8), connectivity=8)
@@ -999,7 +999,7 @@ def _rows_of_letters(mask: np.ndarray, pts: np.ndarray, mm_per_px: float, opts) 
         np.minimum.at(piece_lo, ids[on], across[on])
         np.maximum.at(piece_hi, ids[on], across[on])
         span = piece_hi - piece_lo + 1
-        tall = span >= max(TEXT_ROW_SPAN * (hi - lo), tall_mm)
+        tall = span >= max(TEXT_ROW_SPAN * (hi - lo), tall_px)
         ink = np.bincount(ids[on], minlength=n)
         if (
             np.count_nonzero(tall) < TEXT_ROW_LETTERS
