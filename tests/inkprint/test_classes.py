@@ -142,7 +142,9 @@ def test_join_side_by_side_narrow_middle_ribs_join_the_print(dpi):
     assert_allclose(pr.metrics.hull_area, area, rtol=0.02)
 
 
-@pytest.mark.parametrize(("stroke", "gap"), [(1.3, 4.0), (1.7, 4.0), (1.7, 6.7), (1.9, 6.7), (1.7, 9.0)])
+@pytest.mark.parametrize(
+    ("stroke", "gap"), [(1.3, 4.0), (1.7, 4.0), (1.7, 6.7), (1.9, 6.7), (1.7, 9.0)]
+)
 def test_group_blobs_bold_label_beside_a_slick_print_stays_out(stroke, gap):
     # a marker label 40 mm long, its letters fused into three pieces, 4-6.7 mm below
     # a 90 mm slick print: the print's gap to the letters read as its tread pattern
