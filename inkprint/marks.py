@@ -595,12 +595,11 @@ def _bar_field(rects: list, corners: list, px_mm: float) -> np.ndarray:
 
 
 def _chevron_arms(rects: list, corners: list) -> np.ndarray:
-    """Which straight narrow pieces are a chevron's arms, not lines: two no longer
-    than any line that meet end to end (within :data:`CHEVRON_GAP` of
-    their widths: the opening took the wider apex) turned at least
-    :data:`CHEVRON_TURN_DEG` from each other (a herringbone print's chevrons whose
-    four arms were taken for ruler lines split it in two: held-out 8 sheet 6,
-    length -36.5 %). ``rects``: OpenCV's ``minAreaRect`` of each, in its box at
+    """Which straight narrow pieces are a chevron's arms, not lines: two that meet
+    end to end (within :data:`CHEVRON_GAP` of their widths: the opening took the
+    wider apex) turned at least :data:`CHEVRON_TURN_DEG` from each other (a
+    herringbone print's chevrons whose four arms were taken for ruler lines split
+    it in two: held-out 8 sheet 6, length -36.5 %). ``rects``: OpenCV's ``minAreaRect`` of each, in its box at
     ``corners`` ((row, col) [px]). (k,) bool."""
     n = len(rects)
     out = np.zeros(n, bool)
