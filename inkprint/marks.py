@@ -565,13 +565,7 @@ def _bar_field(rects: list, corners: list, px_mm: float) -> np.ndarray:
     out = np.zeros(n, bool)
     if n < BAR_FIELD_MIN:
         return out
-    centre = np.array(
-        [[r[0][0] + c[1], r[0][1] + c[0]] for r, c in zip(rects, corners, strict=True)]
-    )
-    size = np.array([r[1] for r in rects], float)
-    long, wide = size.max(axis=1) + 1, size.min(axis=1) + 1
-    angle = np.radians([r[2] + (90.0 if r[1][1] > r[1][0] else 0.0) for r in rects])
-    u = np.column_stack([np.cos(angle), np.sin(angle)])  # along each bar
+    centre, long, wide, angle, u = _bars(rects, corners)
     d = centre[None, :, :] - centre[:, None, :]  # (i, j): j's centre from i's
     along = np.abs(np.einsum("ijk,ik->ij", d, u))
     across = np.abs(np.einsum("ijk,ik->ij", d, u[:, ::-1] * [-1, 1]))
@@ -594,24 +588,31 @@ def _bar_field(rects: list, corners: list, px_mm: float) -> np.ndarray:
     return sizes[comp] >= BAR_FIELD_MIN
 
 
-def _chevron_arms(rects: list, corners: list) -> np.ndarray:
-    """Which straight narrow pieces are a chevron's arms, not lines: two that meet
-    end to end (within :data:`CHEVRON_GAP` of their widths: the opening took the
-    wider apex) turned at least :data:`CHEVRON_TURN_DEG` from each other (a
-    herringbone print's chevrons whose four arms were taken for ruler lines split
-    it in two: held-out 8 sheet 6, length -36.5 %). ``rects``: OpenCV's ``minAreaRect`` of each, in its box at
-    ``corners`` ((row, col) [px]). (k,) bool."""
-    n = len(rects)
-    out = np.zeros(n, bool)
-    if n < 2:
-        return out
+def _bars(rects: list, corners: list) -> tuple:
+    """Centres (x, y) [px] on the sheet, lengths and widths [px], angles [rad] and
+    unit vectors along, of straight pieces: OpenCV's ``minAreaRect`` of each
+    (``rects``), in its box at ``corners`` ((row, col) [px])."""
     centre = np.array(
         [[r[0][0] + c[1], r[0][1] + c[0]] for r, c in zip(rects, corners, strict=True)]
     )
     size = np.array([r[1] for r in rects], float)
     long, wide = size.max(axis=1) + 1, size.min(axis=1) + 1
     angle = np.radians([r[2] + (90.0 if r[1][1] > r[1][0] else 0.0) for r in rects])
-    u = np.column_stack([np.cos(angle), np.sin(angle)])
+    return centre, long, wide, angle, np.column_stack([np.cos(angle), np.sin(angle)])
+
+
+def _chevron_arms(rects: list, corners: list) -> np.ndarray:
+    """Which straight narrow pieces are a chevron's arms, not lines: two that meet
+    end to end (within :data:`CHEVRON_GAP` of their widths: the opening took the
+    wider apex) turned at least :data:`CHEVRON_TURN_DEG` from each other (a
+    herringbone print's chevrons whose four arms were taken for ruler lines split
+    it in two: held-out 8 sheet 6, length -36.5 %). ``rects``, ``corners``: as
+    :func:`_bar_field`'s. (k,) bool."""
+    n = len(rects)
+    out = np.zeros(n, bool)
+    if n < 2:
+        return out
+    centre, long, wide, angle, u = _bars(rects, corners)
     ends = np.stack([centre - 0.5 * long[:, None] * u, centre + 0.5 * long[:, None] * u], 1)
     d = np.linalg.norm(ends[:, None, :, None, :] - ends[None, :, None, :, :], axis=-1)
     meet = d.min(axis=(2, 3)) <= CHEVRON_GAP * np.maximum(wide[:, None], wide[None, :])

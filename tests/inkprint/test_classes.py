@@ -22,6 +22,8 @@ from inkprint.synth import PrintSpec, SheetSpec, render_sheet, save_scan
 from inkprint.synth_cases import _band, make_case, write_case
 from inkprint.synth_effects import Light, Text
 
+from .drawn import drawn_scan
+
 FAST = Options(sensitivity=False)
 
 
@@ -111,8 +113,6 @@ def _narrow_ribs(dpi: float, ss: int = 4) -> tuple:
     """A 126 x 111 mm car print (superellipse, exponent 4) of five ribs 31, 2.1,
     9, 2.1 and 31 mm wide between 8.9 mm grooves (held-out 6 sheet 33): grey image,
     mm per px and the drawn ink's (length, width, hull area)."""
-    import cv2
-
     mm = 25.4 / dpi / ss
     h, w = int(140 / mm), int(160 / mm)
     cx, cy = w / 2, h / 2
@@ -120,15 +120,7 @@ def _narrow_ribs(dpi: float, ss: int = 4) -> tuple:
     ink = np.abs(u / 63.0) ** 4 + np.abs(v / 55.6) ** 4 <= 1.0
     edges = np.cumsum([-55.5, 31, 8.9, 2.1, 8.9, 9, 8.9, 2.1, 8.9, 31])
     ink &= (np.searchsorted(edges, v) % 2 == 1) & (v <= 55.5)  # ribs, grooves between
-    pts = cv2.findNonZero(ink.view(np.uint8)).reshape(-1, 2)
-    truth = (
-        (np.ptp(pts[:, 0]) + 1) * mm,
-        (np.ptp(pts[:, 1]) + 1) * mm,
-        cv2.contourArea(cv2.convexHull(pts)) * mm * mm,
-    )
-    cover = cv2.resize(ink.astype(np.float32), (w // ss, h // ss), interpolation=cv2.INTER_AREA)
-    grey = 0.92 - 0.75 * cover + np.random.default_rng(0).normal(0, 0.01, cover.shape)
-    return grey.astype(np.float32), 25.4 / dpi, truth
+    return drawn_scan(ink.astype(np.uint8), dpi, ss, 0.75)
 
 
 @pytest.mark.parametrize("dpi", [150.0, 300.0])

@@ -16,6 +16,7 @@ from inkprint.marks import (
     sort_ink,
 )
 from inkprint.options import AnalysisOptions
+from tests.inkprint.drawn import drawn_scan
 from tests.inkprint.test_classes import outcomes
 
 PX_MM = 25.4 / 150.0  # 150 dpi: a 0.9 mm stroke is 5.3 px
@@ -210,17 +211,7 @@ def _herringbone(dpi: float, bar: float, ss: int = 4) -> tuple:
     cv2.ellipse(
         outline, (round(cx), round(cy)), (round(35 / mm), round(14 / mm)), 0, 0, 360, 1, -1
     )
-    ink &= outline
-    pts = cv2.findNonZero(ink).reshape(-1, 2)
-    truth = (
-        (np.ptp(pts[:, 0]) + 1) * mm,
-        (np.ptp(pts[:, 1]) + 1) * mm,
-        cv2.contourArea(cv2.convexHull(pts)) * mm * mm,
-    )
-    cover = cv2.resize(ink.astype(np.float32), (w // ss, h // ss), interpolation=cv2.INTER_AREA)
-    rng = np.random.default_rng(0)
-    grey = 0.92 - 0.75 * cover + rng.normal(0, 0.01, cover.shape)
-    return grey.astype(np.float32), 25.4 / dpi, truth
+    return drawn_scan(ink & outline, dpi, ss, 0.75)
 
 
 @pytest.mark.parametrize("dpi, bar", [(160.0, 1.0), (200.0, 1.2), (300.0, 1.5)])
@@ -276,16 +267,7 @@ def _chevrons(dpi: float, bar: float, pitch: float, phase: float, ss: int = 4) -
     cv2.ellipse(
         outline, (round(cx), round(cy)), (round(40.5 / mm), round(14.5 / mm)), 0, 0, 360, 1, -1
     )
-    ink &= outline
-    pts = cv2.findNonZero(ink).reshape(-1, 2)
-    truth = (
-        (np.ptp(pts[:, 0]) + 1) * mm,
-        (np.ptp(pts[:, 1]) + 1) * mm,
-        cv2.contourArea(cv2.convexHull(pts)) * mm * mm,
-    )
-    cover = cv2.resize(ink.astype(np.float32), (w // ss, h // ss), interpolation=cv2.INTER_AREA)
-    grey = 0.92 - 0.6 * cover + np.random.default_rng(0).normal(0, 0.01, cover.shape)
-    return grey.astype(np.float32), 25.4 / dpi, truth
+    return drawn_scan(ink & outline, dpi, ss, 0.6)
 
 
 @pytest.mark.parametrize(("bar", "pitch", "phase"), [(1.4, 2.4, 0.0), (1.6, 2.8, 0.7)])
