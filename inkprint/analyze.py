@@ -944,20 +944,11 @@ def _bar_tread(lab: np.ndarray, st: np.ndarray, ks: np.ndarray, ctx: _Context) -
     """Whether the long thin pieces ``ks`` (labels in ``lab``, OpenCV's stats
     ``st``) are all a tread's bars side by side (:func:`inkprint.marks._bar_field`),
     not a line: a herringbone print's bars off its centre rib reach 3 x beyond it."""
-    import cv2
-
-    from .marks import BAR_FIELD_MIN, _bar_field
+    from .marks import BAR_FIELD_MIN, _bar_field, _piece_rects
 
     if len(ks) < BAR_FIELD_MIN:
         return False
-    rects, corners = [], []
-    for k in ks:
-        x, y, w, h = st[k, :4]
-        rects.append(
-            cv2.minAreaRect(outline_points((lab[y : y + h, x : x + w] == k).view(np.uint8)))
-        )
-        corners.append((y, x))
-    return bool(_bar_field(rects, corners, ctx.scan.mm_per_px).all())
+    return bool(_bar_field(*_piece_rects(lab, st, ks), ctx.scan.mm_per_px).all())
 
 
 def _under_text(ctx: _Context, g: Group, kept: np.ndarray) -> np.ndarray | None:

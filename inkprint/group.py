@@ -927,27 +927,29 @@ def _letters_in_a_row(
     row, each spanning half the group's width or more (and :data:`TEXT_LETTER_MM`),
     together :data:`TEXT_LINE_INK` of its ink (``pts``: the group's outline points).
     Whether the pieces leave gaps (a hollow hull) is the caller's."""
-    import cv2
-
-    n, lab, st, _ = components_with_stats(mask.view(np.uint8), connectivity=8)
-    area = st[1:, cv2.CC_STAT_AREA]
+    n, lab, _, _ = components_with_stats(mask.view(np.uint8), connectivity=8)
     if n - 1 < TEXT_LINE_LETTERS or n - 1 > 50 * TEXT_LINE_LETTERS:
         return False
     # the direction across the row: across the outline's major principal axis
     _, along = _major_axis(pts.astype(float))
     across = np.array([-along[1], along[0]])
     rows, cols = np.nonzero(lab)
-    ids = lab[rows, cols] - 1
     t = cols * across[0] + rows * across[1]
-    lo = np.full(n - 1, np.inf)
-    hi = np.full(n - 1, -np.inf)
-    np.minimum.at(lo, ids, t)
-    np.maximum.at(hi, ids, t)
-    tall = hi - lo + 1 >= max(0.5 * width_px, mm_to_px_length(TEXT_LETTER_MM, mm_per_px))
-    return (
-        np.count_nonzero(tall) >= TEXT_LINE_LETTERS
-        and area[tall].sum() >= TEXT_LINE_INK * area.sum()
-    )
+    span = max(0.5 * width_px, mm_to_px_length(TEXT_LETTER_MM, mm_per_px))
+    return _letter_row(lab[rows, cols], t, n, span, TEXT_LINE_LETTERS)
+
+
+def _letter_row(ids: np.ndarray, across: np.ndarray, n: int, span: float, least: int) -> bool:
+    """Whether ink pixels (their pieces ``ids``, labels 1..n-1, and coordinates
+    ``across`` a row [px]) are a row of letters: ``least`` or more pieces spanning
+    ``span`` [px] or more across it, together :data:`TEXT_LINE_INK` of the ink."""
+    lo = np.full(n, np.inf)
+    hi = np.full(n, -np.inf)
+    np.minimum.at(lo, ids, across)
+    np.maximum.at(hi, ids, across)
+    tall = hi - lo + 1 >= span  # (the background, no pixel here: -inf)
+    ink = np.bincount(ids, minlength=n)
+    return np.count_nonzero(tall) >= least and ink[tall].sum() >= TEXT_LINE_INK * ink.sum()
 
 
 def _rows_of_letters(mask: np.ndarray, pts: np.ndarray, mm_per_px: float, opts) -> bool:
@@ -994,17 +996,8 @@ def _rows_of_letters(mask: np.ndarray, pts: np.ndarray, mm_per_px: float, opts) 
         box = (hi - lo) * (np.ptp(along[on]) + 1)
         if np.count_nonzero(on) >= TEXT_LINE_FILL * box:
             return False  # a solid band: a rib
-        piece_lo = np.full(n, np.inf)
-        piece_hi = np.full(n, -np.inf)
-        np.minimum.at(piece_lo, ids[on], across[on])
-        np.maximum.at(piece_hi, ids[on], across[on])
-        span = piece_hi - piece_lo + 1
-        tall = span >= max(TEXT_ROW_SPAN * (hi - lo), tall_px)
-        ink = np.bincount(ids[on], minlength=n)
-        if (
-            np.count_nonzero(tall) < TEXT_ROW_LETTERS
-            or ink[tall].sum() < TEXT_LINE_INK * ink.sum()
-        ):
+        span = max(TEXT_ROW_SPAN * (hi - lo), tall_px)
+        if not _letter_row(ids[on], across[on], n, span, TEXT_ROW_LETTERS):
             return False
     # strokes: the widest disk in the median piece spans two strokes at most
     dist = cv2.distanceTransform(np.pad(mask.view(np.uint8), 1), cv2.DIST_L2, 5)[1:-1, 1:-1]

@@ -172,7 +172,7 @@ def find_page(small: np.ndarray, paper: float) -> _Frame | None:
     Parameters
     ----------
     small : (h, w) uint8
-        The sheet at ~1 mm per pixel.
+        The sheet at ~2 mm per pixel.
     paper : float
         The paper's grey level.
 
@@ -228,11 +228,11 @@ def find_page(small: np.ndarray, paper: float) -> _Frame | None:
 def _bed_strips(small: np.ndarray, paper: float) -> tuple[float, np.ndarray] | None:
     """The grey of a scanner's bed or lid showing beside a page that does not cover
     the glass (None: none shows). A bed strip runs along a side of the image from
-    one of its corners over :data:`BED_STRIP_SHARE` of it or more, dark (below 0.6 of the paper)
-    from the image's edge in to a straight line (the page's edge, skewed or not:
-    a strip as wide as :data:`BED_STRIP_MAX` of the image at most, its inner edge
-    within :data:`BED_EDGE_PX` of a line, deeper only at its ends and where punch
-    holes meet it, :data:`BED_HOLES`). A print cut by the image's edge is no
+    one of its corners over :data:`BED_STRIP_SHARE` of it or more, dark (below 0.6
+    of the paper) from the image's edge in to a straight line (the page's edge,
+    skewed or not: a strip as wide as :data:`BED_STRIP_MAX` of the image at most,
+    its inner edge within :data:`BED_EDGE_PX` of a line, deeper only at its ends and
+    where punch holes meet it, :data:`BED_HOLES`). A print cut by the image's edge is no
     strip: its edge is curved, its tread breaks the run.
 
     Parameters

@@ -95,13 +95,13 @@ from .options import AnalysisOptions, resolve_options
 #: side, turned alike within BAR_ANGLE_DEG, each centre within BAR_SPACING widths of
 #: its neighbour's line, none longer than BAR_MAX_MM (see ``_bar_field``)
 BAR_FIELD_MIN = 4
+BAR_ANGLE_DEG = 5.0
+BAR_SPACING = 4.0
+BAR_MAX_MM = 40.0
 #: ... nor a chevron's arms: two meeting end to end within CHEVRON_GAP of their
 #: widths, turned CHEVRON_TURN_DEG or more from each other (see ``_chevron_arms``)
 CHEVRON_GAP = 2.0
 CHEVRON_TURN_DEG = 20.0
-BAR_ANGLE_DEG = 5.0
-BAR_SPACING = 4.0
-BAR_MAX_MM = 40.0
 #: a bar fills at least this share of its least rectangle (a letter's stroke curves
 #: or crosses another)
 BAR_FILL = 0.8
@@ -510,9 +510,9 @@ def _straight_skinny(
     skinny: np.ndarray, pooled: _Pooled, opts: AnalysisOptions, *, origin: tuple = (0, 0)
 ) -> np.ndarray:
     """Of the thick ink narrower than two strokes (``skinny``, uint8, a box of the
-    pooled mask whose first row and column are ``origin``), the straight
-    lines (uint8 over the box): pieces at least ``line_length_mm`` long and at most two strokes wide along
-    their whole length (a ruler's or a drawn line thick enough to survive the
+    pooled mask whose first row and column are ``origin``), the straight lines
+    (uint8 over the box): pieces at least ``line_length_mm`` long and at most two
+    strokes wide along their whole length (a ruler's or a drawn line thick enough to survive the
     opening, where it crosses a print too; a rib follows the outline or is wider).
 
     A line that touches a narrow sliver of a print (a half block at the edge) is one
@@ -565,11 +565,10 @@ def _bar_field(rects: list, corners: list, px_mm: float) -> np.ndarray:
     out = np.zeros(n, bool)
     if n < BAR_FIELD_MIN:
         return out
-    centre, long, wide, angle, u = _bars(rects, corners)
+    centre, long, wide, u, turn = _bars(rects, corners)
     d = centre[None, :, :] - centre[:, None, :]  # (i, j): j's centre from i's
     along = np.abs(np.einsum("ijk,ik->ij", d, u))
     across = np.abs(np.einsum("ijk,ik->ij", d, u[:, ::-1] * [-1, 1]))
-    turn = np.degrees(np.abs(np.angle(np.exp(2j * (angle[:, None] - angle[None, :]))))) / 2
     side = (
         (turn <= BAR_ANGLE_DEG)
         & (across <= BAR_SPACING * wide[:, None])
@@ -589,16 +588,34 @@ def _bar_field(rects: list, corners: list, px_mm: float) -> np.ndarray:
 
 
 def _bars(rects: list, corners: list) -> tuple:
-    """Centres (x, y) [px] on the sheet, lengths and widths [px], angles [rad] and
-    unit vectors along, of straight pieces: OpenCV's ``minAreaRect`` of each
-    (``rects``), in its box at ``corners`` ((row, col) [px])."""
+    """Centres (x, y) [px] on the sheet, lengths and widths [px] and unit vectors
+    along, of straight pieces, and the turn between each two (k, k) [deg, 0-90]:
+    OpenCV's ``minAreaRect`` of each (``rects``), in its box at ``corners`` ((row,
+    col) [px])."""
     centre = np.array(
         [[r[0][0] + c[1], r[0][1] + c[0]] for r, c in zip(rects, corners, strict=True)]
     )
     size = np.array([r[1] for r in rects], float)
     long, wide = size.max(axis=1) + 1, size.min(axis=1) + 1
     angle = np.radians([r[2] + (90.0 if r[1][1] > r[1][0] else 0.0) for r in rects])
-    return centre, long, wide, angle, np.column_stack([np.cos(angle), np.sin(angle)])
+    u = np.column_stack([np.cos(angle), np.sin(angle)])
+    turn = np.degrees(np.abs(np.angle(np.exp(2j * (angle[:, None] - angle[None, :]))))) / 2
+    return centre, long, wide, u, turn
+
+
+def _piece_rects(labels: np.ndarray, stats: np.ndarray, ks) -> tuple[list, list]:
+    """OpenCV's ``minAreaRect`` of each piece ``ks`` of ``labels`` (``stats``:
+    OpenCV's), in its box, and the boxes' corners ((row, col) [px]): the input of
+    :func:`_bar_field` and :func:`_chevron_arms`."""
+    import cv2
+
+    rects, corners = [], []
+    for k in ks:
+        x, y, w, h = stats[k, :4]
+        piece = (labels[y : y + h, x : x + w] == k).view(np.uint8)
+        rects.append(cv2.minAreaRect(outline_points(piece)))  # (the hull's points)
+        corners.append((y, x))
+    return rects, corners
 
 
 def _chevron_arms(rects: list, corners: list) -> np.ndarray:
@@ -612,11 +629,10 @@ def _chevron_arms(rects: list, corners: list) -> np.ndarray:
     out = np.zeros(n, bool)
     if n < 2:
         return out
-    centre, long, wide, angle, u = _bars(rects, corners)
+    centre, long, wide, u, turn = _bars(rects, corners)
     ends = np.stack([centre - 0.5 * long[:, None] * u, centre + 0.5 * long[:, None] * u], 1)
     d = np.linalg.norm(ends[:, None, :, None, :] - ends[None, :, None, :, :], axis=-1)
     meet = d.min(axis=(2, 3)) <= CHEVRON_GAP * np.maximum(wide[:, None], wide[None, :])
-    turn = np.degrees(np.abs(np.angle(np.exp(2j * (angle[:, None] - angle[None, :]))))) / 2
     pair = meet & (turn >= CHEVRON_TURN_DEG)
     np.fill_diagonal(pair, False)
     return pair.any(axis=1)
@@ -1070,21 +1086,12 @@ class _BoldJudge:
         field (:func:`_bar_field`). A herringbone print's bars as wide as a marker's
         stroke, standing 1.2 mm off its centre rib, were set aside as bold letters
         (a 70 x 28 mm print came out as its rib alone: width -78 %, flagged)."""
-        import cv2
-
         out = np.zeros(len(strokes), bool)
         if len(strokes) < BAR_FIELD_MIN:
             return out
-        rects, corners, straight = [], [], []
-        for i in strokes:
-            x, y, w, h, area = self.st[els[i]]
-            piece = (self.parts.thick[y : y + h, x : x + w] == els[i]).view(np.uint8)
-            rect = cv2.minAreaRect(outline_points(piece))
-            (_, _), (a, b), _ = rect
-            rects.append(rect)
-            corners.append((y, x))
-            straight.append(area >= BAR_FILL * (a + 1) * (b + 1))
-        straight = np.array(straight)
+        rects, corners = _piece_rects(self.parts.thick, self.st, els[strokes])
+        size = np.array([r[1] for r in rects], float) + 1
+        straight = self.st[els[strokes], 4] >= BAR_FILL * size[:, 0] * size[:, 1]
         if np.count_nonzero(straight) < BAR_FIELD_MIN:
             return out
         idx = np.flatnonzero(straight)
