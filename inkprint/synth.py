@@ -29,6 +29,7 @@ failure classes with their expected outcome.
 from __future__ import annotations
 
 import math
+import numbers
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -308,14 +309,19 @@ def _knurl(spec: PrintSpec, outline):
     a, c = 0.5 * b, 0.35 * b  # half-diagonals, along and across
     pu, pv = 2 * a + g, c + 0.5 * g  # pitch along; rows across (staggered)
     L, W = spec.length, spec.width
+    rib = spec.rib
+    if rib is not None and (
+        isinstance(rib, bool) or not isinstance(rib, numbers.Real) or not 0 < rib < W
+    ):
+        raise InvalidInput("rib", rib, f"a width in (0, {W:g}) mm (the print's width)")
     cells = []
     for j, v in enumerate(np.arange(-W / 2 - pv, W / 2 + pv, pv)):
         for u in np.arange(-L / 2 - pu + 0.5 * pu * (j % 2), L / 2 + pu, pu):
             cells.append(shapely.Polygon([(u - a, v), (u, v - c), (u + a, v), (u, v + c)]))
     ink = outline.intersection(shapely.union_all(cells))
     parts = [p for p in shapely.get_parts(ink) if p.area >= a * c]  # half a diamond: 2ac
-    if spec.rib:
-        parts.append(outline.intersection(shapely.box(-L, -0.5 * spec.rib, L, 0.5 * spec.rib)))
+    if rib is not None:
+        parts.append(outline.intersection(shapely.box(-L, -0.5 * rib, L, 0.5 * rib)))
     return shapely.union_all(parts)
 
 

@@ -128,3 +128,23 @@ def test_scanner_bed_invalid(bed, match):
     spec = SheetSpec((), dpi=100.0, size=(60.0, 80.0), bed=Bed(**bed))
     with pytest.raises(ip.InvalidInput, match=match):
         render_sheet(spec)
+
+
+@pytest.mark.parametrize("rib", [0.0, -3.0, 24.0, float("nan"), "6", True])
+def test_knurl_rib_invalid(rib):
+    import inkprint as ip
+
+    p = PrintSpec(60.0, 24.0, (80.0, 120.0), 0.0, "knurl", rib=rib)
+    with pytest.raises(ip.InvalidInput, match="rib"):
+        render_sheet(clean_sheet(p))
+
+
+def test_knurl_rib_is_solid_across_its_width():
+    # a slick centre strip 6 mm wide: the print's middle row of pixels is all ink
+    img, (t,) = render_sheet(
+        clean_sheet(PrintSpec(60.0, 24.0, (80.0, 120.0), 0.0, "knurl", rib=6.0))
+    )
+    dark = 1.0 - img.astype(float) / img.max()
+    row = dark[img.shape[0] // 2]  # (the print's centre line: y = 120 of 240 mm)
+    assert t.width == pytest.approx(24.0, abs=0.5)
+    assert np.count_nonzero(row > 0.5) * 25.4 / DPI == pytest.approx(60.0, rel=0.02)
