@@ -40,6 +40,7 @@ from .binarize import Binarization, below, binarize, remove_specks
 from .components import components_with_stats, pixel_sums
 from .coords import area_mm2_to_px, area_px_to_mm2, mm_to_px_length, px_to_mm, px_to_mm_length
 from .errors import InvalidInput, NoInk
+from .faintlines import without_faint_lines
 from .gridlines import Gridlines, find_gridlines, stroke_px
 from .group import SMALL_PRINT_MM2, Group, PrintCheck, _sides, edge_spots, is_print, outline_points
 from .light import Page, light_spread, prepare_page
@@ -799,8 +800,7 @@ def measure_print(ctx: _Context, group: Group, *, index: int = 0, sensitivity: b
     """
     opts, s = ctx.opts, ctx.scan.mm_per_px
     n_rows = ctx.page.work.shape[0]
-    g = _with_paper(ctx, group)
-    grey = _grey(ctx.scan, ctx.page, g.rows, g.cols)
+    g, grey, line_ink = _without_faint_lines(ctx, _with_paper(ctx, group), group)
     spots = edge_spots(g, _darkness(grey, g.mask), mm_per_px=s, options=opts)
     # the edge under a label's letters is hidden: measured without the ink there
     hidden = _under_text(ctx, g, spots.load_bearing)
@@ -832,7 +832,15 @@ def measure_print(ctx: _Context, group: Group, *, index: int = 0, sensitivity: b
     )
     margin = max(mm_to_px_length(opts.group_distance_mm, s), 1.5 * spots.tread_gap)
     flags, warnings = _print_flags(
-        ctx, group, m, index, int(np.ceil(margin)), padded=g, kept=kept, hidden=hidden
+        ctx,
+        group,
+        m,
+        index,
+        int(np.ceil(margin)),
+        padded=g,
+        kept=kept,
+        hidden=hidden,
+        faint=line_ink,
     )
     flags, warnings = _edge_mark_flags(ctx, g, m, index, (kept, hidden), flags, warnings)
     faint = _faint_excess(ctx, g, spots, m, grey=grey, local=local, aside=aside, kept=kept)
@@ -861,6 +869,42 @@ def measure_print(ctx: _Context, group: Group, *, index: int = 0, sensitivity: b
         warnings=warnings,
         unit=ctx.scan.unit,
     )
+
+
+def _without_faint_lines(ctx: _Context, g: Group, group: Group) -> tuple:
+    """The print's box ``g`` with faint page-axis lines divided out of its grey
+    (:func:`inkprint.faintlines.without_faint_lines`), read on the paper within
+    ``faint_line_reach_mm`` of the print's ink box (``group``), and the ink that
+    was ink only for a line's grey (lighter than half contrast without it: the
+    bulge where a line crosses the edge, a line's dash touching it) set aside.
+    Returns the box (its mask without that ink), its grey and that ink."""
+    import cv2
+
+    opts, s = ctx.opts, ctx.scan.mm_per_px
+    reach = max(2, round(mm_to_px_length(opts.faint_line_reach_mm, s)))
+    big = _padded(group, ctx.page.work.shape, reach)
+    grey = _grey(ctx.scan, ctx.page, big.rows, big.cols)
+    sub_g, sub_m = grey[::3, ::3], big.mask[::3, ::3]
+    paper = float(np.median(sub_g[~sub_m]))
+    ink = float(np.median(sub_g[sub_m])) if sub_m.any() else 0.0
+    r, c = group.rows.start - big.rows.start, group.cols.start - big.cols.start
+    h, w = group.mask.shape
+    half = 0.5 * (paper + ink)
+    flat, on_line = without_faint_lines(
+        grey,
+        (r, r + h, c, c + w),
+        line_px=max(1, round(mm_to_px_length(opts.faint_line_mm, s))),
+        darker=opts.faint_line_contrast * max(paper - ink, 0.0),
+        least=opts.faint_line_least,
+    )
+    r, c = g.rows.start - big.rows.start, g.cols.start - big.cols.start
+    box = (slice(r, r + g.mask.shape[0]), slice(c, c + g.mask.shape[1]))
+    grey, on_line = flat[box], on_line[box]
+    # only the outline's pixels: a bulge, a line's stub (the ink inside stays ink
+    # whatever the line's grey over it)
+    rim = g.mask & ~cv2.erode(g.mask.view(np.uint8), np.ones((3, 3), np.uint8)).view(bool)
+    faint = rim & on_line & (grey > half)
+    return dataclasses.replace(g, mask=g.mask & ~faint), grey, faint
 
 
 def _edge_mark_flags(ctx: _Context, g: Group, m, index: int, ink: tuple, flags, warnings):
@@ -1267,11 +1311,12 @@ def _print_flags(
     padded: Group,
     kept: np.ndarray,
     hidden: np.ndarray | None = None,
+    faint: np.ndarray | None = None,
 ) -> tuple[tuple, tuple]:
     flags, warnings = _line_flags(ctx, g, m, index, padded=padded, kept=kept, hidden=hidden)
     pull = 0.0
     if "mark_on_edge" not in flags:
-        pull = _mark_pull(ctx, padded, kept, m.metrics.orientation, hidden=hidden)
+        pull = _mark_pull(ctx, padded, kept, m.metrics.orientation, hidden=hidden, faint=faint)
     if pull > ctx.opts.mark_pull:
         flags.append("mark_on_edge")
         warnings.append(
@@ -1465,7 +1510,13 @@ def _dark_beside(grey, own: np.ndarray, band: np.ndarray, t: int, dark_below) ->
 
 
 def _mark_pull(
-    ctx: _Context, g: Group, kept: np.ndarray, angle: float, *, hidden: np.ndarray | None = None
+    ctx: _Context,
+    g: Group,
+    kept: np.ndarray,
+    angle: float,
+    *,
+    hidden: np.ndarray | None = None,
+    faint: np.ndarray | None = None,
 ) -> float:
     """How much ink set aside (larger than a speck, not a gridline taken out) touching
     the print may have pulled it out: the largest relative excess of its length or
@@ -1475,7 +1526,8 @@ def _mark_pull(
     hull spans the notch).
     ``g`` is the print's padded box, ``kept`` its ink measured (over ``g.mask``'s
     box): what the edge-spot rule took out of the group (a letter's strokes) counts
-    as set aside."""
+    as set aside; ink that was ink only for a faint line's grey (``faint``, over
+    ``g.mask``'s box: :func:`_without_faint_lines`) does not."""
     import cv2
 
     h, w = ctx.page.work.shape
@@ -1491,8 +1543,10 @@ def _mark_pull(
         ink &= ~ctx.found.grid.removed[r0:r1, c0:c1]
     own = np.zeros(ink.shape, bool)
     own[g.rows.start - r0 : g.rows.stop - r0, g.cols.start - c0 : g.cols.stop - c0] = kept
-    if hidden is not None:  # the print's own ink under a label is not a mark
-        ink[g.rows.start - r0 : g.rows.stop - r0, g.cols.start - c0 : g.cols.stop - c0] &= ~hidden
+    box = (slice(g.rows.start - r0, g.rows.stop - r0), slice(g.cols.start - c0, g.cols.stop - c0))
+    for no_mark in (hidden, faint):  # the print's ink under a label; a line's grey
+        if no_mark is not None:
+            ink[box] &= ~no_mark
     aside = remove_specks(ink & ~own, area_mm2_to_px(ctx.opts.speck_area_mm2, ctx.scan.mm_per_px))
     if not aside.any():
         return 0.0

@@ -67,6 +67,10 @@ _RULES = {
     "edge_spot_pattern_factor": (lambda v: v >= 0, ">= 0 (times the core's tread gap)"),
     "edge_window_mm": (lambda v: v > 0, "> 0 mm"),
     "edge_pip_jump": (lambda v: 0 < v <= 1, "a share of the paper-to-ink contrast in (0, 1]"),
+    "faint_line_mm": (lambda v: v > 0, "> 0 mm"),
+    "faint_line_reach_mm": (lambda v: v > 0, "> 0 mm"),
+    "faint_line_contrast": (lambda v: v > 0, "> 0 (a share of the paper-to-ink contrast)"),
+    "faint_line_least": (lambda v: 0 < v <= 1, "a transmission in (0, 1]"),
     "tip_block_strokes": (lambda v: v >= 0, ">= 0 (times the stroke width)"),
     "tip_taper_strokes": (lambda v: 0 <= v <= 1, "in [0, 1] (times the stroke width)"),
     "tread_teeth": (lambda v: v >= 0 and float(v).is_integer(), "a whole number >= 0"),
@@ -284,6 +288,23 @@ class AnalysisOptions:
         outline takes the neighbours' level there (a print's edge changes by
         1 / (2 R) per pixel, R its radius of curvature in pixels: under 0.3 for
         R above 1.7 px, a 0.3 mm tip at 150 dpi).
+    faint_line_mm : float [mm]
+        The widest faint page-axis line (a chart paper's gridline) divided out of a
+        print's grey before its edge is found (:mod:`inkprint.faintlines`): where
+        such a line crosses the edge the blurred edge and the line's grey add up
+        and the outline bulged by a pixel (tiny prints on chart paper: width +1 to
+        +5 %, unflagged).
+    faint_line_reach_mm : float [mm]
+        The margin of paper around the print's box in which each row's and
+        column's line is read (the lighter side's median grey).
+    faint_line_contrast : float [-]
+        A row (column) darker than the rows near it by more than this share of the
+        paper-to-ink contrast holds a line.
+    faint_line_least : float [-]
+        Only lines letting through this share of the paper's light or more are
+        divided out: a darker line thresholds as ink and is taken out as a
+        gridline (:mod:`inkprint.gridlines`), and ink printed over it may hide
+        under it rather than multiply with it.
     tip_block_strokes : float [-]
         A thin piece apart from a print off its ends along its major axis may be a
         tip block the outline cut to a sliver (left to the edge-spot rule) only when
@@ -487,6 +508,10 @@ class AnalysisOptions:
     edge_spot_pattern_factor: float = 2.0
     edge_window_mm: float = 0.6
     edge_pip_jump: float = 0.35
+    faint_line_mm: float = 0.3
+    faint_line_reach_mm: float = 2.0
+    faint_line_contrast: float = 0.03
+    faint_line_least: float = 0.5
     tip_block_strokes: float = 2.0
     tip_taper_strokes: float = 0.5
     tread_teeth: int = 3
