@@ -36,13 +36,22 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from .apart import split_apart
 from .binarize import Binarization, below, binarize, remove_specks
 from .components import components_with_stats, pixel_sums
-from .coords import area_mm2_to_px, area_px_to_mm2, mm_to_px_length, px_to_mm, px_to_mm_length
+from .coords import (
+    area_mm2_to_px,
+    area_px_to_mm2,
+    mm_per_px_to_dpi,
+    mm_to_px_length,
+    px_to_mm,
+    px_to_mm_length,
+)
 from .errors import InvalidInput, NoInk
 from .faintlines import without_faint_lines
 from .gridlines import Gridlines, find_gridlines, stroke_px
 from .group import SMALL_PRINT_MM2, Group, PrintCheck, _sides, edge_spots, is_print, outline_points
+from .lattice import CORNER_FLAG, CORNER_SHORT_PX, coarse_elements, lattice_prints
 from .light import Page, light_spread, prepare_page
 from .marks import BOLD_REASON, Mark, SortedInk, sort_ink
 from .options import AnalysisOptions, resolve_options, resolve_threads
@@ -546,7 +555,8 @@ def find_prints(
     marks, kept = list(ink.marks), []
     if grid is not None:
         marks.append(_grid_mark(grid.removed, mm_per_px))
-    for g0 in ink.groups:
+    parts = [p for g0 in ink.groups for p in split_apart(g0, mm_per_px=mm_per_px, options=opts)]
+    for g0 in parts:
         g = dataclasses.replace(g0, mask=remove_specks(g0.mask, speck_px))
         if not g.mask.any():
             continue
@@ -577,7 +587,37 @@ def find_prints(
             marks.append(_group_mark(g, "fragment", why, mm_per_px))
         else:
             groups.append(g)
+    lattice = lattice_prints(
+        mask if grid is None else mask & ~grid.removed, groups, mm_per_px=mm_per_px, options=opts
+    )
+    if lattice:  # their elements were set aside as writing or dust
+        marks = [mk for mk in marks if not any(_holds(g, mk.bbox) for g in lattice)]
+        groups = sorted(groups + lattice, key=lambda g: (g.rows.start + g.rows.stop, g.cols.start))
     return FoundPrints(groups, marks, ink, grid)
+
+
+def _coarse_flag(group: Group, width_mm: float, index: int, mm_per_px: float) -> tuple:
+    """``('coarse_elements', warning)`` for a tiny print of separate elements too few
+    pixels wide (:func:`inkprint.lattice.coarse_elements`), else ``()``."""
+    short = coarse_elements(group, width_mm, mm_per_px)
+    if short <= CORNER_FLAG:
+        return ()
+    # the resolution at which CORNER_SHORT_PX is CORNER_FLAG of the width
+    dpi = mm_per_px_to_dpi(CORNER_FLAG * width_mm / CORNER_SHORT_PX)
+    return (
+        "coarse_elements",
+        f"print #{index}: a tiny print of separate tread elements, "
+        f"{mm_to_px_length(width_mm, mm_per_px):.0f} px wide at this resolution: its "
+        f"outline is its elements' corners, which the edge cuts short by about half a "
+        f"pixel across (width about {100 * short:.1f} % low); rescan at {dpi:.0f} dpi or "
+        f"more",
+    )
+
+
+def _holds(g: Group, bbox) -> bool:
+    """Whether a mark's box (r0, c0, r1, c1) lies within the group's."""
+    r0, c0, r1, c1 = bbox
+    return g.rows.start <= r0 and r1 <= g.rows.stop and g.cols.start <= c0 and c1 <= g.cols.stop
 
 
 def _without_texture_bits(kept: list, marks: list, shape, mm_per_px: float) -> list:
@@ -853,6 +893,8 @@ def measure_print(ctx: _Context, group: Group, *, index: int = 0, sensitivity: b
             f"{100 * faint:.1f} % larger. Which is right is a judgement: see the overlay, "
             f"or set --edge-spot-faintness (0 keeps every blob)",
         )
+    coarse = _coarse_flag(group, m.metrics.width, index, s)
+    flags, warnings = flags + coarse[:1], warnings + coarse[1:]
     light = _light_flag(ctx, g, grey, spots.load_bearing, index)
     flags, warnings = flags + light[:1], warnings + light[1:]
     return PrintResult(

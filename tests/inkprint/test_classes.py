@@ -242,14 +242,16 @@ def test_group_blobs_bold_letters_beside_a_slick_print_stay_apart():
 
 
 @pytest.mark.parametrize(
-    ("apart", "n", "flagged"), [(12.0, 1, True), (14.0, 2, True), (22.0, 2, False)]
+    ("apart", "n", "flagged"), [(12.0, 2, True), (14.0, 2, True), (22.0, 2, False)]
 )
 def test_group_blobs_side_by_side_prints_near_the_limit_are_flagged(apart, n, flagged):
     # two 90 x 30 mm slick prints side by side 12, 14 and 22 mm apart: 0.17, 0.19 and
     # 0.27 x the 72-82 mm they would make together. Near group_print_gap (0.18) it
     # could be a car print's ribs or two prints: joined or not, flagged, and
     # --group-mm decides; 22 mm apart they are two prints (before, the size rule
-    # joined them up to 0.75 x their 30 mm width: one print 82 mm wide, unflagged)
+    # joined them up to 0.75 x their 30 mm width: one print 82 mm wide, unflagged).
+    # 12 mm apart they were joined, flagged; their rounded sides facing the band of
+    # paper between them now cut them apart (inkprint.apart), still flagged
     p = [
         PrintSpec(90, 30, (100, 60 + 30 + apart), 0.0, "slick", unevenness=0.0),
         PrintSpec(90, 30, (100, 60), 0.0, "slick", unevenness=0.0),

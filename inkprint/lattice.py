@@ -1,0 +1,129 @@
+"""Tiny prints of separate tread elements: a track or file tire's print 2.5-4 mm wide
+and 10-18 mm long whose tread prints as a lattice of diamonds or dots (0.5-1.5 mm,
+1-2 mm apart) with no body joining them. Each element is too small to count as a
+print's thick ink, and the whole is neither solid (as a tiny print must otherwise
+be: :func:`inkprint.group.is_print`) nor large enough for a fine tread's field
+(``fine_min_elements``): such prints were set aside as writing or dust and went
+missing (held-out sets: 11 of 12 tiny file prints on two sets of 120 sheets).
+
+Among the ink left over once the prints are found, a *lattice print* is a field of
+at least :data:`LATTICE_MIN` elements that :func:`inkprint.marks._fine_fields`
+finds regular, two-dimensional and dense (compact elements alike in size and
+spacing, each with neighbours on several sides), and that is shaped like a tiny
+print: no wider than :data:`LATTICE_MAX_WIDTH_MM`, no longer than
+:data:`LATTICE_MAX_LENGTH_MM`. Writing is strokes of many shapes along a line, dust
+isolated specks, a dot-grid paper's dots farther apart than ``fine_spacing_mm``.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+
+import numpy as np
+
+from .components import components_with_stats
+from .coords import area_px_to_mm2, mm_to_px_length, px_to_mm_length
+from .group import Group
+
+__all__ = ["coarse_elements", "lattice_prints"]
+
+#: fewest elements of a lattice print (a 10 x 2.5 mm print of 1.5 mm diamonds has 12)
+LATTICE_MIN = 10
+#: the widest and longest lattice print [mm]: a wider or longer field of separate
+#: elements is a fine tread's and is found with its print's body (or is no print)
+LATTICE_MAX_WIDTH_MM = 6.0
+LATTICE_MAX_LENGTH_MM = 30.0
+#: the half-contrast outline of a lattice print falls about this many pixels short
+#: across it: its extremes are elements' rounded corners (drawn diamond lattices
+#: at 300-600 dpi: 0.34-0.57 px; held-out prints at 150 and 300 dpi: 0.59, 0.35)
+CORNER_SHORT_PX = 0.5
+#: ... a print is flagged ``coarse_elements`` when that is more than this share of
+#: its width (the accuracy bar's 1 %: under 50 px across, 4.2 mm at 300 dpi)
+CORNER_FLAG = 0.01
+#: share of the median element's area above which a blob is one of the print's
+#: elements, not an edge spot (as ``marks.FINE_PART``)
+LATTICE_PART = 0.25
+
+
+def lattice_prints(ink, taken: list, *, mm_per_px: float, options) -> list:
+    """The tiny prints made of separate elements in the ink no print took.
+
+    Parameters
+    ----------
+    ink : (h, w) bool
+        The sheet's ink (gridlines taken out).
+    taken : list of Group
+        The prints found; their ink is left out.
+    mm_per_px : float [mm / px]
+    options : AnalysisOptions
+        ``fine_*`` thresholds (``fine_min_elements`` lowered to :data:`LATTICE_MIN`).
+
+    Returns
+    -------
+    list of Group
+        The lattice prints, each with ``fine_area_mm2`` set (its elements are its
+        core for the section 7.1.1 rule).
+    """
+    import cv2
+
+    from .marks import _fine_fields
+
+    rest = ink.copy()
+    for g in taken:
+        rest[g.rows, g.cols] &= ~g.mask
+    n, lab, st, cen = components_with_stats(rest, connectivity=8)
+    if n <= LATTICE_MIN:
+        return []
+    opts = dataclasses.replace(options, fine_min_elements=LATTICE_MIN)
+    fine = _fine_fields(st, cen, mm_per_px, opts)
+    if fine.sum() < LATTICE_MIN:
+        return []
+    elements = fine[lab]
+    # one field: elements within fine_spacing_mm of one another
+    k = max(3, round(mm_to_px_length(options.fine_spacing_mm, mm_per_px)) | 1)
+    near = cv2.dilate(
+        elements.view(np.uint8), cv2.getStructuringElement(cv2.MORPH_ELLIPSE, (k, k))
+    )
+    m, fields, fst, _ = components_with_stats(near, connectivity=8)
+    of = np.zeros(n, np.int64)
+    of[fine] = fields[np.round(cen[fine, 1]).astype(int), np.round(cen[fine, 0]).astype(int)]
+    out = []
+    for f in range(1, m):
+        mine = np.flatnonzero(fine & (of == f))
+        if len(mine) < LATTICE_MIN:
+            continue
+        x, y, w, h = (int(v) for v in fst[f, :4])
+        rows, cols = slice(y, y + h), slice(x, x + w)
+        mask = np.isin(lab[rows, cols], mine)
+        pts = cv2.findNonZero(mask.view(np.uint8))
+        (_, _), (a, b), _ = cv2.minAreaRect(pts)
+        width, length = sorted(px_to_mm_length(np.array([a, b]) + 1.0, mm_per_px))
+        if width > LATTICE_MAX_WIDTH_MM or length > LATTICE_MAX_LENGTH_MM:
+            continue
+        area = LATTICE_PART * float(
+            np.median(area_px_to_mm2(st[mine, 4].astype(float), mm_per_px))
+        )
+        out.append(Group(rows, cols, mask, fine_area_mm2=area))
+    return out
+
+
+def coarse_elements(group: Group, width_mm: float, mm_per_px: float) -> float:
+    """How much a tiny print of separate elements may read too narrow: about
+    :data:`CORNER_SHORT_PX` over its width in pixels (0 for any other print: a
+    fine-tread print wider than :data:`LATTICE_MAX_WIDTH_MM` or one with a body).
+
+    Parameters
+    ----------
+    group : Group
+    width_mm : float [mm]
+        The print's width as measured.
+    mm_per_px : float [mm / px]
+
+    Returns
+    -------
+    float
+        A relative error [-].
+    """
+    if group.fine_area_mm2 <= 0 or not 0 < width_mm <= LATTICE_MAX_WIDTH_MM:
+        return 0.0
+    return px_to_mm_length(CORNER_SHORT_PX, mm_per_px) / width_mm

@@ -1,0 +1,82 @@
+"""Two prints joined across a band of bare paper are cut apart (inkprint.apart,
+issue 11): knobby prints 10-17 mm apart were joined as one print because the gap is
+within three times the knobs' own gaps (held-out set 11 sheet 22: two motorcycle
+prints, one 160 x 123 mm "print", status ok)."""
+
+import pytest
+from numpy.testing import assert_allclose
+
+import inkprint as ip
+from inkprint.apart import split_apart
+from inkprint.group import Group
+from inkprint.options import AnalysisOptions
+from inkprint.read import Scan
+from inkprint.synth import PrintSpec, SheetSpec, render_sheet
+
+DPI = 200.0
+
+
+def _analyze(prints, *, size=(160.0, 240.0), options=None):
+    img, truth = render_sheet(SheetSpec(tuple(prints), dpi=DPI, size=size, specks=20))
+    scan = Scan(img, 25.4 / DPI, "given")
+    res = ip.analyze_scan(scan, rolling_axis="x", sensitivity=False, options=options)
+    return res.prints, truth
+
+
+def _stacked(gap):
+    """Two mtb prints (knobs 5 mm, grooves 6 mm) one above the other, ``gap`` [mm]
+    between their outlines."""
+    a = PrintSpec(90.0, 50.0, (80.0, 60.0), 0.0, "mtb")
+    b = PrintSpec(80.0, 45.0, (80.0, 60.0 + 25.0 + 22.5 + gap), 0.0, "mtb")
+    return [a, b]
+
+
+def test_analyze_scan_knobby_prints_15_mm_apart_are_two_prints():
+    prints, truth = _analyze(_stacked(15.0))
+    assert len(prints) == 2
+    got = sorted((p.metrics.length, p.metrics.width, p.metrics.hull_area) for p in prints)
+    want = sorted((t.length, t.width, t.hull_area) for t in truth)
+    assert_allclose(got, want, rtol=0.01)
+    assert all(not p.flags for p in prints)
+
+
+@pytest.mark.parametrize("prints", [_stacked(10.0), "end to end"])
+def test_analyze_scan_knobby_prints_cut_near_the_limit_are_flagged(prints):
+    # the band only 2.5-4 times the knobs' own gaps: two prints, flagged
+    if prints == "end to end":
+        prints = [
+            PrintSpec(60.0, 50.0, (45.0, 120.0), 0.0, "mtb"),
+            PrintSpec(60.0, 50.0, (119.0, 120.0), 0.0, "mtb"),
+        ]
+    found, truth = _analyze(prints, size=(200.0, 240.0))
+    assert len(found) == 2
+    assert all("grouping_uncertain" in p.flags for p in found)
+    got = sorted((p.metrics.length, p.metrics.width) for p in found)
+    assert_allclose(got, sorted((t.length, t.width) for t in truth), rtol=0.01)
+
+
+@pytest.mark.parametrize(
+    "spec",
+    [
+        PrintSpec(120.0, 70.0, (80.0, 120.0), 0.0, "car", block=28.0, gap=14.0),
+        PrintSpec(140.0, 100.0, (80.0, 120.0), 0.0, "car", block=28.0, gap=10.0),
+        PrintSpec(140.0, 66.0, (80.0, 120.0), 0.0, "car", block=28.0, gap=10.0, sipe=1.5),
+        PrintSpec(110.0, 60.0, (80.0, 120.0), 0.0, "mtb"),
+    ],
+    ids=["car-2-ribs", "car-4-ribs", "car-sipes", "mtb"],
+)
+def test_analyze_scan_one_print_across_its_grooves_stays_one(spec):
+    # a car print's ribs face its grooves with their full length: one print
+    (p,), (t,) = _analyze([spec])
+    assert_allclose([p.metrics.length, p.metrics.width], [t.length, t.width], rtol=0.01)
+    assert "grouping_uncertain" not in p.flags
+
+
+def test_split_apart_off_when_group_mm_is_given():
+    sheet = SheetSpec(tuple(_stacked(15.0)), dpi=DPI, size=(160.0, 240.0), specks=0, grain=0.0)
+    img, _ = render_sheet(sheet)
+    mask = img < 128
+    g = Group(slice(0, mask.shape[0]), slice(0, mask.shape[1]), mask)
+    mm = 25.4 / DPI
+    assert len(split_apart(g, mm_per_px=mm, options=AnalysisOptions())) == 2
+    assert split_apart(g, mm_per_px=mm, options=AnalysisOptions(group_mm=30.0)) == [g]
