@@ -588,7 +588,11 @@ def find_prints(
         else:
             groups.append(g)
     lattice = lattice_prints(
-        mask if grid is None else mask & ~grid.removed, groups, mm_per_px=mm_per_px, options=opts
+        mask if grid is None else mask & ~grid.removed,
+        groups,
+        marks=marks,
+        mm_per_px=mm_per_px,
+        options=opts,
     )
     if lattice:  # their elements were set aside as writing or dust
         marks = [mk for mk in marks if not any(_holds(g, mk.bbox) for g in lattice)]
@@ -919,7 +923,8 @@ def _without_faint_lines(ctx: _Context, g: Group, group: Group) -> tuple:
     ``faint_line_reach_mm`` of the print's ink box (``group``), and the ink that
     was ink only for a line's grey (lighter than half contrast without it: the
     bulge where a line crosses the edge, a line's dash touching it) set aside.
-    Returns the box (its mask without that ink), its grey and that ink."""
+    Returns the box (its mask without that ink), its grey and that ink (None: no
+    line found)."""
     import cv2
 
     opts, s = ctx.opts, ctx.scan.mm_per_px
@@ -942,6 +947,8 @@ def _without_faint_lines(ctx: _Context, g: Group, group: Group) -> tuple:
     r, c = g.rows.start - big.rows.start, g.cols.start - big.cols.start
     box = (slice(r, r + g.mask.shape[0]), slice(c, c + g.mask.shape[1]))
     grey, on_line = flat[box], on_line[box]
+    if not on_line.any():
+        return g, grey, None
     # only the outline's pixels: a bulge, a line's stub (the ink inside stays ink
     # whatever the line's grey over it)
     rim = g.mask & ~cv2.erode(g.mask.view(np.uint8), np.ones((3, 3), np.uint8)).view(bool)

@@ -85,17 +85,31 @@ def split_apart(group: Group, *, mm_per_px: float, options) -> list[Group]:
     list of Group
         ``[group]``, or its two parts (the same attributes, their own boxes).
     """
+    import cv2
+
     if options.group_mm is not None:
         return [group]
-    bin_px = max(1.0, mm_to_px_length(BIN_MM, mm_per_px))
-    step = max(1, int(bin_px // 2))
-    rr, cc = np.nonzero(group.mask[::step, ::step])
+    least = mm_to_px_length(options.group_distance_mm, mm_per_px)
+    h, w = group.mask.shape
+    # too small to hold two parts and a band: each part twice the band beyond it
+    if np.hypot(h, w) < (1 + 2 * APART_SIDE) * APART_RATIO * least:
+        return [group]
+    # on a grid of BIN_MM cells (any ink in a cell): a cell's centre is within
+    # half a cell of its ink, so a band of empty bins is paper
+    q = max(1, int(mm_to_px_length(BIN_MM, mm_per_px)))
+    small = cv2.resize(
+        group.mask.view(np.uint8) * np.uint8(255),
+        (max(w // q, 1), max(h // q, 1)),
+        interpolation=cv2.INTER_AREA,
+    )
+    rr, cc = np.nonzero(small)
     if len(rr) < 50:
         return [group]
-    y, x = rr * step + 0.5 * step, cc * step + 0.5 * step
+    sy, sx = h / small.shape[0], w / small.shape[1]  # sheet px per cell
+    bin_px = max(sy, sx)
+    y, x = (rr + 0.5) * sy, (cc + 0.5) * sx
     xy = np.column_stack([x - x.mean(), y - y.mean()])
     _, vecs = np.linalg.eigh(xy.T @ xy)
-    least = mm_to_px_length(options.group_distance_mm, mm_per_px)
     for axis in vecs.T:
         u = xy @ axis
         v = xy @ np.array([-axis[1], axis[0]])

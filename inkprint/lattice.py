@@ -45,7 +45,31 @@ CORNER_FLAG = 0.01
 LATTICE_PART = 0.25
 
 
-def lattice_prints(ink, taken: list, *, mm_per_px: float, options) -> list:
+#: marks that may hold a lattice print's elements (not lines, noise or texture)
+ELEMENT_KINDS = ("text", "dust", "writing", "fragment", "sliver")
+
+
+def _candidate_box(marks: list, mm_per_px: float, options) -> tuple | None:
+    """The box (r0, c0, r1, c1) [px] of the marks that may be a lattice print's
+    elements or hold them, or None when too few: :data:`LATTICE_MIN` marks an
+    element's size (``FINE_ELEMENT_MIN_MM`` to ``fine_element_mm``) or one group
+    of them no longer than :data:`LATTICE_MAX_LENGTH_MM`. A sheet without such marks
+    (most: prints, a label's few letters, one-pixel dust) is not searched."""
+    from .marks import FINE_ELEMENT_MIN_MM
+
+    boxes = np.array([m.bbox for m in marks if m.kind in ELEMENT_KINDS], float).reshape(-1, 4)
+    ext = px_to_mm_length(
+        np.maximum(boxes[:, 2] - boxes[:, 0], boxes[:, 3] - boxes[:, 1]), mm_per_px
+    )
+    element = (ext >= FINE_ELEMENT_MIN_MM) & (ext <= options.fine_element_mm)
+    whole = (ext > options.fine_element_mm) & (ext <= LATTICE_MAX_LENGTH_MM)
+    if element.sum() < LATTICE_MIN and not whole.any():
+        return None
+    use = boxes[element | whole]
+    return tuple(int(v) for v in (*use[:, :2].min(axis=0), *use[:, 2:].max(axis=0)))
+
+
+def lattice_prints(ink, taken: list, *, marks: list, mm_per_px: float, options) -> list:
     """The tiny prints made of separate elements in the ink no print took.
 
     Parameters
@@ -54,6 +78,8 @@ def lattice_prints(ink, taken: list, *, mm_per_px: float, options) -> list:
         The sheet's ink (gridlines taken out).
     taken : list of Group
         The prints found; their ink is left out.
+    marks : list of Mark
+        The ink set aside: only where marks of an element's size lie is searched.
     mm_per_px : float [mm / px]
     options : AnalysisOptions
         ``fine_*`` thresholds (``fine_min_elements`` lowered to :data:`LATTICE_MIN`).
@@ -68,9 +94,21 @@ def lattice_prints(ink, taken: list, *, mm_per_px: float, options) -> list:
 
     from .marks import _fine_fields
 
-    rest = ink.copy()
-    for g in taken:
-        rest[g.rows, g.cols] &= ~g.mask
+    box = _candidate_box(marks, mm_per_px, options)
+    if box is None:
+        return []
+    pad = round(mm_to_px_length(options.fine_spacing_mm, mm_per_px)) + 1
+    r0, c0 = max(box[0] - pad, 0), max(box[1] - pad, 0)
+    r1, c1 = min(box[2] + pad, ink.shape[0]), min(box[3] + pad, ink.shape[1])
+    rest = ink[r0:r1, c0:c1].copy()
+    for g in taken:  # the prints' ink within the box is no element
+        a0, b0 = max(g.rows.start, r0), max(g.cols.start, c0)
+        a1, b1 = min(g.rows.stop, r1), min(g.cols.stop, c1)
+        if a0 < a1 and b0 < b1:
+            own = g.mask[
+                a0 - g.rows.start : a1 - g.rows.start, b0 - g.cols.start : b1 - g.cols.start
+            ]
+            rest[a0 - r0 : a1 - r0, b0 - c0 : b1 - c0] &= ~own
     n, lab, st, cen = components_with_stats(rest, connectivity=8)
     if n <= LATTICE_MIN:
         return []
@@ -93,8 +131,8 @@ def lattice_prints(ink, taken: list, *, mm_per_px: float, options) -> list:
         if len(mine) < LATTICE_MIN:
             continue
         x, y, w, h = (int(v) for v in fst[f, :4])
-        rows, cols = slice(y, y + h), slice(x, x + w)
-        mask = np.isin(lab[rows, cols], mine)
+        mask = np.isin(lab[y : y + h, x : x + w], mine)
+        rows, cols = slice(r0 + y, r0 + y + h), slice(c0 + x, c0 + x + w)
         pts = cv2.findNonZero(mask.view(np.uint8))
         (_, _), (a, b), _ = cv2.minAreaRect(pts)
         width, length = sorted(px_to_mm_length(np.array([a, b]) + 1.0, mm_per_px))
