@@ -629,12 +629,18 @@ def _draw_marks(dark, spec: SheetSpec, grid: _Raster) -> None:
         if isinstance(m, Line):
             draw_line(canvas, m, grid)
         elif isinstance(m, Grid):
-            draw_grid(canvas, m, grid, size=spec.size)
+            if not m.multiply:
+                draw_grid(canvas, m, grid, size=spec.size)
         elif isinstance(m, Text):
             draw_text(canvas, m, grid)
         else:
             raise InvalidInput("marks", type(m).__name__, "Line | Grid | Text")
     np.maximum(dark, canvas.astype(np.float32) / 255.0, out=dark)
+    for m in spec.marks:  # printed chart paper under the ink: the light passes both
+        if isinstance(m, Grid) and m.multiply:
+            lines = np.zeros(dark.shape, np.uint8)
+            draw_grid(lines, m, grid, size=spec.size)
+            dark[:] = 1.0 - (1.0 - dark) * (1.0 - lines.astype(np.float32) / 255.0)
 
 
 def save_scan(image, path, *, dpi: float | None, jpeg_quality: int | None = None) -> Path:

@@ -16,13 +16,15 @@ Classes (:data:`CLASSES`): ``classic`` (Figure 3-2 sheets), ``mtb`` (wide-groove
 knobs), ``car`` (ribs between wide grooves, often wider than long), ``wide``
 (bicycle prints wider than long; the prints of these three are taped square to
 the sheet, within 0.5 degrees, and the manifest gives the rolling axis), ``label`` (pen labels touching prints),
-``ruler`` (a ruler line across a print), ``grid`` (gridlines across the sheet),
+``ruler`` (a ruler line across a print), ``grid`` (gridlines across the sheet; on
+half the sheets also printed millimetre lines too faint to threshold, the ink
+stamped over them),
 ``light`` (gradient and shadow), ``shade`` (a shadow band as wide as a print, a
 strong gradient and a vignette), ``photo`` (on a table, flat-on), ``tilted`` (not
 flat-on), ``turned`` (a print turned 2-10 degrees on the sheet while the manifest
 gives the sheet's axis: flagged ``axis_misaligned``), ``dpi72`` (72 dpi in the file, the true dpi in the manifest), ``pdf``
 (several pages), ``clipped`` (a print off the edge), ``tiny`` (prints under 100
-mm^2), ``noise`` (a page of noise or texture), ``tips`` (dark blocks at the tips and
+mm^2; on half the sheets one of them a lattice of separate diamonds), ``noise`` (a page of noise or texture), ``tips`` (dark blocks at the tips and
 faint specks touching the edge).
 
 :func:`write_case` writes a case's file with its manifest and truth rows;
@@ -235,7 +237,11 @@ def _case_grid(rng, dpi: float) -> Case:
     grid = Grid(
         float(rng.choice([5.0, 10.0])), float(rng.uniform(0.15, 0.3)), float(rng.uniform(0.5, 0.8))
     )
-    sheet = _sheet(prints, dpi, rng, marks=(grid,))
+    # half the sheets: printed millimetre paper, its fine lines too light to
+    # threshold, the ink stamped over them (faint lines, issue 11)
+    fine = Grid(1.0, float(rng.uniform(0.08, 0.15)), float(rng.uniform(0.1, 0.3)), multiply=True)
+    marks = (grid, fine) if rng.random() < 0.5 else (grid,)
+    sheet = _sheet(prints, dpi, rng, marks=marks)
     return Case("grid", (sheet,), ".png", dpi, {}, ((MEASURE,) * 2,))
 
 
@@ -357,6 +363,21 @@ def _moved(p: PrintSpec, center) -> PrintSpec:
     return dataclasses.replace(p, center=(float(center[0]), float(center[1])))
 
 
+def _tiny_lattice(rng, center) -> PrintSpec:
+    """A tiny print of separate diamonds (knurl, 0.9-1.2 mm, no body), 10-16 x
+    3-4 mm, turned at random (:mod:`inkprint.lattice`)."""
+    block = float(rng.uniform(0.9, 1.2))
+    return PrintSpec(
+        float(rng.uniform(10, 16)),
+        float(rng.uniform(3, 4)),
+        center,
+        float(rng.uniform(0, 180)),
+        "knurl",
+        block=block,
+        gap=0.5 * block,
+    )
+
+
 def _case_tiny(rng, dpi: float) -> Case:
     """Prints under 100 mm^2 of ink (a small wheel at high pressure), 600 dpi."""
     dpi = max(dpi, 600.0)
@@ -368,6 +389,8 @@ def _case_tiny(rng, dpi: float) -> Case:
             rng, (50.0, 25.0), tread="slick", length=rng.uniform(9, 16), width=rng.uniform(4, 7)
         ),
     ]
+    if rng.random() < 0.5:  # a track tire's file tread: separate diamonds, no body
+        prints[1] = _tiny_lattice(rng, (50.0, 25.0))
     sheet = SheetSpec(
         tuple(prints), dpi=dpi, size=(100.0, 90.0), seed=int(rng.integers(1 << 30)), specks=30
     )

@@ -61,11 +61,18 @@ class Grid:
     spacing : float [mm]
     width : float [mm]
     darkness : float in (0, 1]
+    multiply : bool
+        The ink and the line both absorb (ink stamped on printed chart paper: the
+        reflectances multiply, the ink over a line darker than either). Default:
+        the darker of the two, as a line drawn over the print. Faint lines that
+        multiply darken a print's blurred edge where they cross it
+        (:mod:`inkprint.faintlines`).
     """
 
     spacing: float = 10.0
     width: float = 0.25
     darkness: float = 0.7
+    multiply: bool = False
 
 
 @dataclass(frozen=True)

@@ -20,6 +20,7 @@ from inkprint.synth import (
     render_sheet,
     superellipse_area,
 )
+from inkprint.synth_effects import Grid
 
 DPI = 300
 
@@ -148,3 +149,26 @@ def test_knurl_rib_is_solid_across_its_width():
     row = dark[img.shape[0] // 2]  # (the print's centre line: y = 120 of 240 mm)
     assert t.width == pytest.approx(24.0, abs=0.5)
     assert np.count_nonzero(row > 0.5) * 25.4 / DPI == pytest.approx(60.0, rel=0.02)
+
+
+def test_grid_multiply_darkens_the_ink_over_a_line():
+    # printed chart paper under the ink: the reflectances multiply (the ink over a
+    # line darker than either); drawn over the print (default), the darker wins
+    p = PrintSpec(40.0, 20.0, (30.0, 30.0), 0.0, "slick", ink=0.6, unevenness=0.0)
+    out = {}
+    for multiply in (False, True):
+        g = Grid(10.0, 1.0, 0.5, multiply=multiply)
+        sheet = SheetSpec((p,), dpi=100.0, size=(60.0, 60.0), specks=0, grain=0.0, marks=(g,))
+        out[multiply], _ = render_sheet(sheet)
+    row = out[True].shape[0] - round(25.0 / 0.254)  # the line at y = 25 mm
+    inside, on = out[True][row - 10, 118], out[True][row, 118]
+    assert on < inside - 20  # ink over the line is darker than the ink
+    assert abs(int(out[False][row, 118]) - int(out[False][row - 10, 118])) < 6
+
+
+def test_tiny_case_draws_lattice_prints_on_half_the_sheets():
+    from inkprint.synth_cases import CLASSES
+
+    rng = np.random.default_rng(3)
+    treads = [CLASSES["tiny"](rng, 600.0).sheets[0].prints[1].tread for _ in range(20)]
+    assert 4 <= treads.count("knurl") <= 16
