@@ -929,7 +929,11 @@ def _without_faint_lines(ctx: _Context, g: Group, group: Group) -> tuple:
 
     opts, s = ctx.opts, ctx.scan.mm_per_px
     reach = max(2, round(mm_to_px_length(opts.faint_line_reach_mm, s)))
-    big = _padded(group, ctx.page.work.shape, reach)
+    # the margin holds the box g at least (its paper for the edge field: wider than
+    # faint_line_reach_mm under 35 dpi, or in pixels without a scale)
+    grown = (group.rows.start - g.rows.start, group.cols.start - g.cols.start)
+    grown += (g.rows.stop - group.rows.stop, g.cols.stop - group.cols.stop)
+    big = _padded(group, ctx.page.work.shape, max(reach, *grown))
     grey = _grey(ctx.scan, ctx.page, big.rows, big.cols)
     sub_g, sub_m = grey[::3, ::3], big.mask[::3, ::3]
     paper = float(np.median(sub_g[~sub_m]))

@@ -147,8 +147,8 @@ def lattice_prints(ink, taken: list, *, marks: list, mm_per_px: float, options) 
 
 def coarse_elements(group: Group, width_mm: float, mm_per_px: float) -> float:
     """How much a tiny print of separate elements may read too narrow: about
-    :data:`CORNER_SHORT_PX` over its width in pixels (0 for any other print: a
-    fine-tread print wider than :data:`LATTICE_MAX_WIDTH_MM` or one with a body).
+    :data:`CORNER_SHORT_PX` over its width in pixels (0 for a print without a fine
+    tread, ``Group.fine_area_mm2``, or wider than :data:`LATTICE_MAX_WIDTH_MM`).
 
     Parameters
     ----------

@@ -124,3 +124,12 @@ def test_without_faint_lines_no_line_returns_the_grey_itself():
     flat, on_line = without_faint_lines(grey, (20, 40, 20, 40), line_px=2, darker=0.02, least=0.25)
     assert flat is grey
     assert not on_line.any()
+
+
+@pytest.mark.parametrize("dpi", [30, 60])
+def test_analyze_scan_faint_lines_at_a_coarse_scale(dpi):
+    # under 35 dpi the lines' 2 mm margin is narrower than the edge field's paper
+    # around the print: the margin grows to hold it (it was an IndexError)
+    grey, mm, (length, width) = chart_paper_print(dpi, 0.0, length=30.0, width=12.0)
+    (p,) = ip.analyze_scan(ip.Scan(grey, mm, "given"), sensitivity=False).prints
+    assert_allclose([p.metrics.length, p.metrics.width], [length, width], rtol=0.05)
