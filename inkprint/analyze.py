@@ -1414,16 +1414,24 @@ def _grouped_or_cut(ctx: _Context, g: Group, index: int, margin: int) -> list:
     print the image's edge may cut."""
     out = []
     if g.doubt_gap_mm > 0:
-        out.append(("grouping_uncertain", _grouping_warning(g, index)))
+        out.append(("grouping_uncertain", _grouping_warning(g, index, ctx.opts.group_mm)))
     cut = clipped(g, ctx.page.work.shape, ctx.page.sheet, margin_px=margin)
     if cut:
         out.append(("clipped", f"print #{index} {cut}"))
     return out
 
 
-def _grouping_warning(g: Group, index: int) -> str:
-    """What a side-by-side grouping near the rule's limit means, and its fix."""
+def _grouping_warning(g: Group, index: int, group_mm: float | None) -> str:
+    """What a side-by-side grouping near the rule's limit means, and its fix (or,
+    ``group_mm`` given, what it kept apart that the rule would join)."""
     gap = g.doubt_gap_mm
+    if group_mm is not None:
+        return (
+            f"print #{index}: ink beside it lies {gap:.1f} mm away, alongside it as a "
+            f"footprint's ribs lie: --group-mm {group_mm:g} keeps it apart as another "
+            f"print; if they are one print (a car tire's ribs), give --group-mm over "
+            f"{gap:.1f} (mm)"
+        )
     if g.doubt_joined:
         return (
             f"print #{index}: parts of it lie side by side {gap:.1f} mm apart, near the "

@@ -560,7 +560,7 @@ def join_side_by_side(
     opts = resolve_options(options)
     k = len(hulls)
     none = PartsJoined(comp, np.zeros(k), np.zeros(k, bool))
-    if k < 2 or opts.group_mm is not None:
+    if k < 2:
         return none
     ga, gb = comp[graph.a], comp[graph.b]
     cross = ga != gb
@@ -600,7 +600,10 @@ def join_side_by_side(
             links.append((g, p, q))
     if not links:
         return none
-    kept, doubt = _kept_joins(_join_tree(links, pts, k), opts)
+    joins = _join_tree(links, pts, k)
+    kept, doubt = _kept_joins(joins, opts)
+    if opts.group_mm is not None:
+        return _kept_apart(comp, k, joins, [v for v in kept if not doubt.keys() & set(v)])
     lab = np.arange(k)
     for leaves in kept:
         lab[leaves] = leaves[0]
@@ -611,6 +614,22 @@ def join_side_by_side(
         if g > gaps[new[i]]:
             gaps[new[i]], joined[new[i]] = g, j
     return PartsJoined(new[comp], gaps, joined)
+
+
+def _kept_apart(comp: np.ndarray, k: int, joins: list, kept: list) -> PartsJoined:
+    """With ``group_mm`` given: the groups apart that the side-by-side rule would
+    join clearly (``kept``: joins not within ``group_doubt_factor`` of its limit,
+    where ``group_mm`` decides), each with the gap of that join as its doubt (not
+    joined). A car print's ribs kept apart by a ``group_mm`` under its grooves
+    (held-out sheets: 13.1 mm given, 18.2 mm grooves) were reported as ribs, each a
+    "print" with status ok; two prints parted on purpose that lie as a footprint's
+    ribs would are flagged too, the warning naming the gap."""
+    gaps = np.zeros(k)
+    for leaves in kept:
+        inside = set(np.ravel(leaves).tolist())
+        g = max(j[0] for j in joins if inside.issuperset(np.ravel(j[1]).tolist()))
+        gaps[leaves] = g
+    return PartsJoined(comp, gaps, np.zeros(k, bool))
 
 
 def _join_tree(links: list, pts: list, k: int) -> list:

@@ -80,3 +80,30 @@ def test_split_apart_off_when_group_mm_is_given():
     mm = 25.4 / DPI
     assert len(split_apart(g, mm_per_px=mm, options=AnalysisOptions())) == 2
     assert split_apart(g, mm_per_px=mm, options=AnalysisOptions(group_mm=30.0)) == [g]
+
+
+@pytest.mark.parametrize(("group_mm", "n"), [(8.0, 3), (12.0, 1)])
+def test_analyze_scan_group_mm_keeping_ribs_apart_is_flagged(group_mm, n):
+    # a car print's ribs 10 mm apart with --group-mm under its grooves (held-out
+    # sheets: 13.1 mm given, 18.2 mm grooves): the ribs were "prints" with status ok
+    spec = PrintSpec(120.0, 90.0, (80.0, 120.0), 0.0, "car", block=28.0, gap=10.0)
+    found, (t,) = _analyze([spec], options=AnalysisOptions(group_mm=group_mm))
+    assert len(found) == n
+    if n == 1:
+        assert_allclose(
+            [found[0].metrics.length, found[0].metrics.width], [t.length, t.width], rtol=0.01
+        )
+        assert found[0].flags == ()
+    else:
+        assert all("grouping_uncertain" in p.flags for p in found)
+        assert all(any("--group-mm over" in w for w in p.warnings) for p in found)
+
+
+def test_analyze_scan_group_mm_two_prints_far_apart_are_not_flagged():
+    # two prints 30 mm apart: the rule keeps them apart too, no doubt
+    prints = [
+        PrintSpec(90.0, 30.0, (80.0, 60.0), 0.0, "slick"),
+        PrintSpec(90.0, 30.0, (80.0, 120.0), 0.0, "slick"),
+    ]
+    found, _ = _analyze(prints, options=AnalysisOptions(group_mm=5.0))
+    assert len(found) == 2 and all(p.flags == () for p in found)
