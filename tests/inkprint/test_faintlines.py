@@ -133,3 +133,19 @@ def test_analyze_scan_faint_lines_at_a_coarse_scale(dpi):
     grey, mm, (length, width) = chart_paper_print(dpi, 0.0, length=30.0, width=12.0)
     (p,) = ip.analyze_scan(ip.Scan(grey, mm, "given"), sensitivity=False).prints
     assert_allclose([p.metrics.length, p.metrics.width], [length, width], rtol=0.05)
+
+
+def test_bulges_keeps_a_line_s_bulge_and_leaves_its_dash_a_mark():
+    # set aside as a faint line's: a 2 px bulge where a line crosses the edge is no
+    # mark on it; a 20 px dash of the line lying on the edge is (inkprint.analyze)
+    from types import SimpleNamespace
+
+    from inkprint.analyze import _bulges
+
+    faint = np.zeros((40, 60), bool)
+    faint[10, 5:7] = True  # the bulge
+    faint[30, 20:40] = True  # the dash
+    ctx = SimpleNamespace(opts=ip.AnalysisOptions(), scan=SimpleNamespace(mm_per_px=0.1))
+    out = _bulges(faint, ctx)
+    assert out[10, 5:7].all() and not out[30].any()
+    assert _bulges(None, ctx) is None
