@@ -277,6 +277,10 @@ def draw_grid(canvas, spec: Grid, grid, *, size: tuple[float, float]) -> None:
     grid : inkprint.synth raster
         As for :func:`draw_line`.
     """
+    if not isinstance(spec.multiply, bool):
+        raise InvalidInput("multiply", spec.multiply, "True or False")
+    if not spec.spacing > 0:  # (np.arange with a step of 0 raised ZeroDivisionError)
+        raise InvalidInput("spacing", spec.spacing, "a spacing > 0 mm")
     w, h = size
     for x in np.arange(spec.spacing / 2, w, spec.spacing):
         draw_line(canvas, Line((x, 0.0), (x, h), spec.width, spec.darkness), grid)

@@ -172,3 +172,19 @@ def test_tiny_case_draws_lattice_prints_on_half_the_sheets():
     rng = np.random.default_rng(3)
     treads = [CLASSES["tiny"](rng, 600.0).sheets[0].prints[1].tread for _ in range(20)]
     assert 4 <= treads.count("knurl") <= 16
+
+
+@pytest.mark.parametrize(
+    ("grid", "match"),
+    [
+        (Grid(multiply="yes"), "multiply"),
+        (Grid(spacing=0.0), "spacing"),
+        (Grid(spacing=float("nan")), "spacing"),
+    ],
+)
+def test_grid_invalid(grid, match):
+    from inkprint.errors import InvalidInput
+
+    p = PrintSpec(20.0, 10.0, (30.0, 30.0))
+    with pytest.raises(InvalidInput, match=match):
+        render_sheet(SheetSpec((p,), dpi=100.0, size=(60.0, 60.0), marks=(grid,)))
