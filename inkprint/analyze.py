@@ -50,7 +50,16 @@ from .coords import (
 from .errors import InvalidInput, NoInk
 from .faintlines import without_faint_lines
 from .gridlines import Gridlines, find_gridlines, stroke_px
-from .group import SMALL_PRINT_MM2, Group, PrintCheck, _sides, edge_spots, is_print, outline_points
+from .group import (
+    SMALL_PRINT_MM2,
+    Group,
+    PrintCheck,
+    _sides,
+    edge_spots,
+    is_print,
+    outline_points,
+    reading_order,
+)
 from .lattice import CORNER_FLAG, CORNER_SHORT_PX, coarse_elements, lattice_prints
 from .light import Page, light_spread, prepare_page
 from .marks import BOLD_REASON, Mark, SortedInk, sort_ink
@@ -183,17 +192,22 @@ def edge_field(
     """
     opts = resolve_options(options)
     lo, hi = local or _local_range(grey, mm_per_px, opts)
-    # levels from a subsample (every 3rd row and column is plenty for two medians)
-    sub_g, sub_m = grey[::3, ::3], mask[::3, ::3]
-    if sub_m.any() and (~sub_m).any():
-        ink, paper = np.median(sub_g[sub_m]), np.median(sub_g[~sub_m])
-    else:
-        ink, paper = 0.0, 1.0
+    paper, ink = _paper_and_ink(grey, mask)
     lo = np.minimum(lo, np.float32(ink))
     sharp = (hi - lo) > 0.5 * max(paper - ink, 1e-6)
     level = np.where(mask, np.float32(-0.5), np.float32(0.5))
     f = np.where(sharp, grey - 0.5 * (lo + hi), level).astype(np.float32, copy=False)
     return _smooth_pips(f, mask, opts.edge_pip_jump * max(paper - ink, 1e-6))
+
+
+def _paper_and_ink(grey, mask) -> tuple:
+    """The median grey of the paper (not ``mask``) and of the ink (``mask``) in a
+    box, from every 3rd row and column (plenty for two medians), in the grey's
+    dtype; (1.0, 0.0) when the box holds no ink or no paper."""
+    sub_g, sub_m = grey[::3, ::3], mask[::3, ::3]
+    if sub_m.any() and (~sub_m).any():
+        return np.median(sub_g[~sub_m]), np.median(sub_g[sub_m])
+    return 1.0, 0.0
 
 
 def _local_range(grey, mm_per_px: float, opts: AnalysisOptions) -> tuple:
@@ -549,9 +563,8 @@ def find_prints(
     floor = opts.patch_area_floor(area)
     speck_px = area_mm2_to_px(opts.speck_area_mm2, mm_per_px)
     grid = find_gridlines(mask, mm_per_px=mm_per_px, options=opts, grey=grey)
-    ink = sort_ink(
-        mask if grid is None else mask & ~grid.removed, mm_per_px=mm_per_px, options=opts
-    )
+    sheet_ink = mask if grid is None else mask & ~grid.removed
+    ink = sort_ink(sheet_ink, mm_per_px=mm_per_px, options=opts)
     marks, kept = list(ink.marks), []
     if grid is not None:
         marks.append(_grid_mark(grid.removed, mm_per_px))
@@ -587,16 +600,10 @@ def find_prints(
             marks.append(_group_mark(g, "fragment", why, mm_per_px))
         else:
             groups.append(g)
-    lattice = lattice_prints(
-        mask if grid is None else mask & ~grid.removed,
-        groups,
-        marks=marks,
-        mm_per_px=mm_per_px,
-        options=opts,
-    )
+    lattice = lattice_prints(sheet_ink, groups, marks=marks, mm_per_px=mm_per_px, options=opts)
     if lattice:  # their elements were set aside as writing or dust
         marks = [mk for mk in marks if not any(_holds(g, mk.bbox) for g in lattice)]
-        groups = sorted(groups + lattice, key=lambda g: (g.rows.start + g.rows.stop, g.cols.start))
+        groups = sorted(groups + lattice, key=reading_order)
     return FoundPrints(groups, marks, ink, grid)
 
 
@@ -935,9 +942,7 @@ def _without_faint_lines(ctx: _Context, g: Group, group: Group) -> tuple:
     grown += (g.rows.stop - group.rows.stop, g.cols.stop - group.cols.stop)
     big = _padded(group, ctx.page.work.shape, max(reach, *grown))
     grey = _grey(ctx.scan, ctx.page, big.rows, big.cols)
-    sub_g, sub_m = grey[::3, ::3], big.mask[::3, ::3]
-    paper = float(np.median(sub_g[~sub_m]))
-    ink = float(np.median(sub_g[sub_m])) if sub_m.any() else 0.0
+    paper, ink = (float(v) for v in _paper_and_ink(grey, big.mask))
     r, c = group.rows.start - big.rows.start, group.cols.start - big.cols.start
     h, w = group.mask.shape
     half = 0.5 * (paper + ink)

@@ -120,7 +120,8 @@ def split_apart(group: Group, *, mm_per_px: float, options) -> list[Group]:
         k = int(np.argmax(widths))
         band = widths[k]
         others = np.delete(widths, k)
-        if band < APART_RATIO * max(least, others.max() if len(others) else 0.0):
+        floor = max(least, others.max() if len(others) else 0.0)
+        if band < APART_RATIO * floor:
             continue
         if min(starts[k] - u.min(), u.max() - stops[k]) < APART_SIDE * band:
             continue
@@ -131,7 +132,7 @@ def split_apart(group: Group, *, mm_per_px: float, options) -> list[Group]:
         parts = _cut(group, axis, xy_mean=(x.mean(), y.mean()), at=0.5 * (starts[k] + stops[k]))
         # near the limit, or joined near the side-by-side rule's (a doubt the group
         # carried): two prints, flagged, the warning naming --group-mm
-        sure = band >= APART_SURE * max(least, others.max() if len(others) else 0.0)
+        sure = band >= APART_SURE * floor
         gap = 0.0 if sure and group.doubt_gap_mm <= 0 else px_to_mm_length(band, mm_per_px)
         return [dataclasses.replace(p, doubt_gap_mm=gap, doubt_joined=False) for p in parts]
     return [group]

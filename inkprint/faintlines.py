@@ -7,12 +7,13 @@ held-out chart-paper sheets measured 1.2 to 5.1 % too wide, with status ok.
 
 The lines are taken out of the grey by dividing by their transmission (ink over a
 printed line: the reflectances multiply). A row's transmission is read on the paper
-either side of the print, in the margins of its box: the median grey there against
-the rows near it. Pixels darker than half the contrast (ink, a label's stroke)
-are left out of the median, so only lines fainter than that are found: darker
-gridlines threshold as ink and are taken out as gridlines
-(:mod:`inkprint.gridlines`). Only page-axis lines: chart paper laid on a scanner is
-within a degree or two of the page's axes.
+either side of the print, in the margins of its box: the lighter side's median grey
+(a label beside the print darkens one side only) against the rows near it. Only
+lines letting through ``faint_line_least`` of the light or more are divided out:
+darker gridlines threshold as ink and are taken out as gridlines
+(:mod:`inkprint.gridlines`), and ink over them may hide rather than multiply. Only
+page-axis lines: chart paper laid on a scanner is within a degree or two of the
+page's axes.
 """
 
 from __future__ import annotations

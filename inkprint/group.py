@@ -632,6 +632,23 @@ def _kept_apart(comp: np.ndarray, k: int, joins: list, kept: list) -> PartsJoine
     return PartsJoined(comp, gaps, np.zeros(k, bool))
 
 
+def reading_order(g: Group) -> tuple:
+    """Sort key of the prints on a sheet: top to bottom by the box's middle row,
+    then left to right (the order of ``SortedInk.groups`` and of a sheet's
+    prints).
+
+    Parameters
+    ----------
+    g : Group
+
+    Returns
+    -------
+    (int, int)
+        Twice the box's middle row and its first column [px].
+    """
+    return (g.rows.start + g.rows.stop, g.cols.start)
+
+
 def _join_tree(links: list, pts: list, k: int) -> list:
     """Single linkage of ``k`` groups over ``links`` ((gap, p, q), nearest first):
     the joins, each ``(gap, leaves of the joined node, its hull [mm])``."""
@@ -1680,6 +1697,7 @@ __all__ = [
     "join_tips",
     "linked_edges",
     "merge_overlapping",
+    "reading_order",
     "thin_protrusions",
     "union_labels",
 ]

@@ -24,6 +24,7 @@ import numpy as np
 from .components import components_with_stats
 from .coords import area_px_to_mm2, mm_to_px_length, px_to_mm_length
 from .group import Group
+from .marks import FINE_ELEMENT_MIN_MM, _fine_fields
 
 __all__ = ["coarse_elements", "lattice_prints"]
 
@@ -55,8 +56,6 @@ def _candidate_box(marks: list, mm_per_px: float, options) -> tuple | None:
     element's size (``FINE_ELEMENT_MIN_MM`` to ``fine_element_mm``) or one group
     of them no longer than :data:`LATTICE_MAX_LENGTH_MM`. A sheet without such marks
     (most: prints, a label's few letters, one-pixel dust) is not searched."""
-    from .marks import FINE_ELEMENT_MIN_MM
-
     boxes = np.array([m.bbox for m in marks if m.kind in ELEMENT_KINDS], float).reshape(-1, 4)
     ext = px_to_mm_length(
         np.maximum(boxes[:, 2] - boxes[:, 0], boxes[:, 3] - boxes[:, 1]), mm_per_px
@@ -91,8 +90,6 @@ def lattice_prints(ink, taken: list, *, marks: list, mm_per_px: float, options) 
         core for the section 7.1.1 rule).
     """
     import cv2
-
-    from .marks import _fine_fields
 
     box = _candidate_box(marks, mm_per_px, options)
     if box is None:

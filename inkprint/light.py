@@ -232,8 +232,8 @@ def _bed_strips(small: np.ndarray, paper: float) -> tuple[float, np.ndarray] | N
     of the paper) from the image's edge in to a straight line (the page's edge,
     skewed or not: a strip as wide as :data:`BED_STRIP_MAX` of the image at most,
     its inner edge within :data:`BED_EDGE_PX` of a line, deeper only at its ends and
-    where punch holes meet it, :data:`BED_HOLES`). A print cut by the image's edge is no
-    strip: its edge is curved, its tread breaks the run.
+    where punch holes meet it, :data:`BED_HOLES`). A print cut by the image's edge
+    is no strip: its edge is curved, its tread breaks the run.
 
     Parameters
     ----------

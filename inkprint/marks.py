@@ -87,6 +87,7 @@ from .group import (
     linked_edges,
     merge_overlapping,
     outline_points,
+    reading_order,
     union_labels,
 )
 from .options import AnalysisOptions, resolve_options
@@ -512,8 +513,9 @@ def _straight_skinny(
     """Of the thick ink narrower than two strokes (``skinny``, uint8, a box of the
     pooled mask whose first row and column are ``origin``), the straight lines
     (uint8 over the box): pieces at least ``line_length_mm`` long and at most two
-    strokes wide along their whole length (a ruler's or a drawn line thick enough to survive the
-    opening, where it crosses a print too; a rib follows the outline or is wider).
+    strokes wide along their whole length (a ruler's or a drawn line thick enough
+    to survive the opening, where it crosses a print too; a rib follows the outline
+    or is wider).
 
     A line that touches a narrow sliver of a print (a half block at the edge) is one
     piece with it, too wide as a whole: then the line's own pixels are taken - those
@@ -1909,7 +1911,7 @@ def sort_ink(mask, *, mm_per_px: float, options: AnalysisOptions | None = None) 
         )
         if g
     ]
-    groups.sort(key=lambda g: (g.rows.start + g.rows.stop, g.cols.start))
+    groups.sort(key=reading_order)
     return SortedInk(groups, marks, group_map.marks(), pooled.q, grazed)
 
 

@@ -17,8 +17,9 @@ prints?) were joined or kept apart by a gap near the footprint rule's limit:
 ``--group-mm`` decides; ``coarse_elements`` - a tiny print made of separate tread
 elements (a lattice of diamonds, :mod:`inkprint.lattice`) too few pixels wide at
 this resolution: its outline is its elements' corners, which the half-contrast edge
-cuts short by about half a pixel across, more than 1 % of its width); its measurements are still in the row, for inspection, but
-:mod:`contactpatch`'s pairing skips it. Advisory flags keep ``status = 'ok'``:
+cuts short by about half a pixel across, more than 1 % of its width); its
+measurements are still in the row, for inspection, but :mod:`contactpatch`'s
+pairing skips it. Advisory flags keep ``status = 'ok'``:
 ``uneven_light`` (flattened before thresholding), ``axis_uncertain`` (``auto``
 rolling axis on a print nearly as wide as long: give ``--rolling-axis``).
 """

@@ -24,8 +24,9 @@ strong gradient and a vignette), ``photo`` (on a table, flat-on), ``tilted`` (no
 flat-on), ``turned`` (a print turned 2-10 degrees on the sheet while the manifest
 gives the sheet's axis: flagged ``axis_misaligned``), ``dpi72`` (72 dpi in the file, the true dpi in the manifest), ``pdf``
 (several pages), ``clipped`` (a print off the edge), ``tiny`` (prints under 100
-mm^2; on half the sheets one of them a lattice of separate diamonds), ``noise`` (a page of noise or texture), ``tips`` (dark blocks at the tips and
-faint specks touching the edge).
+mm^2; on half the sheets one of them a lattice of separate diamonds), ``noise`` (a
+page of noise or texture), ``tips`` (dark blocks at the tips and faint specks
+touching the edge).
 
 :func:`write_case` writes a case's file with its manifest and truth rows;
 :func:`make_mixed_set` writes a fresh set of many sheets mixing every class.
