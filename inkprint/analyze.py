@@ -66,6 +66,7 @@ from .marks import BOLD_REASON, Mark, SortedInk, sort_ink
 from .options import AnalysisOptions, resolve_options, resolve_threads
 from .read import Scan, read_scan
 from .results import BAND_KEYS, PrintResult, SheetResult, contact_pressure, marks_summary
+from .stack import stroke_stacks
 
 AXES = ("auto", "x", "y")
 
@@ -601,7 +602,8 @@ def find_prints(
         else:
             groups.append(g)
     lattice = lattice_prints(sheet_ink, groups, marks=marks, mm_per_px=mm_per_px, options=opts)
-    if lattice:  # their elements were set aside as writing or dust
+    lattice += stroke_stacks(sheet_ink, groups + lattice, marks=marks, mm_per_px=mm_per_px)
+    if lattice:  # their elements were set aside as writing, text or dust
         marks = [mk for mk in marks if not any(_holds(g, mk.bbox) for g in lattice)]
         groups = sorted(groups + lattice, key=reading_order)
     return FoundPrints(groups, marks, ink, grid)
@@ -1869,6 +1871,7 @@ def analyze_scan(
         method=method,
         threshold=threshold,
         window_mm=window_mm,
+        sheet=page.sheet,
         options=opts,
     )
     sheet_px = b.mask.size if page.sheet is None else int(np.count_nonzero(page.sheet))

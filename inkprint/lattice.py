@@ -68,6 +68,39 @@ def _candidate_box(marks: list, mm_per_px: float, options) -> tuple | None:
     return tuple(int(v) for v in (*use[:, :2].min(axis=0), *use[:, 2:].max(axis=0)))
 
 
+def leftover_ink(ink, taken: list, *, box: tuple, pad: int) -> tuple:
+    """The ink no print took within a box.
+
+    Parameters
+    ----------
+    ink : (h, w) bool
+        The sheet's ink.
+    taken : list of Group
+        The prints found.
+    box : (4,) int [px]
+        (r0, c0, r1, c1) on the sheet.
+    pad : int [px]
+        The box grown by this on every side (clipped to the sheet).
+
+    Returns
+    -------
+    tuple of ((rows, cols) bool, (2,) int)
+        The ink left over in the grown box, and the box's corner (row, col) [px].
+    """
+    r0, c0 = max(box[0] - pad, 0), max(box[1] - pad, 0)
+    r1, c1 = min(box[2] + pad, ink.shape[0]), min(box[3] + pad, ink.shape[1])
+    rest = ink[r0:r1, c0:c1].copy()
+    for g in taken:  # the prints' ink within the box
+        a0, b0 = max(g.rows.start, r0), max(g.cols.start, c0)
+        a1, b1 = min(g.rows.stop, r1), min(g.cols.stop, c1)
+        if a0 < a1 and b0 < b1:
+            own = g.mask[
+                a0 - g.rows.start : a1 - g.rows.start, b0 - g.cols.start : b1 - g.cols.start
+            ]
+            rest[a0 - r0 : a1 - r0, b0 - c0 : b1 - c0] &= ~own
+    return rest, (r0, c0)
+
+
 def lattice_prints(ink, taken: list, *, marks: list, mm_per_px: float, options) -> list:
     """The tiny prints made of separate elements in the ink no print took.
 
@@ -95,17 +128,7 @@ def lattice_prints(ink, taken: list, *, marks: list, mm_per_px: float, options) 
     if box is None:
         return []
     pad = round(mm_to_px_length(options.fine_spacing_mm, mm_per_px)) + 1
-    r0, c0 = max(box[0] - pad, 0), max(box[1] - pad, 0)
-    r1, c1 = min(box[2] + pad, ink.shape[0]), min(box[3] + pad, ink.shape[1])
-    rest = ink[r0:r1, c0:c1].copy()
-    for g in taken:  # the prints' ink within the box is no element
-        a0, b0 = max(g.rows.start, r0), max(g.cols.start, c0)
-        a1, b1 = min(g.rows.stop, r1), min(g.cols.stop, c1)
-        if a0 < a1 and b0 < b1:
-            own = g.mask[
-                a0 - g.rows.start : a1 - g.rows.start, b0 - g.cols.start : b1 - g.cols.start
-            ]
-            rest[a0 - r0 : a1 - r0, b0 - c0 : b1 - c0] &= ~own
+    rest, (r0, c0) = leftover_ink(ink, taken, box=box, pad=pad)
     n, lab, st, cen = components_with_stats(rest, connectivity=8)
     if n <= LATTICE_MIN:
         return []

@@ -1,0 +1,227 @@
+"""Prints whose tread is a stack of separate strokes: a herringbone or chevron tire
+whose grooves cut right across the print, so that it prints as a row of V-shaped or
+straight strokes, each spanning the print's width, with no body joining them.
+Each stroke is as thin as a marker's and none is solid: the strokes were set aside
+as text, and a whole print 60-110 mm long went missing with status ok (held-out
+set 11 sheet 49, set 12 sheet 24).
+
+Among the ink left over once the prints are found, a *stroke stack* is a cluster
+of at least :data:`STACK_MIN` strokes (each at least :data:`STACK_ELEMENT_MIN_MM`
+long; one cluster: strokes within :data:`STACK_REACH_MM` of each other) whose
+centres lie on one straight line at a regular pitch (:data:`STACK_PITCH_MM`), each
+reaching across that line :data:`STACK_SPAN` pitches or more, their lengths
+changing smoothly from one to the next (a footprint's outline). A line of text is
+letters about as tall as their pitch; a ruler's ticks lie 1 mm apart, their
+lengths jumping every fifth; a barcode's bars stand at irregular pitches; a
+dashed line's dashes run along it. Hand hatching would pass: it is not expected
+on a print sheet (docs/inkprint.md, limits).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from .components import components_with_stats
+from .coords import area_px_to_mm2, mm_to_px_length, px_to_mm_length
+from .group import Group
+from .lattice import leftover_ink
+
+__all__ = ["stroke_stacks"]
+
+#: fewest strokes of a stack (a 56 mm herringbone print of 3.6 mm pitch has 15)
+STACK_MIN = 8
+#: the shortest stroke [mm] (the box's longer side): specks and a lattice's dots
+#: are no strokes
+STACK_ELEMENT_MIN_MM = 2.0
+#: the strokes of one print lie within this of each other [mm] (a herringbone's
+#: grooves are 1-2 mm wide)
+STACK_REACH_MM = 3.0
+#: the pitch of the strokes along the stack [mm]: a ruler's millimetre ticks are
+#: closer, a tread's blocks no farther
+STACK_PITCH_MM = (1.5, 15.0)
+#: ... a stroke's centre lies within this many pitches of the stack's line
+STACK_OFF_LINE = 0.5
+#: ... the gaps between consecutive centres are within these shares of the pitch
+STACK_GAP = (0.5, 1.6)
+#: ... for at least this share of them
+STACK_REGULAR = 0.9
+#: the strokes' median reach across the line, in pitches (letters: 1-2)
+STACK_SPAN = 3.0
+#: consecutive strokes' reaches differ by at most this factor ...
+STACK_SMOOTH = 1.6
+#: ... for at least this share of them (a ruler's ticks jump every fifth)
+STACK_SMOOTH_SHARE = 0.8
+#: the strokes on the line hold at least this share of the cluster's ink
+STACK_SHARE = 0.7
+#: the widest print [mm]: a sheet's ruled lines reach farther
+STACK_MAX_WIDTH_MM = 150.0
+
+#: share of the median stroke's area above which a blob is one of the print's
+#: strokes, not an edge spot (the tip's short strokes are a few times smaller)
+STACK_PART = 0.1
+
+#: marks that may hold a stack's strokes
+ELEMENT_KINDS = ("text", "dust", "writing", "fragment", "sliver")
+
+
+def _candidate_box(marks: list, mm_per_px: float) -> tuple | None:
+    """The box (r0, c0, r1, c1) [px] of the marks a stroke long, or None when fewer
+    than :data:`STACK_MIN` (most sheets: the search is skipped)."""
+    boxes = np.array([m.bbox for m in marks if m.kind in ELEMENT_KINDS], float).reshape(-1, 4)
+    ext = px_to_mm_length(
+        np.maximum(boxes[:, 2] - boxes[:, 0], boxes[:, 3] - boxes[:, 1]), mm_per_px
+    )
+    use = boxes[ext >= STACK_ELEMENT_MIN_MM]
+    if len(use) < STACK_MIN:
+        return None
+    return tuple(int(v) for v in (*use[:, :2].min(axis=0), *use[:, 2:].max(axis=0)))
+
+
+def stack_order(centres, pitch_limits_px) -> tuple | None:
+    """The strokes on one line at a regular pitch, in order along it.
+
+    Parameters
+    ----------
+    centres : (n, 2) float [px]
+        The strokes' centres (x, y).
+    pitch_limits_px : (2,) float [px]
+        The least and largest pitch (:data:`STACK_PITCH_MM`).
+
+    Returns
+    -------
+    tuple of ((m,) int, (2,) float, float) or None
+        The indices of the strokes on the line in order along it, the unit normal
+        to the line (x, y) and the pitch [px]; None when the centres are no such
+        stack (fewer than :data:`STACK_MIN` on a line, pitch out of range, or the
+        gaps irregular).
+    """
+    c = np.asarray(centres, float)
+    if len(c) < STACK_MIN:
+        return None
+    mean = c.mean(axis=0)
+    _, _, vt = np.linalg.svd(c - mean, full_matrices=False)
+    u, v = vt[0], vt[1]  # along the stack, across it
+    t, r = (c - mean) @ u, (c - mean) @ v
+    r = r - np.median(r)
+    gaps = np.diff(np.sort(t))
+    pitch = float(np.median(gaps)) if len(gaps) else 0.0
+    on = np.flatnonzero(np.abs(r) <= STACK_OFF_LINE * max(pitch, 1.0))
+    if len(on) < STACK_MIN:
+        return None
+    order = on[np.argsort(t[on])]
+    gaps = np.diff(t[order])
+    pitch = float(np.median(gaps))
+    if not pitch_limits_px[0] <= pitch <= pitch_limits_px[1]:
+        return None
+    regular = (gaps >= STACK_GAP[0] * pitch) & (gaps <= STACK_GAP[1] * pitch)
+    if regular.mean() < STACK_REGULAR:
+        return None
+    return order, v, pitch
+
+
+def stroke_stacks(ink, taken: list, *, marks: list, mm_per_px: float) -> list:
+    """The prints made of a stack of separate strokes in the ink no print took.
+
+    Parameters
+    ----------
+    ink : (h, w) bool
+        The sheet's ink (gridlines taken out).
+    taken : list of Group
+        The prints found; their ink is left out.
+    marks : list of Mark
+        The ink set aside: only where marks a stroke long lie is searched.
+    mm_per_px : float [mm / px]
+
+    Returns
+    -------
+    list of Group
+        The stacks, each a print (its strokes and the pieces of ink within a
+        pitch of their hull, a chevron's arms broken off at a tip), with
+        ``fine_area_mm2`` set: its strokes are its core for the section 7.1.1 rule.
+    """
+    import cv2
+
+    box = _candidate_box(marks, mm_per_px)
+    if box is None:
+        return []
+    reach = round(mm_to_px_length(STACK_REACH_MM, mm_per_px))
+    rest, (r0, c0) = leftover_ink(ink, taken, box=box, pad=reach)
+    n, lab, st, cen = components_with_stats(rest, connectivity=8)
+    ext = px_to_mm_length(np.maximum(st[:, 2], st[:, 3]).astype(float), mm_per_px)
+    stroke = ext >= STACK_ELEMENT_MIN_MM
+    stroke[0] = False
+    if stroke.sum() < STACK_MIN:
+        return []
+    k = 2 * reach + 1
+    near = cv2.dilate(
+        stroke[lab].view(np.uint8), cv2.getStructuringElement(cv2.MORPH_ELLIPSE, (k, k))
+    )
+    m, fields, fst, _ = components_with_stats(near, connectivity=8)
+    of = np.zeros(n, np.int64)
+    on_ink = lab > 0
+    of[lab[on_ink]] = fields[on_ink]  # each piece of ink lies within one cluster
+    out = []
+    for f in range(1, m):
+        x0, y0, w, h = (int(q) for q in fst[f, :4])
+        parts = _Parts(lab[y0 : y0 + h, x0 : x0 + w], st, cen - [x0, y0])
+        found = _stack(parts, np.flatnonzero(stroke & (of == f)), of == f, mm_per_px)
+        if found is None:
+            continue
+        mask, line = found
+        area = area_px_to_mm2(st[line, 4].astype(float), mm_per_px)
+        rows, cols = slice(r0 + y0, r0 + y0 + h), slice(c0 + x0, c0 + x0 + w)
+        out.append(Group(rows, cols, mask, fine_area_mm2=STACK_PART * float(np.median(area))))
+    return out
+
+
+@dataclass(frozen=True)
+class _Parts:
+    """The ink pieces of one cluster: labels in its box, and every piece's
+    statistics and centre (x, y) [px] in the box's frame."""
+
+    lab: np.ndarray
+    st: np.ndarray
+    cen: np.ndarray
+
+
+def _stack(parts: _Parts, ids: np.ndarray, mine: np.ndarray, mm_per_px: float):
+    """The stack's ink (bool, the cluster's box) and its strokes on the line
+    (labels) when the strokes ``ids`` of a cluster (``mine``: its pieces, bool per
+    label) are a stack, else None."""
+    import cv2
+    from scipy import ndimage
+
+    if len(ids) < STACK_MIN:
+        return None
+    found = stack_order(parts.cen[ids], mm_to_px_length(np.array(STACK_PITCH_MM), mm_per_px))
+    if found is None:
+        return None
+    order, v, pitch = found
+    line = ids[order]
+    if parts.st[line, 4].sum() < STACK_SHARE * parts.st[ids, 4].sum():
+        return None
+    # each stroke's reach across the line: its pixels projected on the normal
+    ys, xs = np.nonzero(np.isin(parts.lab, line))
+    proj, labels = xs * v[0] + ys * v[1], parts.lab[ys, xs]
+    span = (
+        1.0 + np.asarray(ndimage.maximum(proj, labels, line)) - ndimage.minimum(proj, labels, line)
+    )
+    if np.median(span) < STACK_SPAN * pitch or span.max() > mm_to_px_length(
+        STACK_MAX_WIDTH_MM, mm_per_px
+    ):
+        return None
+    ratio = np.maximum(span[1:], span[:-1]) / np.minimum(span[1:], span[:-1]).clip(1.0)
+    if (ratio <= STACK_SMOOTH).mean() < STACK_SMOOTH_SHARE:
+        return None
+    # the line's strokes and the pieces within a pitch of their hull
+    hull = cv2.convexHull(np.column_stack([xs, ys]).astype(np.int32))
+    pieces = np.setdiff1d(np.flatnonzero(mine), line)
+    keep = [
+        p
+        for p in pieces[pieces > 0]
+        if cv2.pointPolygonTest(hull, (float(parts.cen[p, 0]), float(parts.cen[p, 1])), True)
+        >= -pitch
+    ]
+    return np.isin(parts.lab, np.r_[line, keep]), line
