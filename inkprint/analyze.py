@@ -66,7 +66,7 @@ from .marks import BOLD_REASON, Mark, SortedInk, sort_ink
 from .options import AnalysisOptions, resolve_options, resolve_threads
 from .read import Scan, read_scan
 from .results import BAND_KEYS, PrintResult, SheetResult, contact_pressure, marks_summary
-from .stack import stroke_stacks
+from .stack import join_stacks, stroke_stacks
 
 AXES = ("auto", "x", "y")
 
@@ -602,10 +602,12 @@ def find_prints(
         else:
             groups.append(g)
     lattice = lattice_prints(sheet_ink, groups, marks=marks, mm_per_px=mm_per_px, options=opts)
-    lattice += stroke_stacks(sheet_ink, groups + lattice, marks=marks, mm_per_px=mm_per_px)
-    if lattice:  # their elements were set aside as writing, text or dust
-        marks = [mk for mk in marks if not any(_holds(g, mk.bbox) for g in lattice)]
-        groups = sorted(groups + lattice, key=reading_order)
+    stacks = stroke_stacks(sheet_ink, groups + lattice, marks=marks, mm_per_px=mm_per_px)
+    joined, stacks = join_stacks(groups, stacks, mm_per_px=mm_per_px)
+    if lattice or stacks or joined != groups:  # their elements were set aside as marks
+        new = lattice + stacks + [g for g, g0 in zip(joined, groups, strict=True) if g is not g0]
+        marks = [mk for mk in marks if not any(_holds(g, mk.bbox) for g in new)]
+        groups = sorted(joined + lattice + stacks, key=reading_order)
     return FoundPrints(groups, marks, ink, grid)
 
 
@@ -989,7 +991,7 @@ def _edge_mark_flags(ctx: _Context, g: Group, m, index: int, ink: tuple, flags, 
             f"hull area (counted half) may be up to {100 * under:.1f} % larger; see the "
             f"overlay, remove the mark or rescan"
         )
-    elif (reach := _reach_beyond_body(ctx, kept, angle)) > opts.body_reach:
+    elif not g.stacked and (reach := _reach_beyond_body(ctx, kept, angle)) > opts.body_reach:
         why = (
             f"its ink reaches {100 * reach:.0f} % beyond the print's body in length or "
             f"width: a line as wide as a pen stroke (a ruler's edge) taken for tread? See "

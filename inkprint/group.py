@@ -163,6 +163,10 @@ class Group:
         knurl, diamond file, dots; :func:`inkprint.marks.sort_ink`), the area above
         which a blob is one of its elements: part of the core of the section 7.1.1
         rule (:func:`edge_spots`), not an edge spot. 0: no fine tread.
+    stacked : bool
+        Whether it holds a stack of pen-thin strokes found regular
+        (:func:`inkprint.stack.stroke_stacks`): they are its tread, not a ruler's
+        edge reaching beyond its body.
     """
 
     rows: slice
@@ -174,6 +178,7 @@ class Group:
     doubt_gap_mm: float = 0.0
     doubt_joined: bool = False
     fine_area_mm2: float = 0.0
+    stacked: bool = False
 
     @property
     def n_pixels(self) -> int:

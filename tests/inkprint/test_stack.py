@@ -133,3 +133,30 @@ def test_analyze_scan_rows_of_strokes_that_are_no_print(draw):
     # dashed line (dashes along it): no stack (irregular pitches: test_stack_order_*)
     with pytest.raises(NoInk):
         ip.analyze_scan(_sheet(draw), sensitivity=False)
+
+
+def _rib_and_bars(dpi, *, length=80.0, width=36.0, rib=8.0, groove=1.2, pitch=3.0, stroke=0.6):
+    """A centre rib ``rib`` [mm] wide and, a ``groove`` beside it on either side,
+    pen-thin bars ``stroke`` [mm] wide (along the print) ``pitch`` [mm] apart at 45
+    degrees, all within an ellipse ``length`` x ``width`` [mm] along x (held-out
+    set 6 sheet 4). The scan and the drawn ink's (length, width, hull area)."""
+    mm = 25.4 / dpi / SS
+    side = length + 30.0
+    n = round(side / mm)
+    yy, xx = np.mgrid[0:n, 0:n]
+    u, v = xx * mm - side / 2 - 0.13, yy * mm - side / 2 + 0.07
+    inside = (u / (length / 2)) ** 2 + (v / (width / 2)) ** 2 <= 1.0
+    bars = (np.abs(v) > rib / 2 + groove) & (np.mod(u + np.sign(v) * v, pitch) < stroke)
+    ink = (inside & ((np.abs(v) <= rib / 2) | bars)).astype(np.uint8)
+    grey, mm_px, truth = drawn_scan(ink, dpi, SS, 0.8)
+    return Scan(grey, mm_px, "given"), truth
+
+
+@pytest.mark.parametrize("dpi", [200, 400])
+def test_analyze_scan_rib_with_pen_thin_side_bars_is_one_print(dpi):
+    # the bars, set aside as pen strokes, make a stack on each side of the rib: each
+    # joins the rib (before: the rib alone, width -66 %, and each side a "print")
+    scan, (length, width, hull) = _rib_and_bars(dpi)
+    (p,) = ip.analyze_scan(scan, rolling_axis="x", sensitivity=False).prints
+    assert_allclose([p.metrics.length, p.metrics.width], [length, width], rtol=0.01)
+    assert_allclose(p.metrics.hull_area, hull, rtol=0.02)
