@@ -607,6 +607,14 @@ def find_prints(
     if lattice or stacks or joined != groups:  # their elements were set aside as marks
         new = lattice + stacks + [g for g, g0 in zip(joined, groups, strict=True) if g is not g0]
         marks = [mk for mk in marks if not any(_holds(g, mk.bbox) for g in new)]
+        # a print a stack joined: the marks along its outline were its strokes
+        # unless a mark still meets its box
+        joined = [
+            g
+            if g is g0 or any(_meets(g, mk.bbox) for mk in marks)
+            else dataclasses.replace(g, edge_marks=0.0)
+            for g, g0 in zip(joined, groups, strict=True)
+        ]
         groups = sorted(joined + lattice + stacks, key=reading_order)
     return FoundPrints(groups, marks, ink, grid)
 
@@ -633,6 +641,12 @@ def _holds(g: Group, bbox) -> bool:
     """Whether a mark's box (r0, c0, r1, c1) lies within the group's."""
     r0, c0, r1, c1 = bbox
     return g.rows.start <= r0 and r1 <= g.rows.stop and g.cols.start <= c0 and c1 <= g.cols.stop
+
+
+def _meets(g: Group, bbox) -> bool:
+    """Whether a mark's box (r0, c0, r1, c1) overlaps the group's."""
+    r0, c0, r1, c1 = bbox
+    return r0 < g.rows.stop and g.rows.start < r1 and c0 < g.cols.stop and g.cols.start < c1
 
 
 def _without_texture_bits(kept: list, marks: list, shape, mm_per_px: float) -> list:

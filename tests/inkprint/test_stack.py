@@ -160,3 +160,4 @@ def test_analyze_scan_rib_with_pen_thin_side_bars_is_one_print(dpi):
     (p,) = ip.analyze_scan(scan, rolling_axis="x", sensitivity=False).prints
     assert_allclose([p.metrics.length, p.metrics.width], [length, width], rtol=0.01)
     assert_allclose(p.metrics.hull_area, hull, rtol=0.02)
+    assert p.status == "ok"  # its bars are no ruler's edge, nor marks on its outline
