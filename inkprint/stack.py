@@ -26,7 +26,7 @@ import numpy as np
 from .components import components_with_stats
 from .coords import area_px_to_mm2, mm_to_px_length, px_to_mm_length
 from .group import Group
-from .lattice import leftover_ink
+from .lattice import ELEMENT_KINDS, leftover_ink
 
 __all__ = ["join_stacks", "stroke_stacks"]
 
@@ -66,9 +66,6 @@ STACK_MAX_WIDTH_MM = 150.0
 #: share of the median stroke's area above which a blob is one of the print's
 #: strokes, not an edge spot (the tip's short strokes are a few times smaller)
 STACK_PART = 0.1
-
-#: marks that may hold a stack's strokes
-ELEMENT_KINDS = ("text", "dust", "writing", "fragment", "sliver")
 
 
 def _candidate_box(marks: list, mm_per_px: float) -> tuple | None:
