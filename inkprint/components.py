@@ -58,8 +58,15 @@ def components_with_stats(mask, *, connectivity: int = 8):
     import cv2
 
     mb = mask if mask.dtype == bool else mask.astype(bool)
-    if cv2.countNonZero(mb.view(np.uint8)) > DENSE * mb.size:  # OpenCV's is faster
-        return cv2.connectedComponentsWithStats(mb.view(np.uint8), connectivity=connectivity)
+    ink = cv2.countNonZero(mb.view(np.uint8))
+    if ink > DENSE * mb.size:  # OpenCV's is faster
+        n, labels, stats, cent = cv2.connectedComponentsWithStats(
+            mb.view(np.uint8), connectivity=connectivity
+        )
+        if ink == mb.size:  # no background: zeros, as for any label without a pixel
+            # (OpenCV leaves its box's initial values: left -1, top 2**31 - 1)
+            stats[0], cent[0] = 0, 0.0
+        return n, labels, stats, cent
     n, labels = cv2.connectedComponents(mb.view(np.uint8), connectivity=connectivity)
     flat = np.flatnonzero(mb)  # (numpy's nonzero is ~8x faster on bool than on uint8)
     return (n, labels, *_stats_of(mb, labels, flat, n))

@@ -166,3 +166,15 @@ def test_hulls_and_widths_in_the_box_equal_the_whole_sheet(pooled):
     px = pooled.px_mm
     want = _element_widths(parts.thick, parts.n_thick, px)
     assert_array_equal(_element_widths(parts.thick[parts.box], parts.n_thick, px), want)
+
+
+@pytest.mark.parametrize("connectivity", [4, 8])
+def test_components_with_stats_all_ink_has_a_zero_background(connectivity):
+    # hypothesis found it (seed 8405517, a 2 x 2 mask of ink): OpenCV's dense path
+    # left the absent background's box at its initial values, the box version zeros
+    mask = np.ones((2, 3), bool)
+    whole = components_with_stats(mask, connectivity=connectivity)
+    boxed = components_with_stats_in(mask, _ink_box(mask, 0), connectivity=connectivity)
+    assert_array_equal(whole[2][0], [0, 0, 0, 0, 0])
+    assert_array_equal(whole[2], boxed[2])
+    assert_array_equal(whole[3], boxed[3])
