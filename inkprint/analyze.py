@@ -604,8 +604,10 @@ def find_prints(
     lattice = lattice_prints(sheet_ink, groups, marks=marks, mm_per_px=mm_per_px, options=opts)
     stacks = stroke_stacks(sheet_ink, groups + lattice, marks=marks, mm_per_px=mm_per_px)
     joined, stacks = join_stacks(groups, stacks, mm_per_px=mm_per_px)
-    if lattice or stacks or joined != groups:  # their elements were set aside as marks
-        new = lattice + stacks + [g for g, g0 in zip(joined, groups, strict=True) if g is not g0]
+    # (by identity: a Group's == compares its masks, ambiguous for numpy arrays)
+    grown = [g for g, g0 in zip(joined, groups, strict=True) if g is not g0]
+    if lattice or stacks or grown:  # their elements were set aside as marks
+        new = lattice + stacks + grown
         marks = [mk for mk in marks if not any(_holds(g, mk.bbox) for g in new)]
         # a print a stack joined: the marks along its outline were its strokes
         # unless a mark still meets its box

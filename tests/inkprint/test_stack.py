@@ -188,3 +188,26 @@ def test_analyze_scan_arrow_pointing_at_a_stack_is_no_part_of_it():
     (p,) = ip.analyze_scan(Scan(grey, scan.mm_per_px, "given"), sensitivity=False).prints
     assert_allclose([p.metrics.length, p.metrics.width], [length, width], rtol=0.01)
     assert_allclose(p.metrics.hull_area, hull, rtol=0.02)
+
+
+def test_find_prints_print_a_stack_joined_within_its_box(monkeypatch):
+    # a stack joined to a print whose box already held it keeps the print's box:
+    # the joined print is told from the one found by identity (a Group's == compares
+    # its numpy masks, ValueError: "truth value of an array is ambiguous")
+    import dataclasses
+
+    import inkprint.analyze as A
+
+    grey = np.full((300, 300), 0.92, np.float32)
+    cv2.ellipse(grey, (150, 150), (100, 40), 0, 0, 360, 0.1, -1)
+    mask = grey < 0.5
+    grown = []
+
+    def join(groups, stacks, *, mm_per_px):
+        grown[:] = [dataclasses.replace(g, mask=g.mask.copy(), stacked=True) for g in groups]
+        return list(grown), []
+
+    monkeypatch.setattr(A, "join_stacks", join)
+    found = A.find_prints(mask, mm_per_px=0.2, grey=grey)
+    assert len(found.groups) == 1 and found.groups[0].stacked
+    assert found.groups[0].rows == grown[0].rows and found.groups[0].cols == grown[0].cols
