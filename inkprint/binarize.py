@@ -254,7 +254,8 @@ def binarize(
     k : float
         Sauvola's k.
     sheet : (rows, cols) bool, optional
-        The paper's pixels, for Otsu's histogram (:func:`threshold_level`).
+        The paper's pixels, for the histogram of Otsu's sparse-ink fallback
+        (:func:`threshold_level`).
     scale_level : float
         Multiply the threshold (the sensitivity band uses 0.9 and 1.1).
     options : AnalysisOptions, optional

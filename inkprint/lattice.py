@@ -26,7 +26,7 @@ from .coords import area_px_to_mm2, mm_to_px_length, px_to_mm_length
 from .group import Group
 from .marks import FINE_ELEMENT_MIN_MM, _fine_fields
 
-__all__ = ["coarse_elements", "lattice_prints"]
+__all__ = ["coarse_elements", "element_fields", "lattice_prints", "leftover_ink"]
 
 #: fewest elements of a lattice print (a 10 x 2.5 mm print of 1.5 mm diamonds has 12)
 LATTICE_MIN = 10
@@ -101,6 +101,40 @@ def leftover_ink(ink, taken: list, *, box: tuple, pad: int) -> tuple:
     return rest, (r0, c0)
 
 
+def element_fields(labels: np.ndarray, chosen: np.ndarray, *, size_px: int) -> tuple:
+    """The fields of chosen pieces: the pieces dilated by a disk ``size_px`` across,
+    one field per connected part.
+
+    Parameters
+    ----------
+    labels : (h, w) int
+        Pieces 1..n-1 (0: paper).
+    chosen : (n,) bool
+        The pieces the fields are made of (label 0: False).
+    size_px : int [px]
+        The disk's diameter: pieces within about that of one another share a field.
+
+    Returns
+    -------
+    m : int
+        Number of field labels, 0 (none) included.
+    field_of : (n,) int
+        Each piece's field: that of its pixels (0 for a piece outside every field;
+        a chosen piece lies wholly in one).
+    stats : (m, 5) int32
+        The fields' boxes and areas (``cv2.CC_STAT_*``) [px].
+    """
+    import cv2
+
+    disk = cv2.getStructuringElement(cv2.MORPH_ELLIPSE, (size_px, size_px))
+    near = cv2.dilate(chosen[labels].view(np.uint8), disk)
+    m, fields, stats, _ = components_with_stats(near, connectivity=8)
+    field_of = np.zeros(len(chosen), np.int64)
+    ink = labels > 0
+    field_of[labels[ink]] = fields[ink]
+    return m, field_of, stats
+
+
 def lattice_prints(ink, taken: list, *, marks: list, mm_per_px: float, options) -> list:
     """The tiny prints made of separate elements in the ink no print took.
 
@@ -136,15 +170,9 @@ def lattice_prints(ink, taken: list, *, marks: list, mm_per_px: float, options) 
     fine = _fine_fields(st, cen, mm_per_px, opts)
     if fine.sum() < LATTICE_MIN:
         return []
-    elements = fine[lab]
     # one field: elements within fine_spacing_mm of one another
     k = max(3, round(mm_to_px_length(options.fine_spacing_mm, mm_per_px)) | 1)
-    near = cv2.dilate(
-        elements.view(np.uint8), cv2.getStructuringElement(cv2.MORPH_ELLIPSE, (k, k))
-    )
-    m, fields, fst, _ = components_with_stats(near, connectivity=8)
-    of = np.zeros(n, np.int64)
-    of[fine] = fields[np.round(cen[fine, 1]).astype(int), np.round(cen[fine, 0]).astype(int)]
+    m, of, fst = element_fields(lab, fine, size_px=k)
     out = []
     for f in range(1, m):
         mine = np.flatnonzero(fine & (of == f))

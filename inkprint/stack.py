@@ -26,7 +26,7 @@ import numpy as np
 from .components import components_with_stats
 from .coords import area_px_to_mm2, mm_to_px_length, px_to_mm_length
 from .group import Group
-from .lattice import ELEMENT_KINDS, leftover_ink
+from .lattice import ELEMENT_KINDS, element_fields, leftover_ink
 
 __all__ = ["join_stacks", "stroke_stacks"]
 
@@ -152,31 +152,23 @@ def stroke_stacks(ink, taken: list, *, marks: list, mm_per_px: float) -> list:
     Returns
     -------
     list of Group
-        The stacks, each a print (its strokes and the pieces of ink within a
-        pitch of their hull, a chevron's arms broken off at a tip), with
+        The stacks, each a print (its strokes and the pieces of ink running along
+        their hull within :data:`STACK_PIECE` pitches of it, a chevron's arms
+        broken off at a tip), with
         ``fine_area_mm2`` set: its strokes are its core for the section 7.1.1 rule.
     """
-    import cv2
-
     box = _candidate_box(marks, mm_per_px)
     if box is None:
         return []
     reach = round(mm_to_px_length(STACK_REACH_MM, mm_per_px))
     rest, (r0, c0) = leftover_ink(ink, taken, box=box, pad=reach)
-    n, lab, st, cen = components_with_stats(rest, connectivity=8)
+    _, lab, st, cen = components_with_stats(rest, connectivity=8)
     ext = px_to_mm_length(np.maximum(st[:, 2], st[:, 3]).astype(float), mm_per_px)
     stroke = ext >= STACK_ELEMENT_MIN_MM
     stroke[0] = False
     if stroke.sum() < STACK_MIN:
         return []
-    k = 2 * reach + 1
-    near = cv2.dilate(
-        stroke[lab].view(np.uint8), cv2.getStructuringElement(cv2.MORPH_ELLIPSE, (k, k))
-    )
-    m, fields, fst, _ = components_with_stats(near, connectivity=8)
-    of = np.zeros(n, np.int64)
-    on_ink = lab > 0
-    of[lab[on_ink]] = fields[on_ink]  # each piece of ink lies within one cluster
+    m, of, fst = element_fields(lab, stroke, size_px=2 * reach + 1)
     out = []
     for f in range(1, m):
         x0, y0, w, h = (int(q) for q in fst[f, :4])
