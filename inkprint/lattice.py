@@ -26,7 +26,13 @@ from .coords import area_px_to_mm2, mm_to_px_length, px_to_mm_length
 from .group import Group
 from .marks import FINE_ELEMENT_MIN_MM, _fine_fields
 
-__all__ = ["coarse_elements", "element_fields", "lattice_prints", "leftover_ink"]
+__all__ = [
+    "box_overlap",
+    "coarse_elements",
+    "element_fields",
+    "lattice_prints",
+    "leftover_ink",
+]
 
 #: fewest elements of a lattice print (a 10 x 2.5 mm print of 1.5 mm diamonds has 12)
 LATTICE_MIN = 10
@@ -91,14 +97,36 @@ def leftover_ink(ink, taken: list, *, box: tuple, pad: int) -> tuple:
     r1, c1 = min(box[2] + pad, ink.shape[0]), min(box[3] + pad, ink.shape[1])
     rest = ink[r0:r1, c0:c1].copy()
     for g in taken:  # the prints' ink within the box
-        a0, b0 = max(g.rows.start, r0), max(g.cols.start, c0)
-        a1, b1 = min(g.rows.stop, r1), min(g.cols.stop, c1)
-        if a0 < a1 and b0 < b1:
-            own = g.mask[
-                a0 - g.rows.start : a1 - g.rows.start, b0 - g.cols.start : b1 - g.cols.start
-            ]
-            rest[a0 - r0 : a1 - r0, b0 - c0 : b1 - c0] &= ~own
+        both = box_overlap((rest, (r0, c0)), g)
+        if both is not None:
+            rest[both[0]] &= ~g.mask[both[1]]
     return rest, (r0, c0)
+
+
+def box_overlap(placed: tuple, g: Group) -> tuple | None:
+    """Where a mask placed on the sheet and a group's box overlap.
+
+    Parameters
+    ----------
+    placed : tuple of ((h, w) array, (2,) int)
+        A mask and its corner (row, col) on the sheet [px] (may be negative).
+    g : Group
+
+    Returns
+    -------
+    tuple of two (rows, cols) slices, or None
+        The overlap in ``placed``'s mask and in ``g.mask`` (None when the boxes do
+        not overlap).
+    """
+    mask, (r0, c0) = placed
+    a0, b0 = max(r0, g.rows.start), max(c0, g.cols.start)
+    a1, b1 = min(r0 + mask.shape[0], g.rows.stop), min(c0 + mask.shape[1], g.cols.stop)
+    if a0 >= a1 or b0 >= b1:
+        return None
+    return (
+        (slice(a0 - r0, a1 - r0), slice(b0 - c0, b1 - c0)),
+        (slice(a0 - g.rows.start, a1 - g.rows.start), slice(b0 - g.cols.start, b1 - g.cols.start)),
+    )
 
 
 def element_fields(labels: np.ndarray, chosen: np.ndarray, *, size_px: int) -> tuple:

@@ -26,7 +26,7 @@ import numpy as np
 from .components import components_with_stats
 from .coords import area_px_to_mm2, mm_to_px_length, px_to_mm_length
 from .group import Group
-from .lattice import ELEMENT_KINDS, element_fields, leftover_ink
+from .lattice import ELEMENT_KINDS, box_overlap, element_fields, leftover_ink
 
 __all__ = ["join_stacks", "stroke_stacks"]
 
@@ -236,9 +236,14 @@ def _stack(parts: _Parts, ids: np.ndarray, mine: np.ndarray, mm_per_px: float):
     if len(pieces):
         near = np.asarray(ndimage.minimum(away, parts.lab, pieces))
         far = np.asarray(ndimage.maximum(away, parts.lab, pieces))
+        boxes = ndimage.find_objects(parts.lab)  # (each piece's own box, not the cluster's)
         along = np.array(
             [
-                max(cv2.minAreaRect(cv2.findNonZero((parts.lab == p).view(np.uint8)))[1])
+                max(
+                    cv2.minAreaRect(
+                        cv2.findNonZero((parts.lab[boxes[p - 1]] == p).view(np.uint8))
+                    )[1]
+                )
                 for p in pieces
             ]
         )
@@ -275,7 +280,7 @@ def join_stacks(groups: list, stacks: list, *, mm_per_px: float) -> tuple[list, 
     for st in stacks:
         near = _padded_mask(st, reach)
         for i, g in enumerate(groups):
-            box = _overlap(near, g)
+            box = box_overlap(near, g)
             if box is None:
                 continue
             grown = cv2.dilate(near[0][box[0]].view(np.uint8), kernel).view(bool)
@@ -293,20 +298,6 @@ def _padded_mask(g: Group, pad: int) -> tuple:
     """``g``'s mask padded by ``pad`` [px] of paper, and its box's corner (row, col)
     [px] on the sheet (may be negative)."""
     return np.pad(g.mask, pad), (g.rows.start - pad, g.cols.start - pad)
-
-
-def _overlap(padded: tuple, g: Group) -> tuple | None:
-    """The slices, in ``padded``'s mask and in ``g``'s, of their boxes' overlap on
-    the sheet (None when they do not overlap)."""
-    mask, (r0, c0) = padded
-    a0, b0 = max(r0, g.rows.start), max(c0, g.cols.start)
-    a1, b1 = min(r0 + mask.shape[0], g.rows.stop), min(c0 + mask.shape[1], g.cols.stop)
-    if a0 >= a1 or b0 >= b1:
-        return None
-    return (
-        (slice(a0 - r0, a1 - r0), slice(b0 - c0, b1 - c0)),
-        (slice(a0 - g.rows.start, a1 - g.rows.start), slice(b0 - g.cols.start, b1 - g.cols.start)),
-    )
 
 
 def _union(g: Group, other: Group, *, fine_area_mm2: float) -> Group:
