@@ -153,11 +153,16 @@ def threshold_level(
     NoInk
         (Otsu) No two distinct grey classes: a blank or uniform page.
     InvalidInput
-        Unknown method, or a fixed threshold outside (0, 1).
+        Unknown method, a fixed threshold outside (0, 1), or a ``sheet`` not of the
+        grey's shape.
     """
     if method not in METHODS:
         raise InvalidInput("method", method, " | ".join(METHODS))
     work = to_uint8(grey)
+    if sheet is not None and np.shape(sheet) != work.shape:
+        raise InvalidInput(
+            "sheet", f"a mask of shape {np.shape(sheet)}", f"a bool mask of shape {work.shape}"
+        )
     if method == "fixed":
         if threshold is None or not (0.0 < float(threshold) < 1.0):
             raise InvalidInput("threshold", threshold, "(0, 1) grey level with method='fixed'")
