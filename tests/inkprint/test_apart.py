@@ -99,6 +99,20 @@ def test_analyze_scan_group_mm_keeping_ribs_apart_is_flagged(group_mm, n):
         assert all(any("--group-mm over" in w for w in p.warnings) for p in found)
 
 
+def test_analyze_scan_group_mm_keeping_ribs_apart_near_the_limit_is_flagged():
+    # ribs 15 mm apart across a 90 mm print: their join is 0.17 of its width, within
+    # the doubt of the side-by-side rule's limit (0.18); --group-mm 12 keeps them
+    # apart (held-out set 14 sheet 119: 14.2 mm grooves, 12.3 given): three rib
+    # "prints" with status ok before
+    spec = PrintSpec(120.0, 90.0, (80.0, 120.0), 0.0, "car", block=20.0, gap=15.0)
+    (whole,), (t,) = _analyze([spec])  # the rule alone: one print
+    assert_allclose([whole.metrics.length, whole.metrics.width], [t.length, t.width], rtol=0.01)
+    found, _ = _analyze([spec], options=AnalysisOptions(group_mm=12.0))
+    assert len(found) == 3
+    assert all("grouping_uncertain" in p.flags for p in found)
+    assert all(any("--group-mm over 14.9" in w for w in p.warnings) for p in found)
+
+
 def test_analyze_scan_group_mm_two_prints_far_apart_are_not_flagged():
     # two prints 30 mm apart: the rule keeps them apart too, no doubt
     prints = [
