@@ -191,3 +191,44 @@ def test_word_in_a_line_tiny_print_under_a_label_is_no_word():
     # a line of writing running down into it would make it one (the rule's reach)
     down = np.array([[800, 1900, 960, 1960]])
     assert word_in_a_line(g, down, mm_per_px=0.0847)
+
+
+def _underlined_word(mm: float, bar_mm: float) -> Group:
+    """Ten ring letters 6 mm high and 4 mm wide (1 mm strokes) 6 mm apart, a bar
+    ``bar_mm`` high and 55 mm long 0.6 mm under them (an underline's stretch)."""
+    px = lambda v: round(v / mm)
+    mask = np.zeros((px(12.0), px(66.0)), np.uint8)
+    for k in range(10):
+        x, y = px(2.0 + 6.0 * k), px(2.0)
+        cv2.rectangle(mask, (x, y), (x + px(4.0), y + px(6.0)), 1, thickness=px(1.0))
+    y = px(2.0 + 6.0 + 0.6 + 0.5)
+    cv2.rectangle(mask, (px(2.0), y), (px(57.0), y + px(bar_mm)), 1, thickness=-1)
+    return Group(slice(0, mask.shape[0]), slice(0, mask.shape[1]), mask.astype(bool))
+
+
+@pytest.mark.parametrize("dpi", [300.0, 500.0])
+def test_is_print_underlined_line_of_letters_is_writing(dpi):
+    # held-out set 13 sheet 0: 'Schwalbe G-One Bite 40' with 33 mm of its underline
+    # (35 % of the ink) was a 73 x 5.8 mm "print" with status ok: the bar held the
+    # ink of the letters under 70 %
+    mm = 25.4 / dpi
+    check = is_print(_underlined_word(mm, 2.0), mm_per_px=mm)
+    assert not check.ok and check.kind == "writing" and "line of writing" in check.reason
+
+
+@pytest.mark.parametrize("dpi", [300.0, 500.0])
+def test_is_print_line_of_lower_case_letters_is_writing(dpi):
+    # held-out set 13 sheet 42: 'Bridgestone S22 190/55 ZR17 2.2 bar 1812 N', a
+    # 108 x 4.2 mm "print" with status ok: its lower-case letters (2.3-2.5 mm) were
+    # under TEXT_LETTER_MM; here three capitals 3.3 mm high, nine letters 2.4 mm
+    # (rings of 0.5 mm strokes)
+    mm = 25.4 / dpi
+    px = lambda v: round(v / mm)
+    mask = np.zeros((px(6.0), px(40.0)), np.uint8)
+    for k in range(12):
+        high = 2.8 if k in (0, 5, 9) else 1.9
+        x, y = px(1.0 + 3.0 * k), px(1.0 + 3.3 - high)
+        cv2.rectangle(mask, (x, y), (x + px(2.0), y + px(high)), 1, thickness=px(0.5))
+    g = Group(slice(0, mask.shape[0]), slice(0, mask.shape[1]), mask.astype(bool))
+    check = is_print(g, mm_per_px=mm)
+    assert not check.ok and "line of writing" in check.reason
