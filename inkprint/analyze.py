@@ -57,6 +57,7 @@ from .group import (
     _sides,
     edge_spots,
     is_print,
+    join_shoulders,
     outline_points,
     reading_order,
     word_in_a_line,
@@ -591,18 +592,19 @@ def find_prints(
     kept = _without_texture_bits(kept, marks, shape, mm_per_px)
     kept = _without_words(kept, marks, mm_per_px)
     biggest = max((g.n_pixels for g in kept), default=0)
-    groups = []
+    groups, fragments = [], []
     for g in kept:
         # a small piece cut by the image's edge is a print running off it (flagged
         # clipped), not a fragment: a print 97 % off the sheet went missing
         cut = _sides(g, shape, near=False) > 0
         if g.n_pixels < opts.min_patch_fraction * biggest and not cut:
-            why = (
-                f"a fragment beside the prints ({100 * g.n_pixels / biggest:.1f} % of the largest)"
-            )
-            marks.append(_group_mark(g, "fragment", why, mm_per_px))
+            fragments.append(g)
         else:
             groups.append(g)
+    groups, fragments = join_shoulders(groups, fragments, mm_per_px=mm_per_px)
+    for g in fragments:
+        why = f"a fragment beside the prints ({100 * g.n_pixels / biggest:.1f} % of the largest)"
+        marks.append(_group_mark(g, "fragment", why, mm_per_px))
     lattice = lattice_prints(sheet_ink, groups, marks=marks, mm_per_px=mm_per_px, options=opts)
     stacks = stroke_stacks(sheet_ink, groups + lattice, marks=marks, mm_per_px=mm_per_px)
     joined, stacks = join_stacks(groups, stacks, mm_per_px=mm_per_px)

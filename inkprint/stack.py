@@ -25,7 +25,7 @@ import numpy as np
 
 from .components import components_with_stats
 from .coords import area_px_to_mm2, mm_to_px_length, px_to_mm_length
-from .group import Group
+from .group import Group, union
 from .lattice import ELEMENT_KINDS, box_overlap, element_fields, leftover_ink
 
 __all__ = ["join_stacks", "stroke_stacks"]
@@ -301,19 +301,7 @@ def _padded_mask(g: Group, pad: int) -> tuple:
 
 
 def _union(g: Group, other: Group, *, fine_area_mm2: float) -> Group:
-    """``g`` with ``other``'s ink added (their boxes' union)."""
+    """``g`` with ``other``'s ink added (:func:`inkprint.group.union`), a stack's."""
     import dataclasses
 
-    r0, c0 = min(g.rows.start, other.rows.start), min(g.cols.start, other.cols.start)
-    r1, c1 = max(g.rows.stop, other.rows.stop), max(g.cols.stop, other.cols.stop)
-    mask = np.zeros((r1 - r0, c1 - c0), bool)
-    for h in (g, other):
-        mask[h.rows.start - r0 : h.rows.stop - r0, h.cols.start - c0 : h.cols.stop - c0] |= h.mask
-    return dataclasses.replace(
-        g,
-        rows=slice(r0, r1),
-        cols=slice(c0, c1),
-        mask=mask,
-        fine_area_mm2=fine_area_mm2,
-        stacked=True,
-    )
+    return dataclasses.replace(union(g, other), fine_area_mm2=fine_area_mm2, stacked=True)
