@@ -659,6 +659,13 @@ def join_side_by_side(
 #: SHOULDER_HULL times its own ink is a shoulder of it (:func:`join_shoulders`)
 SHOULDER_GAP_MM = 5.0
 SHOULDER_HULL = 4.0
+#: a straight spine with teeth along it is a tiny print (:func:`_toothed_spine`): this
+#: long [mm] or more, its core (ink SPINE_CORE of the width from the paper) along
+#: SPINE_ALONG of its length, within SPINE_STRAIGHT of its width across
+SPINE_MIN_MM = 8.0
+SPINE_CORE = 0.15
+SPINE_ALONG = 0.8
+SPINE_STRAIGHT = 0.6
 #: this many dark dots or more about a print make a row of its tread (:func:`_dot_row`)
 DOT_ROW = 6
 #: ... each no longer than this many strokes' widths (a diamond the outline cut; a
@@ -1135,10 +1142,45 @@ def _small_print_fill(mask: np.ndarray, fill: float, width_px: float, mm_per_px,
         fill = max(fill, _closed_fill(mask, stroke))
     if SMALL_BODY_FILL <= fill < SMALL_PRINT_FILL:
         # a disk nearly its width fits in it, in no letter's strokes (a track tire's
-        # 10.4 x 2.2 mm file print at 200 dpi: 80 % inked, missing)
-        if _body_share(mask, width_px) >= SMALL_BODY_SHARE:
+        # 10.4 x 2.2 mm file print at 200 dpi: 80 % inked, missing); or it is a
+        # straight spine with teeth along it
+        if _body_share(mask, width_px) >= SMALL_BODY_SHARE or _toothed_spine(
+            mask, width_px, mm_per_px
+        ):
             fill = SMALL_PRINT_FILL
     return fill
+
+
+def _toothed_spine(mask: np.ndarray, width_px: float, mm_per_px: float) -> bool:
+    """Whether one piece of ink is a straight spine with teeth along it, a track
+    tire's file print: :data:`SPINE_MIN_MM` long or more, its core (ink
+    :data:`SPINE_CORE` of its width or more from the paper) one straight bar along
+    :data:`SPINE_ALONG` of its length or more, no wider across than
+    :data:`SPINE_STRAIGHT` of its width. A 17.7 x 3.6 mm print whose rectangular
+    teeth left 0.79 of its hull inked, its spine 0.45 of its width, was "a letter
+    or a mark" (held-out set 12 sheet 103; set 6 sheet 77 alike, 0.78); a letter is
+    shorter, a bold 'l' narrower than a print (``min_patch_width_mm``)."""
+    import cv2
+
+    n, _, _, _ = components_with_stats(mask.view(np.uint8), connectivity=8)
+    if n != 2:
+        return False
+    pts = outline_points(mask).reshape(-1, 2).astype(np.float32)
+    (_, _), (a, b), angle = cv2.minAreaRect(pts)
+    if px_to_mm_length(max(a, b) + 1, mm_per_px) < SPINE_MIN_MM:
+        return False
+    dist = cv2.distanceTransform(np.pad(mask.view(np.uint8), 1), cv2.DIST_L2, 5)[1:-1, 1:-1]
+    rows, cols = np.nonzero(dist >= SPINE_CORE * width_px)
+    if len(rows) < 2:
+        return False
+    t = np.deg2rad(angle + (0.0 if a >= b else 90.0))  # along the longer side
+    u = cols * np.cos(t) + rows * np.sin(t)
+    v = -cols * np.sin(t) + rows * np.cos(t)
+    rr, cc = np.nonzero(mask)
+    whole = np.ptp(cc * np.cos(t) + rr * np.sin(t)) + 1.0
+    covered = np.unique(np.round(u).astype(int)).size
+    lo, hi = np.percentile(v, [2, 98])  # (a tooth's root reaches the core here and there)
+    return covered >= SPINE_ALONG * whole and hi - lo + 1.0 <= SPINE_STRAIGHT * width_px
 
 
 def _punch_hole(group: Group, hull: np.ndarray, size: tuple, mm_per_px: float, shape) -> bool:

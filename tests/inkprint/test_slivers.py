@@ -265,3 +265,41 @@ def test_find_prints_joins_shoulders_cut_off_by_a_groove(dpi):
     assert_allclose([p.metrics.length, p.metrics.width], truth[:2], rtol=0.01)
     assert_allclose(p.metrics.hull_area, truth[2], rtol=0.02)
     assert not any(m.kind == "fragment" for m in res.marks)
+
+
+def _toothed_spine(dpi: float, angle: float) -> tuple:
+    """A 17 x 1.8 mm bar with 1.0 x 0.9 mm teeth every 2.1 mm on both sides (a
+    track tire's file print, 3.6 mm across them, 0.74 of its hull inked), turned
+    ``angle`` degrees; the grey, mm per px and the drawn truth
+    (tests.inkprint.drawn)."""
+    import cv2
+    import shapely
+    from shapely import affinity
+
+    from tests.inkprint.drawn import drawn_scan
+
+    ss = 4
+    px = 25.4 / dpi / ss
+    parts = [shapely.box(-8.5, -0.9, 8.5, 0.9)]
+    for x in np.arange(-7.35, 7.4, 2.1):
+        parts += [
+            shapely.box(x - 0.5, 0.9, x + 0.5, 1.8),
+            shapely.box(x - 0.5, -1.8, x + 0.5, -0.9),
+        ]
+    ink = affinity.rotate(shapely.union_all(parts), angle, origin=(0, 0))
+    img = np.zeros((round(40 / px), round(40 / px)), np.uint8)
+    xy = np.array(ink.exterior.coords)
+    cv2.fillPoly(img, [np.round((xy + 20.0) / px).astype(np.int32)], 1)
+    return drawn_scan(img, dpi, ss, 0.8)
+
+
+@pytest.mark.parametrize("dpi", [300.0, 400.0])
+@pytest.mark.parametrize(("angle", "axis"), [(0.0, "x"), (90.0, "y")])
+def test_is_print_toothed_spine_is_a_tiny_print(dpi, angle, axis):
+    # held-out set 12 sheet 103: a 16.8 x 3.6 mm file print, a spine with teeth
+    # along it inking 0.79 of its hull, was "a letter or a mark" (missing)
+    grey, mm, truth = _toothed_spine(dpi, angle)
+    res = ip.analyze_scan(ip.Scan(grey, mm, "given"), sensitivity=False, rolling_axis=axis)
+    (p,) = res.prints
+    assert_allclose([p.metrics.length, p.metrics.width], [17.0, 3.6], rtol=0.01)
+    assert_allclose(p.metrics.hull_area, truth[2], rtol=0.02)
