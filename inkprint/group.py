@@ -123,29 +123,27 @@ UNDERLINE_LETTERS = 4.0
 TEXT_ROW_SPAN = 0.4
 #: ... and each row holds this many letters or more (held-out 6 sheet 8: 'F = 299 N')
 TEXT_ROW_LETTERS = 4
-#: a small group in line with writing set aside (extents across the line overlapping
-#: by WORD_ROW_OVERLAP of the lower, heights within WORD_HEIGHT_RATIO of each other: a
-#: group of two rows of letters beside one row of the rest of them; at
-#: most WORD_GAP of its height from it along the line) is a word of that line when it
-#: holds WORD_LETTERS pieces or more (each WORD_PIECE_SHARE of its ink), or is one
-#: piece shorter than WORD_ASPECT times its height, and no piece runs WORD_ASPECT times
-#: the row's height along it (:func:`word_in_a_line`)
-WORD_LETTERS = 2
-WORD_ASPECT = 2.0
-#: ... the mark of writing runs along the line: this many times longer than high or
-#: more (a label's letters above a tiny print, each about as high as wide, are no
-#: line running down into it: held-out set 8 sheet 54)
+#: a word of a line of writing set aside beside it (:func:`word_in_a_line`): a small
+#: group in line with a mark of writing that runs along the line (WORD_LINE_ASPECT
+#: times longer than high or more: a label's letters above a tiny print, each about
+#: as high as wide, are no line running down into it, held-out set 8 sheet 54),
+#: their extents across the line overlapping by WORD_ROW_OVERLAP of the lower, their
+#: heights within WORD_HEIGHT_RATIO (a group of two rows beside one row of the rest),
+#: at most WORD_GAP of its height from it along the line; of WORD_LETTERS pieces or
+#: more (each WORD_PIECE_SHARE of its ink) or one piece shorter than WORD_ASPECT
+#: times its height, none running WORD_ASPECT times the row's height along it
 WORD_LINE_ASPECT = 1.5
-WORD_PIECE_SHARE = 0.1
 WORD_ROW_OVERLAP = 0.5
 WORD_HEIGHT_RATIO = 3.0
 WORD_GAP = 1.5
+WORD_LETTERS = 2
+WORD_PIECE_SHARE = 0.1
+WORD_ASPECT = 2.0
 #: a row is TEXT_LETTER_MM high or more; its letters span this share of that or more,
-#: in a row among others and in a line alone ('Bridgestone S22 ...': 2.3-2.5 mm)
-#: (a row's lower-case letters are shorter: 'a' and 'r' of 'p = 3.4 bar' in a 3.6 mm
-#: row spanned 2.3-2.5 mm, with 'F = 446 N' above it taken for a print, held-out set
-#: 14 sheet 93; under 2.8 mm capitals 1.7-2 mm; a tiny print's file diamonds, ~1 mm,
-#: stay under it)
+#: in a row among others and in a line alone: lower-case letters are shorter ('a' and
+#: 'r' of 'p = 3.4 bar' under 'F = 446 N', held-out set 14 sheet 93, and of
+#: 'Bridgestone S22 ...', set 13 sheet 42: 2.3-2.5 mm; under 2.8 mm capitals 1.7-2
+#: mm); a tiny print's file diamonds, ~1 mm, stay under it
 TEXT_ROW_LETTER_SHARE = 0.6
 #: the direction across rows of writing is looked for at these turns [deg] from the
 #: least rectangle's, on about this many of the ink's pixels
@@ -999,8 +997,7 @@ def join_shoulders(groups: list, fragments: list, *, mm_per_px: float) -> tuple[
                 or f.rows.stop < y - gap_px
             ):
                 continue
-            gap = min(-cv2.pointPolygonTest(hull, (float(p[0]), float(p[1])), True) for p in pts)
-            if gap > gap_px:
+            if _outside_distance(pts.astype(float), hull.reshape(-1, 2)).min() > gap_px:
                 continue
             grown = cv2.contourArea(cv2.convexHull(np.vstack([hull.reshape(-1, 2), pts])))
             if grown - cv2.contourArea(hull) > SHOULDER_HULL * f.n_pixels:

@@ -63,10 +63,10 @@ BED_HOLES = 0.15
 #: a bed strip's inner edge (the page's) lies within this of a straight line [px of
 #: the ~2 mm grid]
 BED_EDGE_PX = 1.5
-#: the page's sides refined on the full image (:func:`refine_corners`): profiles
-#: across each side, each the mean of this many parallel ones, reaching this many
-#: grid cells either side; crossings off the fitted line by more than EDGE_OUTLIER x
-#: their median distance are dropped
+#: the page's sides refined on the full image (:func:`refine_corners`): EDGE_PROFILES
+#: profiles across each side, each the mean of EDGE_PROFILE_WIDTH parallel ones,
+#: reaching EDGE_REACH grid cells either side; crossings off the fitted line by more
+#: than EDGE_OUTLIER x their median distance are dropped
 EDGE_PROFILES = 41
 EDGE_PROFILE_WIDTH = 5
 EDGE_REACH = 2.5
