@@ -637,9 +637,10 @@ def join_side_by_side(
     if not links:
         return none
     joins = _join_tree(links, pts, k)
-    kept, doubt = _kept_joins(joins, opts)
-    if opts.group_mm is not None:  # the rule's joins, near its limit too for ribs
+    kept, doubt, near = _kept_joins(joins, opts)
+    if opts.group_mm is not None:  # the rule's joins; near its limit, either way, ribs
         ribs = [v for v in kept if len(v) >= RIBS_IN_DOUBT or not doubt.keys() & set(v)]
+        ribs += [v for v in near if len(v) >= RIBS_IN_DOUBT]
         return _kept_apart(comp, k, joins, ribs)
     lab = np.arange(k)
     for leaves in kept:
@@ -689,10 +690,12 @@ def _kept_apart(comp: np.ndarray, k: int, joins: list, kept: list) -> PartsJoine
     13.1 mm given, 18.2 mm grooves) were reported as ribs, each a "print" with status
     ok; two prints parted on purpose that lie as a footprint's ribs would are flagged
     too, the warning naming the gap. A join within ``group_doubt_factor`` of the
-    rule's limit counts when it joins :data:`RIBS_IN_DOUBT` parts or more (a
-    footprint's ribs): ribs 14.2 mm apart across an 84 mm print (0.17 of its width,
-    the limit 0.18) kept apart by ``group_mm`` 12.3 were three "prints" with status
-    ok (held-out set 14 sheet 119). Two prints side by side near the limit, parted
+    rule's limit, on either side, counts when it joins :data:`RIBS_IN_DOUBT` parts or
+    more (a footprint's ribs): ribs 14.2 mm apart across an 84 mm print (0.17 of its
+    width, the limit 0.18) kept apart by ``group_mm`` 12.3 were three "prints" with
+    status ok (held-out set 14 sheet 119), and so were a car print's ribs just over
+    the limit with ``group_mm`` 13.6 (fresh held-out set 15 sheet 57, a PDF at 150
+    dpi: the rule alone flags them). Two prints side by side near the limit, parted
     by a ``group_mm`` under their gap as the rule's own warning advises, are not
     flagged again."""
     gaps = np.zeros(k)
@@ -749,15 +752,16 @@ def _root(parent: list, i: int) -> int:
     return i
 
 
-def _kept_joins(joins: list, opts: AnalysisOptions) -> tuple[list, dict]:
+def _kept_joins(joins: list, opts: AnalysisOptions) -> tuple[list, dict, list]:
     """Top down through :func:`_join_tree`'s joins: a join is kept when its gap is at
     most ``group_print_gap`` x the smaller extent of its hull; every join below a
     kept one is kept (its gap is no larger, its whole inside). Returns the kept
-    joins' leaves and, per leaf, ``(gap, joined)`` of a decision within
-    ``group_doubt_factor`` of the limit."""
+    joins' leaves, per leaf ``(gap, joined)`` of a decision within
+    ``group_doubt_factor`` of the limit, and the leaves of the joins not kept within
+    it."""
     import cv2
 
-    kept, doubt = [], {}
+    kept, doubt, near = [], {}, []
     done: set = set()
     limit = opts.group_print_gap
     for g, leaves, hull in reversed(joins):
@@ -767,10 +771,12 @@ def _kept_joins(joins: list, opts: AnalysisOptions) -> tuple[list, dict]:
         if limit / opts.group_doubt_factor < ratio <= limit * opts.group_doubt_factor:
             for i in leaves:
                 doubt.setdefault(i, (g, ratio <= limit))
+            if ratio > limit:
+                near.append(leaves)
         if ratio <= limit:
             kept.append(leaves)
             done.update(leaves)
-    return kept, doubt
+    return kept, doubt, near
 
 
 def union_labels(n: int, a: np.ndarray, b: np.ndarray) -> np.ndarray:

@@ -113,6 +113,18 @@ def test_analyze_scan_group_mm_keeping_ribs_apart_near_the_limit_is_flagged():
     assert all(any("--group-mm over 14.9" in w for w in p.warnings) for p in found)
 
 
+@pytest.mark.parametrize(("width", "gap"), [(96.0, 18.0), (100.0, 20.0)])
+def test_analyze_scan_group_mm_keeping_ribs_apart_just_over_the_limit_is_flagged(width, gap):
+    # ribs whose join is 0.19-0.2 of the print's width, just over the side-by-side
+    # rule's limit (0.18) and within its doubt, kept apart by --group-mm 12 (fresh
+    # held-out set 15 sheet 57: a car print at 150 dpi, group_mm 13.6, three rib
+    # "prints" with status ok); the rule alone joins them by the tread's pattern
+    spec = PrintSpec(120.0, width, (80.0, 120.0), 0.0, "car", block=20.0, gap=gap)
+    found, _ = _analyze([spec], options=AnalysisOptions(group_mm=12.0))
+    assert len(found) == 3
+    assert all("grouping_uncertain" in p.flags for p in found)
+
+
 def test_analyze_scan_group_mm_two_prints_far_apart_are_not_flagged():
     # two prints 30 mm apart: the rule keeps them apart too, no doubt
     prints = [
