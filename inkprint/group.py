@@ -1005,11 +1005,10 @@ def join_shoulders(groups: list, fragments: list, *, mm_per_px: float) -> tuple[
                 continue
             if _outside_distance(pts.astype(float), hull.reshape(-1, 2)).min() > gap_px:
                 continue
-            grown = cv2.contourArea(cv2.convexHull(np.vstack([hull.reshape(-1, 2), pts])))
-            if grown - cv2.contourArea(hull) > SHOULDER_HULL * f.n_pixels:
+            grown = cv2.convexHull(np.vstack([hull.reshape(-1, 2), pts]))
+            if cv2.contourArea(grown) - cv2.contourArea(hull) > SHOULDER_HULL * f.n_pixels:
                 continue
-            groups[i] = union(groups[i], f)
-            hulls[i] = cv2.convexHull(np.vstack([hull.reshape(-1, 2), pts]))
+            groups[i], hulls[i] = union(groups[i], f), grown
             break
         else:
             left.append(f)
@@ -1247,13 +1246,7 @@ def _letters_in_a_row(
     t = cols * across[0] + rows * across[1]
     letter = mm_to_px_length(TEXT_LETTER_MM, mm_per_px)
     u = cols * along[0] + rows * along[1]
-    lo, hi = np.full(n, np.inf), np.full(n, -np.inf)
-    np.minimum.at(lo, ids, u)
-    np.maximum.at(hi, ids, u)
-    lo_t, hi_t = np.full(n, np.inf), np.full(n, -np.inf)
-    np.minimum.at(lo_t, ids, t)
-    np.maximum.at(hi_t, ids, t)
-    bar = (hi_t - lo_t + 1 < letter) & (hi - lo + 1 > UNDERLINE_LETTERS * letter)
+    bar = (_extents(ids, t, n) < letter) & (_extents(ids, u, n) > UNDERLINE_LETTERS * letter)
     if bar.any():  # the row's width without it
         keep = ~bar[ids]
         ids, t = ids[keep], t[keep]
@@ -1262,15 +1255,20 @@ def _letters_in_a_row(
     return _letter_row(ids, t, n, span, TEXT_LINE_LETTERS)
 
 
+def _extents(ids: np.ndarray, values: np.ndarray, n: int) -> np.ndarray:
+    """Per piece (labels 0..n-1 of pixels ``ids`` in raster order), the extent of
+    ``values`` over its pixels, max - min + 1 (-inf for a piece with none)."""
+    lo, hi = np.full(n, np.inf), np.full(n, -np.inf)
+    reduce_at(np.minimum, lo, ids, values=values)
+    reduce_at(np.maximum, hi, ids, values=values)
+    return hi - lo + 1
+
+
 def _letter_row(ids: np.ndarray, across: np.ndarray, n: int, span: float, least: int) -> bool:
     """Whether ink pixels (their pieces ``ids``, labels 1..n-1, and coordinates
     ``across`` a row [px]) are a row of letters: ``least`` or more pieces spanning
     ``span`` [px] or more across it, together :data:`TEXT_LINE_INK` of the ink."""
-    lo = np.full(n, np.inf)
-    hi = np.full(n, -np.inf)
-    np.minimum.at(lo, ids, across)
-    np.maximum.at(hi, ids, across)
-    tall = hi - lo + 1 >= span  # (the background, no pixel here: -inf)
+    tall = _extents(ids, across, n) >= span  # (the background, no pixel here: -inf)
     ink = np.bincount(ids, minlength=n)
     return np.count_nonzero(tall) >= least and ink[tall].sum() >= TEXT_LINE_INK * ink.sum()
 
@@ -1834,7 +1832,7 @@ def _dot_row(parts: _ThinParts, darkness, mask: np.ndarray, size: tuple, opts) -
         return none
     dark = np.asarray(darkness, float).ravel()
     peak = np.zeros(n)
-    np.maximum.at(peak, parts.ids, dark[parts.at])
+    reduce_at(np.maximum, peak, parts.ids, values=dark[parts.at])
     row = dot & (peak >= opts.edge_spot_faintness * float(np.median(dark[mask.ravel()])))
     if np.count_nonzero(row) < DOT_ROW:
         return none
@@ -1843,9 +1841,7 @@ def _dot_row(parts: _ThinParts, darkness, mask: np.ndarray, size: tuple, opts) -
     rr, cc = np.nonzero(mask)
     _, (vx, vy) = _major_axis(np.column_stack([cc, rr])[:: max(1, len(rr) // 4000)].astype(float))
     t_ink = cc * vx + rr * vy
-    t = np.zeros(n)
-    np.add.at(t, parts.ids, xs * vx + ys * vy)
-    t = t[row] / ink[row]
+    t = np.bincount(parts.ids, weights=xs * vx + ys * vy, minlength=n)[row] / ink[row]
     lo, hi = np.percentile(ink[row], [20, 80])
     return row if np.ptp(t) >= DOT_SPAN * np.ptp(t_ink) and hi <= DOT_SIZES * lo else none
 
