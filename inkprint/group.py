@@ -1792,11 +1792,8 @@ def _along_outline(thin: tuple, lab, stats, hull, *, skip, opts: AnalysisOptions
         return out
     ys, xs, ids = ys[sel], xs[sel], ids[sel]
     d = _outside_distance(np.column_stack([xs, ys]).astype(float), hull_pts.reshape(-1, 2))
-    near, far = np.full(n, np.inf), np.full(n, -np.inf)
-    np.minimum.at(near, ids, d)
-    np.maximum.at(far, ids, d)
     has = np.bincount(ids, minlength=n) > 0
-    across = far - near + 1.0
+    across = _extents(ids, d, n)  # the farthest minus the nearest distance, + 1
     for k in np.flatnonzero(has & (across <= along_px)):
         x, y, w, h = stats[k, :4]
         pts = cv2.findNonZero((lab[y : y + h, x : x + w] == k).view(np.uint8))
