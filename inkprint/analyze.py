@@ -1070,29 +1070,64 @@ def _reach_beyond_body(ctx: _Context, ink: np.ndarray, angle: float) -> float:
         return 0.0
     # what lies outside the body's hull must hold a straight bar at least
     # line_length_mm long (a tip the opening took is short and tapers: slick and
-    # knobby prints reach up to +65 % beyond their bodies so)
-    hull = cv2.fillConvexPoly(np.zeros_like(box), cv2.convexHull(outline_points(body)), 1)
-    out = box & (1 - cv2.dilate(hull, np.ones((3, 3), np.uint8)))
-    _, lab, st, _ = components_with_stats(out, connectivity=8)  # (OpenCV's stats, from the ink)
-    bar = mm_to_px_length(ctx.opts.line_length_mm, ctx.scan.mm_per_px)
-    long = np.hypot(st[1:, cv2.CC_STAT_WIDTH], st[1:, cv2.CC_STAT_HEIGHT]) >= bar
-    thin = st[1:, cv2.CC_STAT_AREA] <= 2.5 * stroke * np.hypot(
-        st[1:, cv2.CC_STAT_WIDTH], st[1:, cv2.CC_STAT_HEIGHT]
-    )
-    if not (long & thin).any() or _bar_tread(lab, st, 1 + np.flatnonzero(long & thin), ctx):
-        return 0.0
+    # knobby prints reach up to +65 % beyond their bodies so) that is no tread bar
+    points = outline_points(body)
+    for _ in range(2):
+        hull = cv2.fillConvexPoly(np.zeros_like(box), cv2.convexHull(points), 1)
+        out = box & (1 - cv2.dilate(hull, np.ones((3, 3), np.uint8)))
+        lab, st, ks = _long_thin(out, stroke, ctx)
+        if not len(ks):
+            return 0.0
+        bars = _bar_tread(lab, st, ks, ctx)
+        if bars.all():
+            return 0.0
+        if not bars.any():
+            break
+        # the rest judged against the hull of the body and its bars: the short bars
+        # at a herringbone's tips, the crescents its outline cut (held-out 14 sheet
+        # 21: the bars, then kept with the print, reached 117 % beyond its rib)
+        points = np.concatenate([points, outline_points(np.isin(lab, ks[bars]))])
     return _mask_excess(box, body, angle)
 
 
-def _bar_tread(lab: np.ndarray, st: np.ndarray, ks: np.ndarray, ctx: _Context) -> bool:
-    """Whether the long thin pieces ``ks`` (labels in ``lab``, OpenCV's stats
-    ``st``) are all a tread's bars side by side (:func:`inkprint.marks._bar_field`),
-    not a line: a herringbone print's bars off its centre rib reach 3 x beyond it."""
-    from .marks import BAR_FIELD_MIN, _bar_field, _piece_rects
+def _long_thin(out: np.ndarray, stroke: float, ctx: _Context) -> tuple:
+    """The pieces of ``out`` (uint8) at least ``line_length_mm`` long and no wider
+    than 2.5 strokes (``stroke`` [px]): the labels, OpenCV's stats and the pieces'
+    ids ((k,) int)."""
+    import cv2
+
+    n, lab, st, _ = components_with_stats(out, connectivity=8)  # (OpenCV's stats, from the ink)
+    bar = mm_to_px_length(ctx.opts.line_length_mm, ctx.scan.mm_per_px)
+    diag = np.hypot(st[1:, cv2.CC_STAT_WIDTH], st[1:, cv2.CC_STAT_HEIGHT])
+    thin = st[1:, cv2.CC_STAT_AREA] <= 2.5 * stroke * diag
+    ks = 1 + np.flatnonzero((diag >= bar) & thin)
+    if len(ks):
+        # and no wider than that at its widest (twice its inscribed radius): a
+        # diagonal bar up to 1.4 x as wide goes in the square opening, a pen line
+        # with its ticks is no wider than the line (held-out 12 sheet 93: a
+        # herringbone's 3 mm bars, three a side, read as a ruler's edge)
+        dt = cv2.distanceTransform(out, cv2.DIST_L2, 3)
+        on = lab > 0
+        widest = np.zeros(n)
+        np.maximum.at(widest, lab[on], dt[on])
+        ks = ks[2.0 * widest[ks] <= 2.5 * stroke + 1.0]
+    return lab, st, ks
+
+
+def _bar_tread(lab: np.ndarray, st: np.ndarray, ks: np.ndarray, ctx: _Context) -> np.ndarray:
+    """Which of the long thin pieces ``ks`` (labels in ``lab``, OpenCV's stats
+    ``st``) are a tread's bars
+    side by side (:func:`inkprint.marks._bar_field`), not a line ((k,) bool): a
+    herringbone print's bars off its centre rib reach 3 x beyond it; the pieces
+    like them (:func:`inkprint.marks._like_bars`: its last bars, farther apart)
+    are too."""
+    from .marks import BAR_FIELD_MIN, _bar_field, _like_bars, _piece_rects
 
     if len(ks) < BAR_FIELD_MIN:
-        return False
-    return bool(_bar_field(*_piece_rects(lab, st, ks), ctx.scan.mm_per_px).all())
+        return np.zeros(len(ks), bool)
+    rects, corners = _piece_rects(lab, st, ks)
+    field = _bar_field(rects, corners, ctx.scan.mm_per_px)
+    return field | _like_bars(rects, corners, field)
 
 
 def _under_text(ctx: _Context, g: Group, kept: np.ndarray) -> np.ndarray | None:

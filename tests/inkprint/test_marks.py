@@ -181,6 +181,30 @@ def test_bar_field_a_tread_s_parallel_bars_are_no_lines():
     assert not _bar_field(long, corners, px).any()  # longer than a tread's bar
 
 
+def test_bar_field_bars_offset_along_themselves_are_a_field():
+    # held-out 11 sheet 21 (150 dpi): a herringbone's 10 mm bars at 35 degrees to
+    # the print's axis, 6.4 mm apart along it, lie 3.6 mm apart across themselves
+    # and 5.2 mm along: more than half their length, so no field (width -53 %)
+    from inkprint.marks import _bar_field
+
+    px = 25.4 / 150.0
+    a = np.radians(55.0)
+    u, v = np.array([np.cos(a), np.sin(a)]), np.array([-np.sin(a), np.cos(a)])
+    rects = [((0.0, 0.0), (10.0 / px, 1.85 / px), 55.0) for _ in range(6)]
+    centres = [(k * (5.2 * u + 3.6 * v)) / px for k in range(6)]  # (x, y) [px]
+    corners = [(round(c[1]) + 500, round(c[0]) + 500) for c in centres]  # (row, col)
+    assert _bar_field(rects, corners, px).all()
+    # a neighbour beyond its length along it is not beside it
+    far = [
+        (
+            round(k * (9.0 * u + 3.6 * v)[1] / px) + 500,
+            round(k * (9.0 * u + 3.6 * v)[0] / px) + 500,
+        )
+        for k in range(6)
+    ]
+    assert not _bar_field(rects, far, px).any()
+
+
 def test_sort_ink_pixel_noise_without_thick_ink_sorts():
     # no piece survives the stroke-wide opening: the thick ink's box is empty (the
     # fine tread's look for tips shaved off thick ink dilated an empty array: an
@@ -191,26 +215,38 @@ def test_sort_ink_pixel_noise_without_thick_ink_sorts():
     assert not ink.groups and ink.marks
 
 
-def _herringbone(dpi: float, bar: float, ss: int = 4) -> tuple:
-    """A 70 x 28 mm elliptical herringbone print: a 6 mm slick centre rib and bars
-    ``bar`` mm wide at 45 degrees, 4 mm apart, standing ``bar`` mm off the rib either
-    side; grey image (area coverage of a ``ss`` x finer drawing), mm per px and the
-    truth (length, width, hull area) of the drawn ink."""
+def _herringbone(
+    dpi: float,
+    bar: float,
+    ss: int = 4,
+    *,
+    off: float | None = None,
+    step: float = 4.0,
+    rib: float = 6.0,
+    run: float = 1.0,
+    size: tuple = (70.0, 28.0),
+) -> tuple:
+    """An elliptical herringbone print ``size`` (length, width) [mm]: a slick centre
+    rib ``rib`` mm wide and bars ``bar`` mm wide running ``run`` mm along per mm
+    across (1: 45 degrees), ``step`` mm apart, standing ``off`` mm off the rib
+    either side (1.5 ``bar`` when None; 0: joined to it); grey image (area coverage
+    of a ``ss`` x finer drawing), mm per px and the truth (length, width, hull area)
+    of the drawn ink."""
     mm = 25.4 / dpi / ss
+    off = 1.5 * bar if off is None else off
     h, w = int(60 / mm), int(100 / mm)
     cx, cy = w / 2, h / 2
     ink = np.zeros((h, w), np.uint8)
-    cv2.rectangle(ink, (0, round(cy - 3 / mm)), (w, round(cy + 3 / mm)), 1, -1)
-    for x in np.arange(-70.0, 70.0, 4.0):
+    cv2.rectangle(ink, (0, round(cy - rib / 2 / mm)), (w, round(cy + rib / 2 / mm)), 1, -1)
+    for x in np.arange(-70.0, 70.0, step):
         for side in (-1, 1):
-            y0, y1 = side * (3 + 1.5 * bar), side * 17.0
+            y0, y1 = side * (rib / 2 + off), side * 20.0
             p0 = (round(cx + x / mm), round(cy + y0 / mm))
-            p1 = (round(cx + (x + abs(y1 - y0)) / mm), round(cy + y1 / mm))
+            p1 = (round(cx + (x + run * abs(y1 - y0)) / mm), round(cy + y1 / mm))
             cv2.line(ink, p0, p1, 1, max(1, round(bar / mm)))
     outline = np.zeros_like(ink)
-    cv2.ellipse(
-        outline, (round(cx), round(cy)), (round(35 / mm), round(14 / mm)), 0, 0, 360, 1, -1
-    )
+    axes = (round(size[0] / 2 / mm), round(size[1] / 2 / mm))
+    cv2.ellipse(outline, (round(cx), round(cy)), axes, 0, 0, 360, 1, -1)
     return drawn_scan(ink & outline, dpi, ss, 0.75)
 
 
@@ -220,6 +256,46 @@ def test_analyze_scan_herringbone_bars_off_a_rib_are_tread(dpi, bar):
     # bold letters (the print came out as its rib alone: width -78 %, flagged), then
     # read as lines reaching 3 x beyond the rib's body (flagged mark_on_edge)
     grey, mm, (length, width, area) = _herringbone(dpi, bar)
+    res = ip.analyze_scan(ip.Scan(grey, mm, "given"), rolling_axis="x", sensitivity=False)
+    (pr,) = res.prints
+    assert pr.status == "ok", pr.warnings
+    assert_allclose([pr.metrics.length, pr.metrics.width], [length, width], rtol=0.01)
+    assert_allclose(pr.metrics.hull_area, area, rtol=0.02)
+
+
+@pytest.mark.parametrize(
+    "dpi, bar, step, rib, run, size",
+    [
+        (240.0, 1.75, 7.5, 11.5, 1.54, (61.5, 31.3)),
+        (300.0, 1.5, 7.5, 11.5, 1.54, (61.5, 31.3)),
+        (180.0, 1.6, 7.5, 11.5, 1.54, (61.5, 31.3)),
+        (150.0, 1.85, 6.4, 9.0, 1.43, (72.2, 20.3)),
+    ],
+)
+def test_analyze_scan_herringbone_bars_joined_to_the_rib_are_tread(dpi, bar, step, rib, run, size):
+    # held-out 14 sheet 21 (240 dpi): bars joined to the rib by their ink were cut
+    # from its rim as a marker's letters (the print came out as its rib alone:
+    # width -63 %, flagged); kept, they still read as lines reaching 117 % beyond
+    # the rib's body (flagged mark_on_edge) and their tips as dust on its edge.
+    # Held-out 11 sheet 21 (150 dpi): 10 mm bars 5.2 mm apart along themselves were
+    # no field (half their length at most: width -53 %, flagged)
+    grey, mm, (length, width, area) = _herringbone(
+        dpi, bar, off=0.0, step=step, rib=rib, run=run, size=size
+    )
+    res = ip.analyze_scan(ip.Scan(grey, mm, "given"), rolling_axis="x", sensitivity=False)
+    (pr,) = res.prints
+    assert pr.status == "ok", pr.warnings
+    assert_allclose([pr.metrics.length, pr.metrics.width], [length, width], rtol=0.01)
+    assert_allclose(pr.metrics.hull_area, area, rtol=0.02)
+
+
+@pytest.mark.parametrize("dpi", [200.0, 300.0])
+def test_analyze_scan_herringbone_wide_bars_are_no_pen_line(dpi):
+    # held-out 12 sheet 93, 8 sheet 103: bars 3-3.5 mm wide at 45 degrees, a few a
+    # side, vanish in the square opening that takes pen lines (a diagonal bar up to
+    # 1.4 x as wide goes) and were flagged as a ruler's edge taken for tread; a pen
+    # line is no wider than 2.5 strokes at its widest
+    grey, mm, (length, width, area) = _herringbone(dpi, 3.0, off=2.0, step=9.0)
     res = ip.analyze_scan(ip.Scan(grey, mm, "given"), rolling_axis="x", sensitivity=False)
     (pr,) = res.prints
     assert pr.status == "ok", pr.warnings
