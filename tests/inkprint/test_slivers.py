@@ -233,6 +233,20 @@ def test_edge_spots_keep_a_row_of_dark_dots_along_the_outline(dpi, side, pitch, 
     assert p.status == "ok"
 
 
+@pytest.mark.parametrize("dpi", [300.0, 400.0])
+def test_edge_spots_keep_a_row_of_small_dots(dpi):
+    # held-out 6 sheet 87 (400 dpi): a file print's outer row of dots 0.23-0.48 mm^2,
+    # the larger ones (0.3 mm^2 or more, the floor then) along 15 % of its length:
+    # no row, the 16 dots dropped, width -3.6 % with status ok
+    grey, mm, truth = _dotted_print(dpi, 2.0, 2.8, 0.55)
+    res = ip.analyze_scan(ip.Scan(grey, mm, "given"), sensitivity=False, rolling_axis="x")
+    (p,) = res.prints
+    m = p.metrics
+    assert_allclose([m.length, m.width], truth[:2], rtol=0.01)
+    assert_allclose(m.hull_area, truth[2], rtol=0.02)
+    assert p.status == "ok"
+
+
 def _shouldered_print(dpi: float, cut: float) -> tuple:
     """A 98 x 72 mm elliptical slick print whose two grooves 3.5 mm wide, chords
     ``cut`` mm inside its ends, cut its shoulders off as crescents; the grey, mm per
