@@ -1154,6 +1154,27 @@ class _BoldJudge:
         )
         if not field.any():
             return out, cut
+        crops = [self._crop(self.parts.thick, self.st, k) for k in els[strokes]]
+        crops += [self._crop(cut_lab, cut_st, k) for k in range(1, n_cut + 1)]
+        field |= self._beside_field(field, rects, corners, crops, box, hull)
+        out = field[: len(strokes)]
+        if field[len(strokes) :].any():
+            bar = np.r_[False, field[len(strokes) :]]
+            cut = cut & ~bar[cut_lab]
+        return out, cut
+
+    @staticmethod
+    def _crop(labels: np.ndarray, st: np.ndarray, k: int) -> np.ndarray:
+        """Piece ``k`` of ``labels`` (OpenCV's stats ``st``) in its box, uint8."""
+        x, y, w, h = st[k, :4]
+        return (labels[y : y + h, x : x + w] == k).view(np.uint8)
+
+    def _beside_field(self, field, rects, corners, crops, box, hull) -> np.ndarray:
+        """Which of the pieces outside a field of bars (``field``, (k,) bool; their
+        ``rects`` and ``corners`` as :func:`_bar_field`'s, sheet (row, col) [px];
+        ``crops``: each in its box) lie within or along the hull of the body
+        (``hull``, (m, 2) (x, y) over ``box``) and the field's bars: the short bars
+        at a herringbone's tips, the crescents its outline cut. (k,) bool."""
         import cv2
 
         origin = np.array([box[1].start, box[0].start], float)
@@ -1162,23 +1183,11 @@ class _BoldJudge:
             for j in np.flatnonzero(field)
         ]
         grown = cv2.convexHull(np.concatenate(pts).astype(np.float32)).reshape(-1, 2)
-        for j in np.flatnonzero(~field):  # the rest, judged against the grown hull
-            y, x = corners[j]
-            if j < len(strokes):
-                k = els[strokes[j]]
-                w, h = self.st[k, 2:4]
-                piece = self.parts.thick[y : y + h, x : x + w] == k
-            else:
-                k = j - len(strokes) + 1
-                w, h = cut_st[k, 2:4]
-                piece = cut_lab[y - box[0].start :, x - box[1].start :][:h, :w] == k
-            off = np.array([x, y], float) - origin
-            field[j] = not self.judge(piece.view(np.uint8), off, grown.astype(float), self.over)
-        out = field[: len(strokes)]
-        if field[len(strokes) :].any():
-            bar = np.r_[False, field[len(strokes) :]]
-            cut = cut & ~bar[cut_lab]
-        return out, cut
+        out = np.zeros(len(field), bool)
+        for j in np.flatnonzero(~field):
+            off = np.array([corners[j][1], corners[j][0]], float) - origin
+            out[j] = not self.judge(crops[j], off, grown.astype(float), self.over)
+        return out
 
     def _body(self, els, local, box) -> tuple:
         """The print's body (bool over its box) and which of ``els`` make it."""
