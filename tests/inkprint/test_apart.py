@@ -133,3 +133,19 @@ def test_analyze_scan_group_mm_two_prints_far_apart_are_not_flagged():
     ]
     found, _ = _analyze(prints, options=AnalysisOptions(group_mm=5.0))
     assert len(found) == 2 and all(p.flags == () for p in found)
+
+
+@pytest.mark.parametrize("group_mm", [None, 10.0])
+def test_analyze_scan_ribs_far_over_the_limit_are_flagged(group_mm):
+    # held-out 11 sheet 91: a short car print (58 x 94 mm) whose three ribs lie 12.9
+    # mm apart, 0.22 of its length (the rule's limit 0.18, its doubt up to 0.207):
+    # three rib "prints" with status ok (width -66 %), with or without --group-mm
+    spec = PrintSpec(58.0, 94.0, (80.0, 120.0), 0.0, "car", block=22.0, gap=13.0)
+    opts = AnalysisOptions(group_mm=group_mm) if group_mm else None
+    found, (t,) = _analyze([spec], options=opts)
+    if len(found) == 1:  # joined: then measured whole
+        assert_allclose(
+            [found[0].metrics.length, found[0].metrics.width], [t.length, t.width], rtol=0.01
+        )
+    else:
+        assert all("grouping_uncertain" in p.flags for p in found)
