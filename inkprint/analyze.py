@@ -75,6 +75,9 @@ AXES = ("auto", "x", "y")
 #: is shorter or narrower without its letter-sized pieces beside it by more than
 #: ``edge_uncertainty``, is flagged ``mark_on_edge`` (:func:`_letters_pull`)
 LETTER_INSIDE = 0.25
+#: ... and less than this (a letter wholly inside it, a ruler's number over its
+#: middle, leaves its outline where it is)
+LETTER_WITHIN = 0.95
 #: ... and its pieces beside them are followed this many letters along (a word)
 LETTER_STEPS = 3
 
@@ -1470,9 +1473,9 @@ def _letters_inside(marks: list, hull_px: np.ndarray) -> float:
 def _letters_pull(marks: list, g: Group, kept: np.ndarray, m) -> float:
     """How much shorter or narrower (the largest relative excess, along the print's
     orientation and across) the print is without its pieces as large as letters
-    beside the letters set aside that its outline reaches over (more than
-    :data:`LETTER_INSIDE` of a letter's box inside its hull ``m.hull_px``,
-    :func:`_letters_inside`): pieces no larger than two letters with half their ink
+    beside the letters set aside that its outline runs across (more than
+    :data:`LETTER_INSIDE` and less than :data:`LETTER_WITHIN` of a letter's box
+    inside its hull ``m.hull_px``, :func:`_letters_inside`): pieces no larger than two letters with half their ink
     or more within a letter's size of such a letter's box, then of such a piece,
     :data:`LETTER_STEPS` times along (a word's next letters). A marker's label
     written against a knobby print came out half set aside as letters, half taken
@@ -1483,7 +1486,8 @@ def _letters_pull(marks: list, g: Group, kept: np.ndarray, m) -> float:
     boxes = [
         mk.bbox
         for mk in marks
-        if mk.kind in ("text", "writing") and _letters_inside([mk], m.hull_px) > LETTER_INSIDE
+        if mk.kind in ("text", "writing")
+        and LETTER_INSIDE < _letters_inside([mk], m.hull_px) < LETTER_WITHIN
     ]
     if not boxes:
         return 0.0
