@@ -1125,11 +1125,10 @@ def _long_thin(out: np.ndarray, stroke: float, ctx: _Context) -> tuple:
 
 def _bar_tread(lab: np.ndarray, st: np.ndarray, ks: np.ndarray, ctx: _Context) -> np.ndarray:
     """Which of the long thin pieces ``ks`` (labels in ``lab``, OpenCV's stats
-    ``st``) are a tread's bars
-    side by side (:func:`inkprint.marks._bar_field`), not a line ((k,) bool): a
-    herringbone print's bars off its centre rib reach 3 x beyond it; the pieces
-    like them (:func:`inkprint.marks._like_bars`: its last bars, farther apart)
-    are too."""
+    ``st``) are a tread's bars side by side (:func:`inkprint.marks._bar_field`), not
+    a line ((k,) bool): a herringbone print's bars off its centre rib reach 3 x
+    beyond it; the pieces like them (:func:`inkprint.marks._like_bars`: its last
+    bars, farther apart) are too."""
     from .marks import BAR_FIELD_MIN, _bar_field, _like_bars, _piece_rects
 
     if len(ks) < BAR_FIELD_MIN:
@@ -1447,10 +1446,9 @@ def _line_flags(
 
 def _letters_inside(marks: list, hull_px: np.ndarray) -> float:
     """The largest share of a letter's box (a mark of text or writing set aside)
-    inside a print's outline ``hull_px`` ((k, 2) sheet (row, col) [px]): the print's
-    hull reaching over a label's letters holds the label's other letters, taken for
-    tread blocks (held-out 6 sheet 34: '434 N' above a print, '43' set aside, '4 N'
-    measured with it: width +23 %, unflagged)."""
+    inside a print's outline ``hull_px`` ((k, 2) sheet (row, col) [px]): an outline
+    running across a label's letter may hold the label's other letters, taken for
+    tread blocks (:func:`_letters_pull`)."""
     import cv2
 
     if hull_px is None or len(hull_px) < 3:
@@ -1475,9 +1473,10 @@ def _letters_pull(marks: list, g: Group, kept: np.ndarray, m) -> float:
     orientation and across) the print is without its pieces as large as letters
     beside the letters set aside that its outline runs across (more than
     :data:`LETTER_INSIDE` and less than :data:`LETTER_WITHIN` of a letter's box
-    inside its hull ``m.hull_px``, :func:`_letters_inside`): pieces no larger than two letters with half their ink
-    or more within a letter's size of such a letter's box, then of such a piece,
-    :data:`LETTER_STEPS` times along (a word's next letters). A marker's label
+    inside its hull ``m.hull_px``, :func:`_letters_inside`): pieces no larger than
+    two letters with half their ink or more within a letter's size of such a
+    letter's box, then of such a piece, :data:`LETTER_STEPS` times along (a word's
+    next letters). A marker's label
     written against a knobby print came out half set aside as letters, half taken
     for tread blocks (held-out 6 sheet 34: '434 N', '43' set aside, width +23 %,
     unflagged); a ruler's numbers over a print's middle, or a tick beside its edge,
@@ -1543,12 +1542,12 @@ def _print_flags(
         )
     # (on chart paper gridlines' bits read as letters: the grid's rules judge there)
     letters = "mark_on_edge" not in flags and ctx.found.grid is None
-    pull = _letters_pull(ctx.found.marks, padded, kept, m) if letters else 0.0
-    if pull > ctx.opts.edge_uncertainty:
+    lpull = _letters_pull(ctx.found.marks, padded, kept, m) if letters else 0.0
+    if lpull > ctx.opts.edge_uncertainty:
         flags.append("mark_on_edge")
         warnings.append(
-            f"print #{index}: its outline reaches over letters set aside: without the "
-            f"pieces beside them, as large as letters, it is {100 * pull:.1f} % shorter "
+            f"print #{index}: its outline runs across a letter set aside: without the "
+            f"pieces beside it, as large as letters, it is {100 * lpull:.1f} % shorter "
             f"or narrower (letters of the same label taken for tread blocks?); see the "
             f"overlay, remove the label or rescan"
         )
