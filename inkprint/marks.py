@@ -210,6 +210,9 @@ class SortedInk:
         Ink of straight lines set aside (rulers) with print ink right across the
         line: where a line runs along a print's edge the edge lies under it
         (:func:`remove_lines`); None without lines.
+    lines : tuple of ((x0, y0), (x1, y1), width)
+        The straight lines taken out (rulers, drawn lines), extended across their
+        networks' boxes: end points and width [sheet px].
     """
 
     groups: list
@@ -217,6 +220,7 @@ class SortedInk:
     mark_map: np.ndarray | None = field(default=None, repr=False)
     q: int = 1
     grazed: np.ndarray | None = field(default=None, repr=False)
+    lines: tuple = ()
 
     def marks_near(self, rows: slice, cols: slice) -> np.ndarray:
         """Sheet pixels of a box that lie on or next to a mark set aside.
@@ -2003,7 +2007,8 @@ def sort_ink(mask, *, mm_per_px: float, options: AnalysisOptions | None = None) 
         if g
     ]
     groups.sort(key=reading_order)
-    return SortedInk(groups, marks, group_map.marks(), pooled.q, grazed)
+    lines_out = tuple((b.p0, b.p1, b.width) for b in bands)
+    return SortedInk(groups, marks, group_map.marks(), pooled.q, grazed, lines_out)
 
 
 def _fine_areas(parts: _Parts, comp: np.ndarray, n: int, px_mm: float) -> np.ndarray:

@@ -315,3 +315,18 @@ def test_letters_pull_a_ruler_s_number_over_the_middle_pulls_nothing():
     # (a letter straddling the top row: the knobs beside it go, the row stays)
     edge = [dataclasses.replace(marks[0], bbox=(44, 100, 56, 110))]
     assert _letters_pull(edge, g, kept, m) == 0.0
+
+
+def test_by_a_line_a_ruler_s_ticks_lie_by_it():
+    # a ruler crossing a knobby print at its widest (own generator seed 6011 file
+    # 52): its ticks on the outline read as letters the outline runs across, the
+    # blocks beside them as the word's next letters (width -4.9 % without them,
+    # flagged though within 0.5 %); a letter within reach of a line is the ruler's
+    from inkprint.analyze import _by_a_line
+
+    line = ((100.0, 100.0), (300.0, 300.0), 6.0)  # (x, y) ends, width [px]
+    assert _by_a_line((190, 200, 200, 210), (line,), 10.0)  # beside its middle
+    assert not _by_a_line((100, 250, 110, 260), (line,), 10.0)  # 100 px off it
+    assert not _by_a_line((320, 320, 330, 330), (line,), 10.0)  # past its end
+    assert _by_a_line((305, 305, 315, 315), (line,), 10.0)  # by its end
+    assert not _by_a_line((190, 200, 200, 210), (), 10.0)
