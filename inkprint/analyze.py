@@ -64,7 +64,7 @@ from .group import (
 )
 from .lattice import CORNER_FLAG, CORNER_SHORT_PX, coarse_elements, lattice_prints
 from .light import Page, light_spread, prepare_page
-from .marks import BOLD_REASON, Mark, SortedInk, sort_ink
+from .marks import BOLD_REASON, TICK_REASON, Mark, SortedInk, sort_ink
 from .options import AnalysisOptions, resolve_options, resolve_threads
 from .read import Scan, read_scan
 from .results import BAND_KEYS, PrintResult, SheetResult, contact_pressure, marks_summary
@@ -78,10 +78,8 @@ LETTER_INSIDE = 0.25
 #: ... and less than this (a letter wholly inside it, a ruler's number over its
 #: middle, leaves its outline where it is)
 LETTER_WITHIN = 0.95
-#: ... and its pieces beside them are followed this many letters along (a word);
-#: a letter within this of a line taken out [mm] is a ruler's tick or number
+#: ... and its pieces beside them are followed this many letters along (a word)
 LETTER_STEPS = 3
-LETTER_RULER_MM = 8.0
 
 
 def _hull_px(mask, field, r0: int, c0: int) -> np.ndarray:
@@ -1470,24 +1468,7 @@ def _letters_inside(marks: list, hull_px: np.ndarray) -> float:
     return best
 
 
-def _by_a_line(bbox, lines: tuple, reach: float) -> bool:
-    """Whether a box (row0, col0, row1, col1) [px] lies within ``reach`` [px] of one
-    of the ``lines`` ((x0, y0), (x1, y1), width) beyond its half width: its
-    nearest corner or centre to the segment."""
-    r0, c0, r1, c1 = bbox
-    pts = np.array([[c0, r0], [c1, r0], [c0, r1], [c1, r1], [(c0 + c1) / 2, (r0 + r1) / 2]], float)
-    for p0, p1, width in lines:
-        a, b = np.asarray(p0, float), np.asarray(p1, float)
-        d = b - a
-        t = np.clip((pts - a) @ d / max(float(d @ d), 1e-9), 0.0, 1.0)
-        if np.hypot(*(pts - a - t[:, None] * d).T).min() <= reach + width / 2:
-            return True
-    return False
-
-
-def _letters_pull(
-    marks: list, g: Group, kept: np.ndarray, m, *, lines: tuple = (), reach: float = 0.0
-) -> float:
+def _letters_pull(marks: list, g: Group, kept: np.ndarray, m) -> float:
     """How much shorter or narrower (the largest relative excess, along the print's
     orientation and across) the print is without its pieces as large as letters
     beside the letters set aside that its outline runs across (more than
@@ -1499,18 +1480,20 @@ def _letters_pull(
     written against a knobby print came out half set aside as letters, half taken
     for tread blocks (held-out 6 sheet 34: '434 N', '43' set aside, width +23 %,
     unflagged); a ruler's numbers over a print's middle, or a tick beside its edge,
-    leave its outline where it is, and a letter within ``reach`` [px] of a line
-    taken out (``lines``: :attr:`inkprint.marks.SortedInk.lines`) is a ruler's tick
-    or number, judged by the lines' rules (a ruler crossing a knobby print at its
-    widest: its ticks on the outline, the blocks beside them, width -4.9 % without
-    them, flagged though within 0.5 %). ``g``: the print's padded box, ``kept`` its
+    leave its outline where it is. A thin piece touching the print set aside as a
+    pen mark or tick (:data:`inkprint.marks.TICK_REASON`) is no seed: a ruler's
+    ticks on the outline where it crosses a knobby print at its widest (own
+    generator, fresh seed 6011 file 52: width -4.9 % without the blocks beside
+    them), a tread block the outline cut to a sliver (a bundled scan, tire08 6.9
+    bar 304 N: length -37 % without the blocks beside it), each flagged though
+    measured as before. ``g``: the print's padded box, ``kept`` its
     ink measured over it."""
     boxes = [
         mk.bbox
         for mk in marks
         if mk.kind in ("text", "writing")
+        and not mk.reason.startswith(TICK_REASON)
         and LETTER_INSIDE < _letters_inside([mk], m.hull_px) < LETTER_WITHIN
-        and not _by_a_line(mk.bbox, lines, reach)
     ]
     if not boxes:
         return 0.0
@@ -1566,11 +1549,7 @@ def _print_flags(
         )
     # (on chart paper gridlines' bits read as letters: the grid's rules judge there)
     letters = "mark_on_edge" not in flags and ctx.found.grid is None
-    lpull = 0.0
-    if letters:
-        reach = mm_to_px_length(LETTER_RULER_MM, ctx.scan.mm_per_px)
-        lines = ctx.found.sorted.lines
-        lpull = _letters_pull(ctx.found.marks, padded, kept, m, lines=lines, reach=reach)
+    lpull = _letters_pull(ctx.found.marks, padded, kept, m) if letters else 0.0
     if lpull > ctx.opts.edge_uncertainty:
         flags.append("mark_on_edge")
         warnings.append(

@@ -139,6 +139,8 @@ LINE_SUPPORT = 0.5
 BRIDGE_MM = 1.0
 #: the reason given for bold pen strokes set aside (their marks' kind is 'text')
 BOLD_REASON = "bold pen strokes (a marker's letters) touching or near a print"
+#: why a thin piece touching a print is set aside (followed by its reach)
+TICK_REASON = "a pen mark or tick reaching"
 #: bold pen strokes are looked for again this many times after regrouping without
 #: those found (each pass can only set more aside)
 BOLD_PASSES = 3
@@ -210,9 +212,6 @@ class SortedInk:
         Ink of straight lines set aside (rulers) with print ink right across the
         line: where a line runs along a print's edge the edge lies under it
         (:func:`remove_lines`); None without lines.
-    lines : tuple of ((x0, y0), (x1, y1), width)
-        The straight lines taken out (rulers, drawn lines), extended across their
-        networks' boxes: end points and width [sheet px].
     """
 
     groups: list
@@ -220,7 +219,6 @@ class SortedInk:
     mark_map: np.ndarray | None = field(default=None, repr=False)
     q: int = 1
     grazed: np.ndarray | None = field(default=None, repr=False)
-    lines: tuple = ()
 
     def marks_near(self, rows: slice, cols: slice) -> np.ndarray:
         """Sheet pixels of a box that lie on or next to a mark set aside.
@@ -1647,7 +1645,7 @@ def _short_reason(kind: str, t: _ThinStats, k: int, opts: AnalysisOptions) -> st
             f"the print the outline cut, or a pen mark (the print is flagged)"
         )
     if t.target[k] >= 0 and t.gap[k] <= opts.group_distance_mm:
-        return f"a pen mark or tick reaching {t.reach[k]:.1f} mm out of a print"
+        return f"{TICK_REASON} {t.reach[k]:.1f} mm out of a print"
     return f"writing or a mark ({t.extent[k]:.1f} mm) away from the prints"
 
 
@@ -2007,8 +2005,7 @@ def sort_ink(mask, *, mm_per_px: float, options: AnalysisOptions | None = None) 
         if g
     ]
     groups.sort(key=reading_order)
-    lines_out = tuple((b.p0, b.p1, b.width) for b in bands)
-    return SortedInk(groups, marks, group_map.marks(), pooled.q, grazed, lines_out)
+    return SortedInk(groups, marks, group_map.marks(), pooled.q, grazed)
 
 
 def _fine_areas(parts: _Parts, comp: np.ndarray, n: int, px_mm: float) -> np.ndarray:
