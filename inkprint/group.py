@@ -512,6 +512,21 @@ class PartsJoined:
     doubt_joined: np.ndarray
 
 
+def _straight_side(hull_mm: np.ndarray) -> bool:
+    """Whether a part's hull ((k, 2) [mm]) has a straight side at least
+    :data:`STRAIGHT_SIDE` of its longer extent: a rib's edge along a groove (a car
+    print's half), not a print's rounded outline. Two prints side by side 16-19 mm
+    apart, near the side-by-side limit, were both flagged ``grouping_uncertain``
+    though each is whole (ten prints on the held-out development sets)."""
+    import cv2
+
+    h = cv2.convexHull(np.asarray(hull_mm, np.float32).reshape(-1, 1, 2)).reshape(-1, 2)
+    if len(h) < 3:
+        return False
+    side = np.hypot(*(np.roll(h, -1, axis=0) - h).T).max()
+    return bool(side >= STRAIGHT_SIDE * max(cv2.minAreaRect(h)[1]))
+
+
 def _side_by_side(p: np.ndarray, q: np.ndarray) -> tuple[float, float, float]:
     """How two convex hulls ((k, 2) points) face each other across the line that
     separates them best: the length over which their extents along that line
@@ -638,6 +653,10 @@ def join_side_by_side(
         return none
     joins = _join_tree(links, pts, k)
     kept, doubt, near = _kept_joins(joins, opts)
+    for leaves in near:  # two rounded prints kept apart: no doubt
+        if len(leaves) == 2 and not any(_straight_side(pts[i]) for i in leaves):
+            for i in leaves:
+                doubt.pop(i, None)
     if opts.group_mm is not None:  # the rule's joins; near its limit, either way, ribs
         ribs = [v for v in kept if len(v) >= RIBS_IN_DOUBT or not doubt.keys() & set(v)]
         ribs += [v for v in near if len(v) >= RIBS_IN_DOUBT]
@@ -685,6 +704,9 @@ DOT_SIZES = 2.0
 #: would join this many parts or more (a car print's ribs; two prints side by side
 #: are two) is flagged as kept apart (:func:`_kept_apart`)
 RIBS_IN_DOUBT = 3
+#: ... and two parts kept apart near the limit are in doubt only when one has a
+#: straight side this share of its longer extent (a rib's edge; :func:`_straight_side`)
+STRAIGHT_SIDE = 0.4
 
 
 def _kept_apart(comp: np.ndarray, k: int, joins: list, kept: list) -> PartsJoined:
