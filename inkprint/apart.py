@@ -165,4 +165,6 @@ def _cut(group: Group, axis: np.ndarray, *, xy_mean, at: float) -> list[Group]:
 def _ribbed(part: Group, mm_per_px: float) -> bool:
     """Whether a part's hull has a rib's straight side (:func:`inkprint.group._straight_side`)."""
     pts = outline_points(part.mask)
-    return pts is not None and _straight_side(pts.reshape(-1, 2) * mm_per_px)
+    return pts is not None and _straight_side(
+        px_to_mm_length(pts.reshape(-1, 2).astype(float), mm_per_px)
+    )
