@@ -38,7 +38,7 @@ import numpy as np
 
 from .apart import split_apart
 from .binarize import Binarization, below, binarize, remove_specks
-from .components import components_with_stats, pixel_sums
+from .components import components_with_stats, pixel_sums, reduce_at
 from .coords import (
     area_mm2_to_px,
     area_px_to_mm2,
@@ -1118,7 +1118,7 @@ def _long_thin(out: np.ndarray, stroke: float, ctx: _Context) -> tuple:
         dt = cv2.distanceTransform(out, cv2.DIST_L2, 3)
         on = lab > 0
         widest = np.zeros(n)
-        np.maximum.at(widest, lab[on], dt[on])
+        reduce_at(np.maximum, widest, lab[on], values=dt[on])
         ks = ks[2.0 * widest[ks] <= 2.5 * stroke + 1.0]
     return lab, st, ks
 

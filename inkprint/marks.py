@@ -1156,20 +1156,14 @@ class _BoldJudge:
         )
         if not field.any():
             return out, cut
-        crops = [self._crop(self.parts.thick, self.st, k) for k in els[strokes]]
-        crops += [self._crop(cut_lab, cut_st, k) for k in range(1, n_cut + 1)]
+        crops = [_crop(self.parts.thick, self.st, k).view(np.uint8) for k in els[strokes]]
+        crops += [_crop(cut_lab, cut_st, k).view(np.uint8) for k in range(1, n_cut + 1)]
         field |= self._beside_field(field, rects, corners, crops, box, hull)
         out = field[: len(strokes)]
         if field[len(strokes) :].any():
             bar = np.r_[False, field[len(strokes) :]]
             cut = cut & ~bar[cut_lab]
         return out, cut
-
-    @staticmethod
-    def _crop(labels: np.ndarray, st: np.ndarray, k: int) -> np.ndarray:
-        """Piece ``k`` of ``labels`` (OpenCV's stats ``st``) in its box, uint8."""
-        x, y, w, h = st[k, :4]
-        return (labels[y : y + h, x : x + w] == k).view(np.uint8)
 
     def _beside_field(self, field, rects, corners, crops, box, hull) -> np.ndarray:
         """Which of the pieces outside a field of bars (``field``, (k,) bool; their
