@@ -430,22 +430,39 @@ def test_analyze_scan_auto_axis_says_so_and_flags_near_round_prints():
 
 @pytest.mark.parametrize("seed", [0, 1])
 def test_analyze_scan_print_turned_against_the_given_axis_is_flagged(tmp_path, seed):
-    # a print taped 2-10 degrees askew, rolling axis x from the manifest: along x it
-    # reads up to +27 % wide; it must be flagged, never a silent number
+    # rolling axis x from the manifest: a print taped 2-10 degrees askew (a crooked
+    # sheet) is measured along its own axis, within the bar; one turned 20-40 degrees
+    # reads up to +60 % wide along x: it must be flagged, never a silent number
     results, rows = outcomes(tmp_path, "turned", seed)
-    assert [r["outcome"] for r in results] == ["flagged", "flagged"], results
-    assert all("axis_misaligned" in r["flags"] for r in rows)
-    assert all("--rolling-axis auto" in r["warnings"] for r in rows)
+    got = sorted((r["expect"], r["outcome"]) for r in results)
+    assert got == [("axis_misaligned", "flagged"), ("measure", "pass")], results
+    askew, turned = sorted(rows, key=lambda r: -float(r["centroid_y_mm"]))
+    assert askew["flags"] == "" and askew["axis_source"] == "manifest"
+    assert "axis_misaligned" in turned["flags"]
+    assert "--rolling-axis auto" in turned["warnings"]
 
 
 def test_own_axis_finds_the_turn_of_a_print_and_its_error():
+    # a print taped 4 degrees askew: measured along its own axis (within
+    # axis_misaligned_deg, 15), unflagged; with a 2-degree tolerance along x, flagged
     p = PrintSpec(80.0, 20.0, (60, 60), 4.0, "slick", unevenness=0.0)
-    scan, _ = scan_of(SheetSpec((p,), size=(120, 120), specks=0))
+    scan, (t,) = scan_of(SheetSpec((p,), size=(120, 120), specks=0))
     res = ip.analyze_scan(scan, sensitivity=False, rolling_axis="x")
+    m = res.prints[0].metrics
+    assert res.prints[0].flags == ()
+    assert math.degrees(m.orientation) == pytest.approx(4.0, abs=0.3)
+    assert within(m, t)
     turn, excess = own_axis(res.prints[0].hull_px, 0.0)
     assert turn == pytest.approx(4.0, abs=0.3)
     assert excess > 0.05  # the width along x: 80 sin 4 deg over 20 mm
-    assert "axis_misaligned" in res.prints[0].flags
+    tight = ip.analyze_scan(
+        scan,
+        sensitivity=False,
+        rolling_axis="x",
+        options=ip.AnalysisOptions(axis_misaligned_deg=2.0),
+    )
+    assert "axis_misaligned" in tight.prints[0].flags
+    assert tight.prints[0].metrics.orientation == 0.0
     square = ip.analyze_scan(
         scan_of(SheetSpec((dataclasses.replace(p, angle=0.0),), size=(120, 120), specks=0))[0],
         sensitivity=False,
