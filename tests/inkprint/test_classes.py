@@ -79,6 +79,25 @@ def test_group_blobs_keeps_two_wide_groove_prints_apart(apart):
     assert all(within(q.metrics, t) for q, t in zip(r.prints, truths, strict=True))
 
 
+def test_lone_elements_flags_a_knob_sized_print_beside_a_knob_pattern():
+    # a 7 x 7 mm blob 22.5 mm from a knobby print (6.5 mm grooves): beyond the
+    # groove limit (20 mm) it is a print of its own; within it (the grouping kept a
+    # row of knobs apart: held-out 2026 sheet 6, seven "prints" of one knob each,
+    # status ok) both are flagged grouping_uncertain
+    from inkprint.analyze import _lone_elements
+
+    big = PrintSpec(90, 45, (80, 60), 0.0, "mtb", block=5, gap=6.5, unevenness=0.0)
+    knob = PrintSpec(7.0, 7.0, (144, 60), 0.0, "slick", unevenness=0.0, exponent=8.0)
+    scan, _ = scan_of(SheetSpec((big, knob), size=(200, 130), specks=0, dpi=200.0))
+    r = ip.analyze_scan(scan, sensitivity=False, rolling_axis="x")
+    assert sorted(p.n_blobs >= 4 for p in r.prints) == [False, True]
+    assert all(p.flags == () for p in r.prints)
+    near = _lone_elements(r.prints, scan.mm_per_px, ip.AnalysisOptions(group_groove_max_mm=25))
+    assert all(p.flags == ("grouping_uncertain",) for p in near)
+    assert all(re.search(r"print #\d", p.warnings[-1]) for p in near)
+    assert _lone_elements(r.prints, scan.mm_per_px, ip.AnalysisOptions()) == r.prints
+
+
 def test_group_blobs_car_ribs_make_one_print(tmp_path):
     # ribs between 8-14 mm circumferential grooves (every car print tried split 3-4 ways)
     results, rows = outcomes(tmp_path, "car", 1)
