@@ -409,7 +409,9 @@ class AnalysisOptions:
         3 % too wide along the sheet's axis, prints turned 2-10 degrees on held-out
         2026 were all flagged at the former 1 degree); farther, or when the own
         axis is not confirmed by the principal axis, it is used as given and flags
-        the print ``axis_misaligned`` ...
+        the print ``axis_misaligned`` ... (A print with under half its hull inked,
+        a knob or dot pattern, is snapped within 1 degree only:
+        ``analyze.SNAP_SOLIDITY``.)
     axis_misaligned_excess : float [-]
         ... when measuring along the given axis also lengthens or widens it by more
         than this share (half the 1 % bar; a nearly round print reads the same along
@@ -541,7 +543,7 @@ class AnalysisOptions:
     grid_ink_darker: float = 0.75
     grid_aside_share: float = 0.005
     axis_uncertain_aspect: float = 1.3
-    axis_misaligned_deg: float = 15.0
+    axis_misaligned_deg: float = 10.0
     axis_misaligned_excess: float = 0.005
     light_tolerance: float = 0.1
     light_scale_mm: float = 30.0

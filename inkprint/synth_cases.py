@@ -314,13 +314,19 @@ def _case_tilted(rng, dpi: float) -> Case:
 
 
 def _case_turned(rng, dpi: float) -> Case:
-    """Prints taped askew while the manifest gives the sheet's x axis: one 2-10
+    """Prints taped askew while the manifest gives the sheet's x axis: one 2-9
     degrees (a sheet taped or scanned crooked: measured along its own axis, within
-    ``axis_misaligned_deg``), one 20-40 degrees (along x it reads up to +60 % wide:
+    ``axis_misaligned_deg``; a solid tread: a knob pattern is snapped within 1
+    degree only), one 20-40 degrees (along x it reads up to +60 % wide:
     it must be flagged ``axis_misaligned``)."""
     sign = rng.choice([-1, 1], size=2)
     prints = [
-        _bicycle(rng, (108.0, 190.0), angle=float(sign[0] * rng.uniform(2, 10))),
+        _bicycle(
+            rng,
+            (108.0, 190.0),
+            angle=float(sign[0] * rng.uniform(2, 9)),
+            tread=str(rng.choice(["slick", "ribbed", "file"])),
+        ),
         _bicycle(rng, (108.0, 90.0), angle=float(sign[1] * rng.uniform(20, 40))),
     ]
     manifest = {"rolling_axis": "x"}

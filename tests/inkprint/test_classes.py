@@ -463,7 +463,7 @@ def test_analyze_scan_print_turned_against_the_given_axis_is_flagged(tmp_path, s
 
 def test_own_axis_finds_the_turn_of_a_print_and_its_error():
     # a print taped 4 degrees askew: measured along its own axis (within
-    # axis_misaligned_deg, 15), unflagged; with a 2-degree tolerance along x, flagged
+    # axis_misaligned_deg, 10), unflagged; with a 2-degree tolerance along x, flagged
     p = PrintSpec(80.0, 20.0, (60, 60), 4.0, "slick", unevenness=0.0)
     scan, (t,) = scan_of(SheetSpec((p,), size=(120, 120), specks=0))
     res = ip.analyze_scan(scan, sensitivity=False, rolling_axis="x")

@@ -252,7 +252,7 @@ def test_cli_threshold_options(scans, tmp_path, capsys):
 @real_workers
 def test_mark_and_axis_thresholds_reach_local_worker_processes(tmp_path):
     # a print turned 6 degrees against the given axis is measured along itself
-    # (within the default 15-degree tolerance); with a 3-degree tolerance it is
+    # (within the default 10-degree tolerance); with a 3-degree tolerance it is
     # flagged axis_misaligned, in this process and in the workers
     from inkprint.synth import PrintSpec, SheetSpec
 
