@@ -75,11 +75,6 @@ from .options import AnalysisOptions, resolve_options
 #: 46 % light gradient: 3 prints -> ~50 of 5 x 3 mm; the independent generator's
 #: knobs are up to 2.7 x as far apart as they are wide)
 PATTERN_REACH = 3.0
-#: a small blob kept by the pattern's reach (``edge_spot_pattern_factor`` tread
-#: gaps: a tip block) is at least this share of the core's median element: a dust
-#: speck of 0.11 mm^2 3 mm beside a knobby print of 43 mm^2 knobs (9 mm grooves)
-#: was kept as a tip block (held-out 2026 sheet 37: width +4.8 %, status ok)
-PATTERN_LEAST = 0.01
 #: a lone element (no pattern of its own) continues its neighbour's pattern within
 #: this share of group_pattern_factor x that pattern's gap (one groove, not three)
 LONE_PATTERN_FACTOR = 0.5
@@ -2039,11 +2034,7 @@ def _spots(
         mm_to_px_length(opts.edge_spot_distance_mm, mm_per_px),
         opts.edge_spot_pattern_factor * pattern,
     )
-    # a speck under PATTERN_LEAST of the core's median element is no tip block,
-    # however near the pattern puts it: beyond edge_spot_distance_mm it bore no load
-    near = mm_to_px_length(opts.edge_spot_distance_mm, mm_per_px)
-    speck = blobs.areas < PATTERN_LEAST * float(np.median(blobs.areas[core]))
-    spot = outside & (faint | (small & ((gaps > reach) | (speck & (gaps > near)))))
+    spot = outside & (faint | (small & (gaps > reach)))
     if not spot.any():
         return EdgeSpots(group.mask.copy(), n_blobs, 0, 0, pattern)
     is_spot = np.concatenate([[False], spot])[blobs.labels]
