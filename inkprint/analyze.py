@@ -412,8 +412,20 @@ SNAP_SOLIDITY = 0.5
 
 
 def snap_limit(snap_deg: float, solidity: float) -> float:
-    """The snapping angle [deg] for a print of net / gross ``solidity``:
-    ``snap_deg``, or at most :data:`AXIS_AGREE_DEG` under :data:`SNAP_SOLIDITY`."""
+    """The snapping angle for a print: ``snap_deg``, or at most
+    :data:`AXIS_AGREE_DEG` under :data:`SNAP_SOLIDITY`.
+
+    Parameters
+    ----------
+    snap_deg : float [deg]
+        ``axis_misaligned_deg``.
+    solidity : float [-]
+        The print's net / gross (ink over hull area).
+
+    Returns
+    -------
+    float [deg]
+    """
     return snap_deg if solidity >= SNAP_SOLIDITY else min(snap_deg, AXIS_AGREE_DEG)
 
 
