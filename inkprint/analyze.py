@@ -343,7 +343,10 @@ def measure_mask(
             field = np.where(mask, -0.5, 0.5)
         hull_px = _hull_px(mask, field, r0, c0)
     if axis is None or isinstance(axis, str):
-        solid = np.count_nonzero(mask) / max(_shoelace(hull_px), 1.0)
+        import cv2
+
+        hull_area = cv2.contourArea(np.asarray(hull_px, np.float32))
+        solid = np.count_nonzero(mask) / max(hull_area, 1.0)
         axis = rolling_angle(hull_px, axis or "auto", snap_deg=snap_limit(snap_deg, solid))
     x, y = px_to_mm(hull_px[:, 0], hull_px[:, 1], n_rows=n_rows, mm_per_px=mm_per_px)
     n, row_sum, col_sum = pixel_sums(mask)  # the ink's centroid, exact sums
@@ -429,12 +432,6 @@ def snap_limit(snap_deg: float, solidity: float) -> float:
     return snap_deg if solidity >= SNAP_SOLIDITY else min(snap_deg, AXIS_AGREE_DEG)
 
 
-def _shoelace(hull_px) -> float:
-    """Area [px^2] of a polygon (k, 2)."""
-    r, c = np.asarray(hull_px, float).T
-    return 0.5 * abs(float(np.dot(r, np.roll(c, 1)) - np.dot(c, np.roll(r, 1))))
-
-
 def _principal_turn(hull_px, given: float) -> float:
     """The hull's principal axis nearest ``given`` [rad], turned from it [deg], in [-45, 45)."""
     return (math.degrees(rolling_angle(hull_px, "auto") - given) + 45.0) % 90.0 - 45.0
@@ -478,8 +475,14 @@ def own_axis(hull_px, angle: float) -> tuple[float, float]:
     own = math.radians(cv2.minAreaRect(xy)[2])
     turn = (math.degrees(own - angle) + 45.0) % 90.0 - 45.0
 
+    return turn, _turn_excess(xy, angle, turn)
+
+
+def _turn_excess(xy: np.ndarray, angle: float, turn: float) -> float:
+    """The largest relative excess of the extents of points ``xy`` (x, y) along
+    ``angle`` [rad] (and across) over those along ``angle`` + ``turn`` [deg]."""
     given, best = _extents(xy, angle), _extents(xy, angle + math.radians(turn))
-    return turn, float(np.max(given / np.maximum(best, 1e-9)) - 1.0)
+    return float(np.max(given / np.maximum(best, 1e-9)) - 1.0)
 
 
 def _mask_excess(more: np.ndarray, less: np.ndarray, angle: float) -> float:
@@ -1450,8 +1453,7 @@ def _axis_flags(
             return flags, warnings
         turn = min(turn, principal, key=abs)
         xy = np.column_stack([hull_px[:, 1], -hull_px[:, 0]]).astype(np.float64)
-        own = _extents(xy, given + math.radians(turn))
-        excess = float(np.max(_extents(xy, given) / np.maximum(own, 1e-9)) - 1.0)
+        excess = _turn_excess(xy, given, turn)
         how = " (its own axis is uncertain)"
     if excess > most and (aspect > opts.axis_uncertain_aspect or excess > 4 * most):
         flags.append("axis_misaligned")
@@ -2006,7 +2008,7 @@ def _lone_elements(prints: list, mm_per_px: float, opts: AnalysisOptions) -> lis
     # (a knob's blob count includes the specks of its texture: the area decides)
     most = LONE_ELEMENT_FACTOR * max(prints[k].metrics.area / prints[k].n_blobs for k in many)
     lone = [i for i, p in enumerate(prints) if i not in many and p.metrics.area <= most]
-    if not lone or not many:
+    if not lone:
         return prints
     from shapely.geometry import Polygon
 
@@ -2016,30 +2018,33 @@ def _lone_elements(prints: list, mm_per_px: float, opts: AnalysisOptions) -> lis
         return Polygon(np.column_stack([x, y])).buffer(0)
 
     hulls = {i: hull(prints[i]) for i in lone + many}
-    notes = {}
+    notes = {}  # print -> its warning (the first that applies)
     for i in lone:
         for k in many:
-            mean = prints[k].metrics.area / prints[k].n_blobs
-            ratio = prints[i].metrics.area / max(mean, 1e-12)
-            near = hulls[i].distance(hulls[k]) <= opts.group_groove_max_mm
-            if near and 1.0 / LONE_ELEMENT_FACTOR <= ratio <= LONE_ELEMENT_FACTOR:
-                notes.setdefault(i, []).append(
+            ratio = prints[i].metrics.area * prints[k].n_blobs / max(prints[k].metrics.area, 1e-12)
+            gap = hulls[i].distance(hulls[k])
+            if (
+                gap <= opts.group_groove_max_mm
+                and 1 / LONE_ELEMENT_FACTOR <= ratio <= LONE_ELEMENT_FACTOR
+            ):
+                notes.setdefault(
+                    i,
                     f"print #{i} is one ink element the size of print #{k}'s elements, "
-                    f"{hulls[i].distance(hulls[k]):.1f} mm from it: one of its tread "
-                    f"elements kept apart? Both are uncertain; see the overlay, or give "
-                    f"--group-mm over that gap"
+                    f"{gap:.1f} mm from it: one of its tread elements kept apart? Both are "
+                    f"uncertain; see the overlay, or give --group-mm over that gap",
                 )
-                notes.setdefault(k, []).append(
+                notes.setdefault(
+                    k,
                     f"print #{k}: ink the size of its tread elements lies beside it as "
                     f"print #{i}: part of it kept apart? See the overlay, or give "
-                    f"--group-mm over the gap"
+                    f"--group-mm over the gap",
                 )
                 break
     out = list(prints)
     for i, why in notes.items():
         p = out[i]
         flags = p.flags if "grouping_uncertain" in p.flags else (*p.flags, "grouping_uncertain")
-        out[i] = dataclasses.replace(p, flags=flags, warnings=(*p.warnings, why[0]))
+        out[i] = dataclasses.replace(p, flags=flags, warnings=(*p.warnings, why))
     return out
 
 
