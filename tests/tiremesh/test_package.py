@@ -50,7 +50,9 @@ def test_no_private_name_imported_across_modules():
                 assert not private, f"{path.relative_to(PACKAGE)} imports {private}"
 
 
-@pytest.mark.parametrize(("name", "obj"), public_objects(MODULES), ids=lambda x: str(x))
+@pytest.mark.parametrize(
+    ("name", "obj"), public_objects(MODULES), ids=lambda x: x if isinstance(x, str) else None
+)
 def test_public_docstrings_numpy_style(name, obj):
     check_numpy_docstring(name, obj)
 
