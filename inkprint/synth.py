@@ -157,6 +157,9 @@ class PrintSpec:
     rib : float, optional [mm]
         ``knurl``: a solid centre strip this wide along the rolling direction (a
         road tire's slick centre between its file shoulders).
+    rib_groove : float [mm]
+        ``knurl`` with ``rib``: bare paper this wide either side of the strip (a
+        groove between the slick centre and the shoulders; 0: none).
     """
 
     length: float
@@ -173,6 +176,7 @@ class PrintSpec:
     halo_touching: int = 0
     sipe: float | None = None
     rib: float | None = None
+    rib_groove: float = 0.0
 
 
 @dataclass(frozen=True)
@@ -301,7 +305,8 @@ def _knurl(spec: PrintSpec, outline):
     """A fine tread: separate diamonds ``block`` mm long (default 1.2) and 0.7 of
     that wide on a staggered lattice, ``gap`` mm apart along the rolling direction
     (default 0.6); a diamond the outline cuts to under half of itself is dropped
-    (too small to print); ``rib``: a solid centre strip."""
+    (too small to print); ``rib``: a solid centre strip, ``rib_groove`` mm of
+    paper either side of it."""
     import shapely
 
     b = spec.block or 1.2
@@ -314,11 +319,16 @@ def _knurl(spec: PrintSpec, outline):
         isinstance(rib, bool) or not isinstance(rib, numbers.Real) or not 0 < rib < W
     ):
         raise InvalidInput("rib", rib, f"a width in (0, {W:g}) mm (the print's width)")
+    groove = spec.rib_groove
+    if not isinstance(groove, numbers.Real) or not 0 <= groove < W / 2:
+        raise InvalidInput("rib_groove", groove, f"a width in [0, {W / 2:g}) mm")
     cells = []
     for j, v in enumerate(np.arange(-W / 2 - pv, W / 2 + pv, pv)):
         for u in np.arange(-L / 2 - pu + 0.5 * pu * (j % 2), L / 2 + pu, pu):
             cells.append(shapely.Polygon([(u - a, v), (u, v - c), (u + a, v), (u, v + c)]))
     ink = outline.intersection(shapely.union_all(cells))
+    if rib is not None and groove > 0:
+        ink = ink.difference(shapely.box(-L, -0.5 * rib - groove, L, 0.5 * rib + groove))
     parts = [p for p in shapely.get_parts(ink) if p.area >= a * c]  # half a diamond: 2ac
     if rib is not None:
         parts.append(outline.intersection(shapely.box(-L, -0.5 * rib, L, 0.5 * rib)))
