@@ -62,7 +62,7 @@ from .group import (
     reading_order,
     word_in_a_line,
 )
-from .lattice import CORNER_FLAG, CORNER_SHORT_PX, coarse_elements, lattice_prints
+from .lattice import CORNER_FLAG, CORNER_SHORT_PX, TIP_SHORT_PX, coarse_elements, lattice_prints
 from .light import Page, light_spread, prepare_page
 from .marks import BOLD_REASON, TICK_REASON, Mark, SortedInk, sort_ink
 from .options import AnalysisOptions, resolve_options, resolve_threads
@@ -690,21 +690,26 @@ def find_prints(
     return FoundPrints(groups, marks, ink, grid)
 
 
-def _coarse_flag(group: Group, width_mm: float, index: int, mm_per_px: float) -> tuple:
-    """``('coarse_elements', warning)`` for a tiny print of separate elements too few
-    pixels wide (:func:`inkprint.lattice.coarse_elements`), else ``()``."""
-    short = coarse_elements(group, width_mm, mm_per_px)
+def _coarse_flag(group: Group, metrics, index: int, mm_per_px: float) -> tuple:
+    """``('coarse_elements', warning)`` for a print of separate elements too few
+    pixels wide or long (:func:`inkprint.lattice.coarse_elements`), else ``()``."""
+    width_mm, length_mm = metrics.width, metrics.length
+    short = coarse_elements(group, width_mm, mm_per_px, length_mm=length_mm)
     if short <= CORNER_FLAG:
         return ()
-    # the resolution at which CORNER_SHORT_PX is CORNER_FLAG of the width
-    dpi = mm_per_px_to_dpi(CORNER_FLAG * width_mm / CORNER_SHORT_PX)
+    # the resolution at which both shortfalls are CORNER_FLAG of the print
+    dpi = max(
+        mm_per_px_to_dpi(CORNER_FLAG * width_mm / CORNER_SHORT_PX),
+        mm_per_px_to_dpi(CORNER_FLAG * length_mm / TIP_SHORT_PX),
+    )
     return (
         "coarse_elements",
-        f"print #{index}: a tiny print of separate tread elements, "
-        f"{mm_to_px_length(width_mm, mm_per_px):.0f} px wide at this resolution: its "
-        f"outline is its elements' corners, which the edge cuts short by about half a "
-        f"pixel across (width about {100 * short:.1f} % low); rescan at {dpi:.0f} dpi or "
-        f"more",
+        f"print #{index}: a print of separate tread elements, "
+        f"{mm_to_px_length(length_mm, mm_per_px):.0f} x "
+        f"{mm_to_px_length(width_mm, mm_per_px):.0f} px at this resolution: its outline "
+        f"is its elements' corners and tips, which the edge cuts short by up to "
+        f"{CORNER_SHORT_PX:g} px across and {TIP_SHORT_PX:g} px along (length or width "
+        f"up to {100 * short:.1f} % low); rescan at {dpi:.0f} dpi or more",
     )
 
 
@@ -1011,7 +1016,7 @@ def measure_print(ctx: _Context, group: Group, *, index: int = 0, sensitivity: b
             f"{100 * faint:.1f} % larger. Which is right is a judgement: see the overlay, "
             f"or set --edge-spot-faintness (0 keeps every blob)",
         )
-    coarse = _coarse_flag(group, m.metrics.width, index, s)
+    coarse = _coarse_flag(group, m.metrics, index, s)
     flags, warnings = flags + coarse[:1], warnings + coarse[1:]
     light = _light_flag(ctx, g, grey, spots.load_bearing, index)
     flags, warnings = flags + light[:1], warnings + light[1:]

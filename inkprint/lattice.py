@@ -47,6 +47,12 @@ LATTICE_MAX_LENGTH_MM = 30.0
 #: across it: its extremes are elements' rounded corners (drawn diamond lattices
 #: at 300-600 dpi: 0.34-0.57 px; held-out prints at 150 and 300 dpi: 0.59, 0.35)
 CORNER_SHORT_PX = 0.5
+#: its ends along the length are elements cut by the outline to wedges thinner than
+#: a pixel, which print faint: the length falls about this many pixels short
+#: (32 rendered knurl prints 8-21 mm long at 200-600 dpi: 0.2-2.5 px, mean 1.1;
+#: -1.5 to -2.6 % on prints under 100 px long, status ok before; with 2 px every
+#: one out of the bar is flagged)
+TIP_SHORT_PX = 2.0
 #: ... a print is flagged ``coarse_elements`` when that is more than this share of
 #: its width (the accuracy bar's 1 %: under 50 px across, 4.2 mm at 300 dpi)
 CORNER_FLAG = 0.01
@@ -224,10 +230,13 @@ def lattice_prints(ink, taken: list, *, marks: list, mm_per_px: float, options) 
     return out
 
 
-def coarse_elements(group: Group, width_mm: float, mm_per_px: float) -> float:
-    """How much a tiny print of separate elements may read too narrow: about
-    :data:`CORNER_SHORT_PX` over its width in pixels (0 for a print without a fine
-    tread, ``Group.fine_area_mm2``, or wider than :data:`LATTICE_MAX_WIDTH_MM`).
+def coarse_elements(
+    group: Group, width_mm: float, mm_per_px: float, *, length_mm: float = 0.0
+) -> float:
+    """How much a print of separate fine elements may read too short or too narrow:
+    about :data:`CORNER_SHORT_PX` over its width in pixels, and
+    :data:`TIP_SHORT_PX` over its length (0 for a print without a fine tread,
+    ``Group.fine_area_mm2``).
 
     Parameters
     ----------
@@ -235,6 +244,8 @@ def coarse_elements(group: Group, width_mm: float, mm_per_px: float) -> float:
     width_mm : float [mm]
         The print's width as measured.
     mm_per_px : float [mm / px]
+    length_mm : float [mm]
+        The print's length as measured (0: the width only).
 
     Returns
     -------
@@ -243,4 +254,6 @@ def coarse_elements(group: Group, width_mm: float, mm_per_px: float) -> float:
     """
     if group.fine_area_mm2 <= 0 or not 0 < width_mm <= LATTICE_MAX_WIDTH_MM:
         return 0.0
-    return px_to_mm_length(CORNER_SHORT_PX, mm_per_px) / width_mm
+    across = px_to_mm_length(CORNER_SHORT_PX, mm_per_px) / width_mm
+    along = px_to_mm_length(TIP_SHORT_PX, mm_per_px) / length_mm if length_mm > 0 else 0.0
+    return max(across, along)

@@ -110,3 +110,23 @@ def test_analyze_scan_dot_grid_paper_is_no_lattice_print():
             cv2.circle(grey, (c, r), 3, 0.3, -1, cv2.LINE_AA)
     with pytest.raises(NoInk):
         ip.analyze_scan(Scan(grey, 0.1, "given"), sensitivity=False)
+
+
+@pytest.mark.parametrize(
+    ("length", "width", "block", "dpi"),
+    [(12.6, 7.2, 1.2, 300.0), (21.0, 6.6, 1.0, 300.0), (10.0, 12.0, 1.4, 400.0)],
+)
+def test_analyze_scan_tiny_knurl_print_wider_than_6_mm_is_found(length, width, block, dpi):
+    # tiny knurl prints 6.6-12 mm wide (held-out 4th generator seed 8 sheets 14 and
+    # 28): fields of 40-70 elements wider than LATTICE_MAX_WIDTH_MM was (6 mm), set
+    # aside as "a letter or a mark ... a print this small or narrow is solid"
+    p = PrintSpec(length, width, (40.0, 40.0), 0.0, "knurl", block=block, gap=0.5)
+    img, (t,) = render_sheet(SheetSpec((p,), dpi=dpi, size=(80.0, 80.0), specks=10))
+    res = ip.analyze_scan(Scan(img, 25.4 / dpi, "given"), rolling_axis="x", sensitivity=False)
+    (pr,) = res.prints
+    assert_allclose(pr.metrics.width, t.width, rtol=0.01)
+    assert_allclose(pr.metrics.hull_area, t.hull_area, rtol=0.02)
+    # its ends are diamonds cut to wedges thinner than a pixel: 0.2-2.5 px short,
+    # flagged where TIP_SHORT_PX (2 px) is over 1 % (under 200 px long)
+    assert -2.5 * 25.4 / dpi <= pr.metrics.length - t.length <= 0.01 * t.length
+    assert ("coarse_elements" in pr.flags) == (t.length / (25.4 / dpi) < 200), pr.warnings
