@@ -23,7 +23,7 @@ import numpy as np
 
 from .components import components_with_stats
 from .coords import area_px_to_mm2, mm_to_px_length, px_to_mm_length
-from .group import Group
+from .group import Group, outline_points
 from .marks import FINE_ELEMENT_MIN_MM, _fine_fields
 
 __all__ = [
@@ -223,11 +223,31 @@ def lattice_prints(ink, taken: list, *, marks: list, mm_per_px: float, options) 
         width, length = sorted(px_to_mm_length(np.array([a, b]) + 1.0, mm_per_px))
         if width > LATTICE_MAX_WIDTH_MM or length > LATTICE_MAX_LENGTH_MM:
             continue
+        if _inside_a_print(taken, (r0 + y + 0.5 * h, c0 + x + 0.5 * w)):
+            continue
         area = LATTICE_PART * float(
             np.median(area_px_to_mm2(st[mine, 4].astype(float), mm_per_px))
         )
         out.append(Group(rows, cols, mask, fine_area_mm2=area))
     return out
+
+
+def _inside_a_print(taken: list, point: tuple) -> bool:
+    """Whether a point (row, col) [px] lies in the hull of one of the prints: a field
+    there is a print's ink left over (the pieces of a rib's pen-thin side bars that
+    its outline cut), not a print of its own (a 28 x 8 mm "print" inside an 80 x 36
+    mm one once ``fine_ink_share`` was lowered to 0.08)."""
+    import cv2
+
+    for g in taken:
+        pts = outline_points(g.mask)
+        if pts is None:
+            continue
+        hull = cv2.convexHull(pts.reshape(-1, 1, 2).astype(np.float32))
+        at = (float(point[1] - g.cols.start), float(point[0] - g.rows.start))
+        if cv2.pointPolygonTest(hull, at, False) >= 0:
+            return True
+    return False
 
 
 def coarse_elements(

@@ -206,3 +206,19 @@ def test_analyze_scan_file_shoulders_of_a_print_off_the_sheet_join_it_clipped():
     # on the sheet: 37 mm of it; the upper shoulder, the groove and the rib down to
     # y = 6 mm at least (the page found in the image may cut it lower: flagged)
     assert pr.metrics.width > 37.0 - 12.0
+
+
+@pytest.mark.parametrize(("dpi", "block", "gap"), [(200.0, 0.6, 1.0), (300.0, 0.5, 0.9)])
+def test_analyze_scan_sparse_file_shoulders_are_the_print_not_dust(dpi, block, gap):
+    # file shoulders of diamonds 0.5-0.6 mm long, 1.4-1.6 mm apart (ink share
+    # 0.08-0.12 of the field) beside a slick centre: with fine_ink_share 0.12 they
+    # were 1300-2200 "dust" and the print read 8-10 mm wide, not 39, status ok
+    # (held-out seed 8 sheet 75: 7.2 mm for 41.7)
+    p = PrintSpec(100.0, 40.0, (65.0, 35.0), 0.0, "knurl", block=block, gap=gap, rib=8.0)
+    img, (t,) = render_sheet(SheetSpec((p,), dpi=dpi, size=(130.0, 70.0), specks=0))
+    res = ip.analyze_scan(Scan(img, 25.4 / dpi, "given"), rolling_axis="x", sensitivity=False)
+    (pr,) = res.prints
+    assert pr.status == "ok", pr.warnings
+    m = pr.metrics
+    assert_allclose([m.length, m.width], [t.length, t.width], rtol=0.01)
+    assert_allclose(m.hull_area, t.hull_area, rtol=0.02)
