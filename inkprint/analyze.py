@@ -1683,7 +1683,31 @@ def _print_flags(
             f"print #{index} is nearly as wide as long ({m.metrics.aspect_ratio:.2f}): the "
             f"rolling direction was taken as its longer axis (auto); give --rolling-axis x|y"
         )
+    else:
+        flags, warnings = _auto_axis_flags(m, index, flags, warnings, opts=ctx.opts)
     return tuple(flags), tuple(warnings)
+
+
+def _auto_axis_flags(
+    m: MaskMeasurement, index: int, flags: list, warnings: list, *, opts: AnalysisOptions
+) -> tuple[list, list]:
+    """Flag ``axis_uncertain`` for a print measured along its principal axis (auto)
+    whose minimum-area rectangle lies turned from it by more than
+    :data:`AXIS_AGREE_DEG`, so that length or width along the rectangle's axis
+    differ by more than ``axis_misaligned_excess``: a knob pattern's second moments
+    tilt by degrees (held-out seed 8 sheet 64: a knobby print square to the sheet,
+    principal axis -8.7 deg, width -6.8 % with status ok)."""
+    given = float(m.metrics.orientation)
+    turn, excess = own_axis(m.hull_px, given)
+    if abs(turn) > AXIS_AGREE_DEG and excess > opts.axis_misaligned_excess:
+        flags.append("axis_uncertain")
+        warnings.append(
+            f"print #{index}: its principal axis, taken as the rolling direction (auto), "
+            f"and its bounding rectangle's axis differ by {abs(turn):.1f} deg: its length "
+            f"or width along one reads {100 * excess:.1f} % larger than along the other; "
+            f"give --rolling-axis x|y"
+        )
+    return flags, warnings
 
 
 def _grouped_or_cut(ctx: _Context, g: Group, index: int, margin: int) -> list:
