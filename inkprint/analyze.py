@@ -1691,7 +1691,7 @@ def _print_flags(
 def _auto_axis_flags(
     m: MaskMeasurement, index: int, flags: list, warnings: list, *, opts: AnalysisOptions
 ) -> tuple[list, list]:
-    """Flag ``axis_uncertain`` for a print measured along its principal axis (auto)
+    """Flag ``axis_ambiguous`` for a print measured along its principal axis (auto)
     whose minimum-area rectangle lies turned from it by more than
     :data:`AXIS_AGREE_DEG`, so that length or width along the rectangle's axis
     differ by more than ``axis_misaligned_excess``: a knob pattern's second moments
@@ -1700,7 +1700,7 @@ def _auto_axis_flags(
     given = float(m.metrics.orientation)
     turn, excess = own_axis(m.hull_px, given)
     if abs(turn) > AXIS_AGREE_DEG and excess > opts.axis_misaligned_excess:
-        flags.append("axis_uncertain")
+        flags.append("axis_ambiguous")
         warnings.append(
             f"print #{index}: its principal axis, taken as the rolling direction (auto), "
             f"and its bounding rectangle's axis differ by {abs(turn):.1f} deg: its length "

@@ -12,6 +12,9 @@ shadow's edge crossing it) by more than its ink lies below the threshold, so the
 paper's brightness filled in under it may move its outline; ``axis_misaligned`` - the
 print is turned more than a degree against the rolling axis given, so its length and
 width along that axis are too large: use ``auto`` or square the print;
+``axis_ambiguous`` - measured along its principal axis (``auto``), the print's
+bounding rectangle lies turned from it by more than a degree and its length or width
+differ between the two (a knob pattern's moments tilt): give ``--rolling-axis``;
 ``grouping_uncertain`` - parts lying side by side (a car print's ribs, or two
 prints?) were joined or kept apart by a gap near the footprint rule's limit:
 ``--group-mm`` decides; ``coarse_elements`` - a tiny print made of separate tread
@@ -40,6 +43,7 @@ UNMEASURABLE = (
     "perspective",
     "mark_on_edge",
     "axis_misaligned",
+    "axis_ambiguous",
     "faint_edge",
     "light_uncertain",
     "grouping_uncertain",

@@ -1012,11 +1012,12 @@ def test_sort_ink_knob_rounded_by_the_outline_near_the_corner_is_no_punch_hole()
 def test_analyze_scan_auto_axis_tilted_by_a_knob_pattern_is_flagged(length, width, tilted):
     # held-out seed 8 sheet 64: a knobby print square to the sheet, measured along
     # its principal axis (auto) at -8.7 deg, width -6.8 % with status ok; a principal
-    # axis off the bounding rectangle's by over a degree is flagged axis_uncertain
+    # axis off the bounding rectangle's by over a degree is flagged axis_ambiguous
     p = PrintSpec(length, width, (70.0, 60.0), 0.0, "mtb", block=6.0, gap=6.0)
     img, (t,) = render_sheet(SheetSpec((p,), dpi=200.0, size=(140.0, 120.0), specks=0))
     (pr,) = ip.analyze_scan(Scan(img, 25.4 / 200.0, "given"), sensitivity=False).prints
     assert (abs(math.degrees(pr.metrics.orientation)) > 1.0) == tilted
-    assert ("axis_uncertain" in pr.flags) == tilted, pr.warnings
+    assert ("axis_ambiguous" in pr.flags) == tilted, pr.warnings
+    assert (pr.status == "flagged") == tilted
     if not tilted:
         assert within(pr.metrics, t)
