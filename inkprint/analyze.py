@@ -1683,7 +1683,7 @@ def _print_flags(
             f"print #{index} is nearly as wide as long ({m.metrics.aspect_ratio:.2f}): the "
             f"rolling direction was taken as its longer axis (auto); give --rolling-axis x|y"
         )
-    else:
+    if ctx.rolling_axis == "auto":
         flags, warnings = _auto_axis_flags(m, index, flags, warnings, opts=ctx.opts)
     return tuple(flags), tuple(warnings)
 
@@ -1696,10 +1696,15 @@ def _auto_axis_flags(
     :data:`AXIS_AGREE_DEG`, so that length or width along the rectangle's axis
     differ by more than ``axis_misaligned_excess``: a knob pattern's second moments
     tilt by degrees (held-out seed 8 sheet 64: a knobby print square to the sheet,
-    principal axis -8.7 deg, width -6.8 % with status ok)."""
+    principal axis -8.7 deg, width -6.8 % with status ok). A nearly round print
+    (also ``axis_uncertain``, advisory) is flagged over :data:`ROUND_EXCESS` x that."""
     given = float(m.metrics.orientation)
     turn, excess = own_axis(m.hull_px, given)
-    if abs(turn) > AXIS_AGREE_DEG and excess > opts.axis_misaligned_excess:
+    aspect = max(m.metrics.aspect_ratio, 1.0 / max(m.metrics.aspect_ratio, 1e-9))
+    most = opts.axis_misaligned_excess * (
+        ROUND_EXCESS if aspect < opts.axis_uncertain_aspect else 1.0
+    )
+    if abs(turn) > AXIS_AGREE_DEG and excess > most:
         flags.append("axis_ambiguous")
         warnings.append(
             f"print #{index}: its principal axis, taken as the rolling direction (auto), "
