@@ -1,5 +1,6 @@
 """Print analysis on generated scans with exact truth (issue 4; sections 4.1.1, 7.1.1)."""
 
+import dataclasses
 import math
 
 import numpy as np
@@ -257,3 +258,35 @@ def test_analyze_scan_rejects_bad_threads(sheet_factory, threads):
         ip.analyze_scan(path, threads=threads)
     with pytest.raises(ip.InvalidInput, match="threads"):
         ip.BatchOptions(threads=threads)
+
+
+def test_measure_print_without_load_bearing_ink_is_measured_whole_and_flagged(monkeypatch):
+    # held-out seed 8 sheet 60: a 5 x 5 mm group at the image's edge whose every blob
+    # the section 7.1.1 rule judged an edge spot left nothing to measure; the sheet
+    # crashed (ValueError: need at least one array to concatenate). Here the rule
+    # is made to keep nothing: the print is measured with all its ink, flagged.
+    import inkprint.analyze as analyze
+    from inkprint.synth import PrintSpec, SheetSpec
+
+    p = PrintSpec(40.0, 20.0, (40.0, 40.0), 0.0, "slick")
+    img, (t,) = render_sheet(SheetSpec((p,), dpi=150.0, size=(80.0, 80.0), specks=0))
+    real = analyze.edge_spots
+
+    def nothing_bears_load(group, darkness, **kw):
+        spots = real(group, darkness, **kw)
+        return dataclasses.replace(spots, load_bearing=np.zeros_like(spots.load_bearing))
+
+    monkeypatch.setattr(analyze, "edge_spots", nothing_bears_load)
+    (pr,) = ip.analyze_scan(Scan(img, 25.4 / 150.0, "given"), rolling_axis="x").prints
+    assert "faint_edge" in pr.flags and pr.status == "flagged"
+    assert_allclose([pr.metrics.length, pr.metrics.width], [t.length, t.width], rtol=0.01)
+
+
+def test_outlined_needs_pixels_off_one_line():
+    from inkprint.analyze import _outlined
+
+    line = np.zeros((9, 9), bool)
+    line[4, 2:7] = True
+    assert not _outlined(line) and not _outlined(np.zeros((3, 3), bool))
+    line[5, 3] = True
+    assert _outlined(line)
