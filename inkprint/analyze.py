@@ -1642,39 +1642,6 @@ def _letters_pull(marks: list, g: Group, kept: np.ndarray, m) -> float:
     return pull
 
 
-#: a print is flagged when the ink of marks set aside as writing (text, writing)
-#: beside its outline, within MARKS_BESIDE_MM of it, is over this share of its own
-#: ink (:func:`_marks_beside`)
-MARKS_BESIDE_SHARE = 0.005
-MARKS_BESIDE_MM = 1.5
-
-
-def _marks_beside(ctx: _Context, m: MaskMeasurement) -> tuple[int, float]:
-    """The number and the ink [mm^2] of the marks set aside as writing whose box is
-    not wholly inside the print's outline ``m.hull_px`` and comes within
-    :data:`MARKS_BESIDE_MM` of it (a ruler's number over the print's middle is not):
-    a tiny print's rows of diamonds taken for letters (held-out seed 8 sheet 14: 14
-    diamonds 1-2 mm off a slick centre, width -67 % with status ok), a label's letters
-    beside the one joined to the print (sheets 11, 75: length +3.8 to +4.9 %)."""
-    import cv2
-
-    reach = mm_to_px_length(MARKS_BESIDE_MM, ctx.scan.mm_per_px)
-    hull = m.hull_px[:, ::-1].astype(np.float32).reshape(-1, 1, 2)  # (x, y)
-    lo, hi = m.hull_px.min(axis=0) - reach, m.hull_px.max(axis=0) + reach
-    n, ink = 0, 0.0
-    for mk in ctx.found.marks:
-        if mk.kind not in ("text", "writing"):
-            continue
-        r0, c0, r1, c1 = mk.bbox
-        if r1 < lo[0] or r0 > hi[0] or c1 < lo[1] or c0 > hi[1]:
-            continue
-        corners = [(c0, r0), (c1, r0), (c0, r1), (c1, r1), (0.5 * (c0 + c1), 0.5 * (r0 + r1))]
-        d = [cv2.pointPolygonTest(hull, (float(x), float(y)), True) for x, y in corners]
-        if min(d) < 0 and max(d) >= -reach:  # not wholly inside, its nearest point near
-            n, ink = n + 1, ink + mk.area_mm2
-    return n, ink
-
-
 def _print_flags(
     ctx: _Context,
     g: Group,
@@ -1709,16 +1676,6 @@ def _print_flags(
             f"pieces beside it, as large as letters, it is {100 * lpull:.1f} % shorter "
             f"or narrower (letters of the same label taken for tread blocks?); see the "
             f"overlay, remove the label or rescan"
-        )
-    beside = _marks_beside(ctx, m) if "mark_on_edge" not in flags else (0, 0.0)
-    if beside[1] > MARKS_BESIDE_SHARE * m.metrics.area:
-        flags.append("mark_on_edge")
-        warnings.append(
-            f"print #{index}: {beside[0]} mark{'s' if beside[0] != 1 else ''} set aside as "
-            f"writing within "
-            f"{MARKS_BESIDE_MM:g} mm of its outline ({beside[1]:.1f} mm^2 of ink, "
-            f"{100 * beside[1] / max(m.metrics.area, 1e-9):.0f} % of its own): its tread "
-            f"elements taken for letters, or a label's letters joined to it? See the overlay"
         )
     spread = _spread_marks_over(ctx.found.marks, g)
     if spread and "mark_on_edge" not in flags:

@@ -290,33 +290,3 @@ def test_outlined_needs_pixels_off_one_line():
     assert not _outlined(line) and not _outlined(np.zeros((3, 3), bool))
     line[5, 3] = True
     assert _outlined(line)
-
-
-def test_marks_beside_counts_writing_near_or_across_the_outline_only():
-    # a label's letters beside the one joined to a print (held-out seed 8 sheets 11,
-    # 75: +3.8 to +4.9 % long with status ok), a tiny print's diamonds taken for
-    # letters: writing set aside within MARKS_BESIDE_MM of the outline is counted
-    from types import SimpleNamespace
-
-    from inkprint.analyze import MARKS_BESIDE_MM, _marks_beside
-    from inkprint.marks import Mark
-    from inkprint.options import AnalysisOptions
-
-    px = 0.1  # [mm]
-    reach = MARKS_BESIDE_MM / px
-    hull = np.array([[100.0, 100.0], [100.0, 200.0], [200.0, 200.0], [200.0, 100.0]])
-    near = round(reach / 2)
-    marks = [
-        Mark("text", (140, 200 + near, 150, 210 + near), 1.0),  # beside: counted
-        Mark("text", (195, 140, 205, 150), 2.0),  # across the outline: counted
-        Mark("text", (140, 140, 150, 150), 4.0),  # inside (a ruler's number): not
-        Mark("text", (140, round(200 + 2 * reach), 150, round(210 + 2 * reach)), 8.0),  # far
-        Mark("dust", (140, 200 + near, 142, 202 + near), 16.0),  # dust: the 7.1.1 rule's
-    ]
-    ctx = SimpleNamespace(
-        found=SimpleNamespace(marks=marks),
-        opts=AnalysisOptions(),
-        scan=SimpleNamespace(mm_per_px=px),
-    )
-    m = SimpleNamespace(hull_px=hull, metrics=SimpleNamespace(area=100.0))
-    assert _marks_beside(ctx, m) == (2, 3.0)
