@@ -978,17 +978,7 @@ def measure_print(ctx: _Context, group: Group, *, index: int = 0, sensitivity: b
     n_rows = ctx.page.work.shape[0]
     g, grey, line_ink = _without_faint_lines(ctx, _with_paper(ctx, group), group)
     spots = edge_spots(g, _darkness(grey, g.mask), mm_per_px=s, options=opts)
-    # the edge under a label's letters is hidden: measured without the ink there
-    hidden = _under_text(ctx, g, spots.load_bearing)
-    kept = spots.load_bearing if hidden is None else spots.load_bearing & ~hidden
-    # every blob an edge spot (or under a label): no load-bearing ink to measure; the
-    # print is measured with all its ink and flagged faint_edge (held-out seed 8
-    # sheet 60: a 5 x 5 mm piece at the image's edge crashed the sheet, ValueError)
-    no_core = not _outlined(kept)
-    if no_core:
-        if not _outlined(g.mask):  # (all of it faint page-axis lines: the ink as found)
-            g = _with_paper(ctx, group)
-        kept, hidden = g.mask, None
+    g, kept, hidden, no_core = _load_bearing(ctx, group, g, spots)
     kw = dict(n_rows=n_rows, mm_per_px=s, axis=ctx.rolling_axis, snap_deg=opts.axis_misaligned_deg)
     local = _local_range(grey, s, opts)
     fld_all = edge_field(grey, g.mask, mm_per_px=s, options=opts, local=local)
@@ -1061,6 +1051,23 @@ def measure_print(ctx: _Context, group: Group, *, index: int = 0, sensitivity: b
         warnings=warnings,
         unit=ctx.scan.unit,
     )
+
+
+def _load_bearing(ctx: _Context, group: Group, g: Group, spots) -> tuple:
+    """``(g, kept, hidden, no_core)``: the ink measured of a print (``g``: its padded
+    box without faint lines), its load-bearing ink (section 7.1.1) less the edge
+    hidden under a label's letters (``hidden``, :func:`_under_text`). With no outline
+    left (every blob an edge spot, a line of pixels: ``no_core``) all its ink is
+    measured, flagged ``faint_edge`` by :func:`measure_print` (held-out seed 8 sheet
+    60: a 5 x 5 mm piece at the image's edge crashed the sheet, ValueError)."""
+    hidden = _under_text(ctx, g, spots.load_bearing)
+    kept = spots.load_bearing if hidden is None else spots.load_bearing & ~hidden
+    no_core = not _outlined(kept)
+    if no_core:
+        if not _outlined(g.mask):  # (all of it faint page-axis lines: the ink as found)
+            g = _with_paper(ctx, group)
+        kept, hidden = g.mask, None
+    return g, kept, hidden, no_core
 
 
 def _without_faint_lines(ctx: _Context, g: Group, group: Group) -> tuple:

@@ -31,6 +31,20 @@ def _knurl_sheet(dpi: float, **kw):
     return Scan(img, 25.4 / dpi, "given"), t
 
 
+def _one_print(p: PrintSpec, dpi: float, size: tuple) -> tuple:
+    """The one print found on a sheet of ``p`` (x rolling axis, no band) and its truth."""
+    img, (t,) = render_sheet(SheetSpec((p,), dpi=dpi, size=size, specks=0))
+    res = ip.analyze_scan(Scan(img, 25.4 / dpi, "given"), rolling_axis="x", sensitivity=False)
+    (pr,) = res.prints
+    return pr, t
+
+
+def _assert_within(pr, t) -> None:
+    m = pr.metrics
+    assert_allclose([m.length, m.width], [t.length, t.width], rtol=0.01)
+    assert_allclose(m.hull_area, t.hull_area, rtol=0.02)
+
+
 @pytest.mark.parametrize("dpi", [150.0, 600.0])
 def test_analyze_scan_knurl_print_is_measured_whole(dpi):
     scan, t = _knurl_sheet(dpi)
@@ -141,13 +155,9 @@ def test_analyze_scan_file_shoulders_beside_a_slick_rib_are_measured(
     # and were set aside with the rim pieces joined to the rib (width -33 % to
     # -65 %, flagged mark_on_edge: a useless result)
     p = PrintSpec(length, width, (80.0, 120.0), 0.0, "knurl", block=block, gap=0.5, rib=rib)
-    img, (t,) = render_sheet(SheetSpec((p,), dpi=dpi, size=(160.0, 240.0), specks=0))
-    res = ip.analyze_scan(Scan(img, 25.4 / dpi, "given"), rolling_axis="x", sensitivity=False)
-    (pr,) = res.prints
+    pr, t = _one_print(p, dpi, (160.0, 240.0))
     assert pr.status == "ok", pr.warnings
-    m = pr.metrics
-    assert_allclose([m.length, m.width], [t.length, t.width], rtol=0.01)
-    assert_allclose(m.hull_area, t.hull_area, rtol=0.02)
+    _assert_within(pr, t)
 
 
 def test_fine_fields_tips_shaved_off_thick_ink_are_no_elements():
@@ -184,13 +194,9 @@ def test_analyze_scan_file_shoulders_across_a_groove_from_the_rib_are_one_print(
     p = PrintSpec(
         120.0, 30.0, (80.0, 120.0), 0.0, "knurl", block=block, gap=0.5, rib=9.0, rib_groove=groove
     )
-    img, (t,) = render_sheet(SheetSpec((p,), dpi=dpi, size=(160.0, 240.0), specks=0))
-    res = ip.analyze_scan(Scan(img, 25.4 / dpi, "given"), rolling_axis="x", sensitivity=False)
-    (pr,) = res.prints
+    pr, t = _one_print(p, dpi, (160.0, 240.0))
     assert pr.flags == (() if groove < 4 else ("grouping_uncertain",)), pr.warnings
-    m = pr.metrics
-    assert_allclose([m.length, m.width], [t.length, t.width], rtol=0.01)
-    assert_allclose(m.hull_area, t.hull_area, rtol=0.02)
+    _assert_within(pr, t)
 
 
 def test_analyze_scan_file_shoulders_of_a_print_off_the_sheet_join_it_clipped():
@@ -215,13 +221,9 @@ def test_analyze_scan_sparse_file_shoulders_are_the_print_not_dust(dpi, block, g
     # were 1300-2200 "dust" and the print read 8-10 mm wide, not 39, status ok
     # (held-out seed 8 sheet 75: 7.2 mm for 41.7)
     p = PrintSpec(100.0, 40.0, (65.0, 35.0), 0.0, "knurl", block=block, gap=gap, rib=8.0)
-    img, (t,) = render_sheet(SheetSpec((p,), dpi=dpi, size=(130.0, 70.0), specks=0))
-    res = ip.analyze_scan(Scan(img, 25.4 / dpi, "given"), rolling_axis="x", sensitivity=False)
-    (pr,) = res.prints
+    pr, t = _one_print(p, dpi, (130.0, 70.0))
     assert pr.status == "ok", pr.warnings
-    m = pr.metrics
-    assert_allclose([m.length, m.width], [t.length, t.width], rtol=0.01)
-    assert_allclose(m.hull_area, t.hull_area, rtol=0.02)
+    _assert_within(pr, t)
 
 
 def test_analyze_scan_speck_beside_a_fine_tread_is_an_edge_spot():

@@ -90,7 +90,10 @@ def test_threshold_reaches_dask_workers(scans, tmp_path):
         remote_keep = batch_rows(scans, tmp_path / "dask_keep.csv", keep, scheduler=addr)
     assert no_print_rows(remote) and remote == local
     assert remote_keep == local_keep and len(remote_keep) == 6
-    assert all(r["status"] == "ok" and r["n_edge_spots"] == "0" for r in remote_keep)
+    # every halo speck kept (no edge spot); kept, they bump the hull, and one print's
+    # principal axis lies 3.1 deg off its rectangle's: flagged axis_ambiguous (auto)
+    assert all(r["n_edge_spots"] == "0" for r in remote_keep)
+    assert all(r["flags"] in ("", "axis_ambiguous") for r in remote_keep)
     assert all(int(r["n_edge_spots"]) > 0 for r in local_default)
 
 
