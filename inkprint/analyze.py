@@ -1025,6 +1025,16 @@ def measure_print(ctx: _Context, group: Group, *, index: int = 0, sensitivity: b
         faint=line_ink,
     )
     flags, warnings = _edge_mark_flags(ctx, g, m, index, (kept, hidden), flags, warnings)
+    if "mark_on_edge" not in flags and ctx.found.grid is None:  # (as _letters_pull)
+        bpull = _letters_beside_pull(ctx, g, kept, m)
+        if bpull > opts.edge_uncertainty:
+            flags += ("mark_on_edge",)
+            warnings += (
+                f"print #{index}: letters set aside lie beside it and its ink near them "
+                f"is pen-thin: without that ink it is {100 * bpull:.1f} % shorter or "
+                f"narrower (a letter of the label joined to its edge?); see the overlay, "
+                f"remove the label or rescan",
+            )
     faint = _faint_excess(ctx, g, spots, m, grey=grey, local=local, aside=aside, kept=kept)
     if no_core:
         flags += ("faint_edge",)
@@ -1763,19 +1773,6 @@ def _print_flags(
             f"pieces beside it, as large as letters, it is {100 * lpull:.1f} % shorter "
             f"or narrower (letters of the same label taken for tread blocks?); see the "
             f"overlay, remove the label or rescan"
-        )
-    bpull = (
-        _letters_beside_pull(ctx, padded, kept, m)
-        if letters and "mark_on_edge" not in flags
-        else 0.0
-    )
-    if bpull > ctx.opts.edge_uncertainty:
-        flags.append("mark_on_edge")
-        warnings.append(
-            f"print #{index}: letters set aside lie beside it and its ink near them is "
-            f"pen-thin: without that ink it is {100 * bpull:.1f} % shorter or narrower "
-            f"(a letter of the label joined to its edge?); see the overlay, remove the "
-            f"label or rescan"
         )
     spread = _spread_marks_over(ctx.found.marks, g)
     if spread and "mark_on_edge" not in flags:
