@@ -1025,16 +1025,6 @@ def measure_print(ctx: _Context, group: Group, *, index: int = 0, sensitivity: b
         faint=line_ink,
     )
     flags, warnings = _edge_mark_flags(ctx, g, m, index, (kept, hidden), flags, warnings)
-    if "mark_on_edge" not in flags and ctx.found.grid is None:  # (as _letters_pull)
-        bpull = _letters_beside_pull(ctx, g, kept, m)
-        if bpull > opts.edge_uncertainty:
-            flags += ("mark_on_edge",)
-            warnings += (
-                f"print #{index}: letters set aside lie beside it and its ink near them "
-                f"is pen-thin: without that ink it is {100 * bpull:.1f} % shorter or "
-                f"narrower (a letter of the label joined to its edge?); see the overlay, "
-                f"remove the label or rescan",
-            )
     faint = _faint_excess(ctx, g, spots, m, grey=grey, local=local, aside=aside, kept=kept)
     if no_core:
         flags += ("faint_edge",)
@@ -1134,8 +1124,9 @@ def _edge_mark_flags(ctx: _Context, g: Group, m, index: int, ink: tuple, flags, 
     the print's edge beyond ``edge_uncertainty``: the edge hidden under a label
     (:func:`_hidden_excess`), a line as wide as a stroke taken for tread
     (:func:`_reach_beyond_body`), a thin piece alone off its tip set aside
-    (:func:`_sliver_excess`). ``g``: the padded print; ``ink``: its ink measured and
-    the ink under a label (or None)."""
+    (:func:`_sliver_excess`), a letter joined to it beside letters set aside
+    (:func:`_letters_beside_pull`). ``g``: the padded print; ``ink``: its ink
+    measured and the ink under a label (or None)."""
     opts, (kept, hidden) = ctx.opts, ink
     if "mark_on_edge" in flags:
         return flags, warnings
@@ -1162,6 +1153,16 @@ def _edge_mark_flags(ctx: _Context, g: Group, m, index: int, ink: tuple, flags, 
             f"a thin piece alone off its tip was set aside as a pen mark; it may be a "
             f"tread block the outline cut to a sliver: with it the length, width or hull "
             f"area (counted half) is {100 * sliver:.1f} % larger. See the overlay"
+        )
+    elif (
+        ctx.found.grid is None  # (on chart paper gridlines' bits read as letters)
+        and (beside := _letters_beside_pull(ctx, g, kept, m)) > opts.edge_uncertainty
+    ):
+        why = (
+            f"letters set aside lie beside it and its ink near them is pen-thin: "
+            f"without that ink it is {100 * beside:.1f} % shorter or narrower (a letter "
+            f"of the label joined to its edge?); see the overlay, remove the label or "
+            f"rescan"
         )
     if not why:
         return flags, warnings
