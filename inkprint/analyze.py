@@ -83,6 +83,11 @@ LETTER_STEPS = 3
 #: Letters set aside this close to a print's ink [mm] may have a letter joined to
 #: its edge (:func:`_letters_beside_pull`).
 LETTERS_BESIDE_MM = 1.5
+#: pen-thin pieces left out along a print's edge that make a row of its elements
+#: (:func:`_thin_excess`)
+THIN_ROW = 4
+THIN_ROW_MM2 = 0.3
+THIN_ROW_PX = 20
 #: ... and a piece of the print near them that an opening this many strokes wide
 #: takes whole is a letter's stroke
 THIN_PIECE = 1.0
@@ -1024,7 +1029,8 @@ def measure_print(ctx: _Context, group: Group, *, index: int = 0, sensitivity: b
         hidden=hidden,
         faint=line_ink,
     )
-    flags, warnings = _edge_mark_flags(ctx, g, m, index, (kept, hidden), flags, warnings)
+    ink = (kept, hidden, spots.thin)
+    flags, warnings = _edge_mark_flags(ctx, g, m, index, ink, flags, warnings)
     faint = _faint_excess(ctx, g, spots, m, grey=grey, local=local, aside=aside, kept=kept)
     if no_core:
         flags += ("faint_edge",)
@@ -1124,10 +1130,12 @@ def _edge_mark_flags(ctx: _Context, g: Group, m, index: int, ink: tuple, flags, 
     the print's edge beyond ``edge_uncertainty``: the edge hidden under a label
     (:func:`_hidden_excess`), a line as wide as a stroke taken for tread
     (:func:`_reach_beyond_body`), a thin piece alone off its tip set aside
-    (:func:`_sliver_excess`), a letter joined to it beside letters set aside
+    (:func:`_sliver_excess`), pen-thin ink along its edge left out as a pen's
+    (:func:`_thin_excess`), a letter joined to it beside letters set aside
     (:func:`_letters_beside_pull`). ``g``: the padded print; ``ink``: its ink
-    measured and the ink under a label (or None)."""
-    opts, (kept, hidden) = ctx.opts, ink
+    measured, the ink under a label (or None) and the pen-thin ink left out (or
+    None)."""
+    opts, (kept, hidden, spots_thin) = ctx.opts, ink
     if "mark_on_edge" in flags:
         return flags, warnings
     angle = m.metrics.orientation
@@ -1154,6 +1162,12 @@ def _edge_mark_flags(ctx: _Context, g: Group, m, index: int, ink: tuple, flags, 
             f"tread block the outline cut to a sliver: with it the length, width or hull "
             f"area (counted half) is {100 * sliver:.1f} % larger. See the overlay"
         )
+    elif (thin := _thin_excess(kept, m, spots_thin, ctx.scan.mm_per_px)) > opts.edge_uncertainty:
+        why = (
+            f"pen-thin ink along its edge was left out as a pen's strokes or dots (a "
+            f"fine tread's elements the outline cut?): with it its length or width is "
+            f"{100 * thin:.1f} % larger; see the overlay"
+        )
     elif (
         ctx.found.grid is None  # (on chart paper gridlines' bits read as letters)
         and (beside := _letters_beside_pull(ctx, g, kept, m)) > opts.edge_uncertainty
@@ -1167,6 +1181,26 @@ def _edge_mark_flags(ctx: _Context, g: Group, m, index: int, ink: tuple, flags, 
     if not why:
         return flags, warnings
     return (*flags, "mark_on_edge"), (*warnings, f"print #{index}: {why}")
+
+
+def _thin_excess(kept: np.ndarray, m, thin: np.ndarray | None, mm_per_px: float) -> float:
+    """How much longer or wider (the largest relative excess, along the print's
+    orientation and across) the print is with the pen-thin ink beside it that
+    :func:`inkprint.group.edge_spots` left out as a pen's strokes or dots
+    (``thin``, over ``kept``'s box: its ink measured) [mm / px]: a fine tread
+    not found as one (a knurl print on a 300 dpi PDF page, its diamonds the outline
+    cut to triangles along its sides: held-out seed 10 sheet 9, width -8.5 %,
+    unflagged) loses its outer row so. 0 with fewer than :data:`THIN_ROW` pieces
+    of :data:`THIN_ROW_MM2` and :data:`THIN_ROW_PX` or more: a label's letter
+    beside a slick tip, cut to bits of a few pixels, is no row of elements."""
+    if thin is None or not thin.any() or not kept.any():
+        return 0.0
+    _, lab, st, _ = components_with_stats(thin, connectivity=8)
+    least = max(THIN_ROW_PX, area_mm2_to_px(THIN_ROW_MM2, mm_per_px))
+    piece = np.r_[False, st[1:, 4] >= least]
+    if piece.sum() < THIN_ROW:
+        return 0.0
+    return _mask_excess(kept | piece[lab], kept, m.metrics.orientation)
 
 
 def _reach_beyond_body(ctx: _Context, ink: np.ndarray, angle: float) -> float:

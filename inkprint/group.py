@@ -1538,6 +1538,9 @@ class EdgeSpots:
         The faint edge spots larger than a dot (extent over ``dot_mm``): lightly
         inked tread blocks or light touches, the rule's judgement call (None when
         there is none).
+    thin : (h, w) bool or None
+        The pen-thin ink beside the print left out as a pen's strokes or dots
+        (:func:`edge_spots`; None when there is none).
     """
 
     load_bearing: np.ndarray
@@ -1546,6 +1549,7 @@ class EdgeSpots:
     spot_pixels: int
     tread_gap: float = 0.0
     faint_blocks: np.ndarray | None = field(default=None, repr=False)
+    thin: np.ndarray | None = field(default=None, repr=False)
 
 
 @dataclass(frozen=True)
@@ -2070,6 +2074,7 @@ def edge_spots(
             n_blobs=spots.n_blobs + n_thin,
             n_spots=spots.n_spots + _count_pieces(dots, group.mask.shape),
             spot_pixels=spots.spot_pixels + len(dots),
+            thin=group.mask & ~kept,
         )
     return _spots(group, darkness, mm_per_px, opts, gap=tread_gap)
 
