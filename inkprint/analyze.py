@@ -83,16 +83,16 @@ LETTER_STEPS = 3
 #: Letters set aside this close to a print's ink [mm] may have a letter joined to
 #: its edge (:func:`_letters_beside_pull`).
 LETTERS_BESIDE_MM = 1.5
-#: pen-thin pieces left out along a print's edge that make a row of its elements
-#: (:func:`_thin_excess`)
-THIN_ROW = 4
-THIN_ROW_MM2 = 0.3
-THIN_ROW_PX = 20
 #: ... and a piece of the print near them that an opening this many strokes wide
 #: takes whole is a letter's stroke
 THIN_PIECE = 1.0
 #: ... a mark whose box is more than this many times longer than wide is no letter
 LETTER_ASPECT = 8.0
+#: pen-thin pieces left out along a print's edge that make a row of its elements
+#: (:func:`_thin_excess`): this many, each at least this large [mm^2] and [px]
+THIN_ROW = 4
+THIN_ROW_MM2 = 0.3
+THIN_ROW_PX = 20
 
 
 def _hull_px(mask, field, r0: int, c0: int) -> np.ndarray:
@@ -1217,12 +1217,7 @@ def _reach_beyond_body(ctx: _Context, ink: np.ndarray, angle: float) -> float:
     ink8 = ink.view(np.uint8) if ink.dtype == bool else ink.astype(np.uint8)
     pad = int(np.ceil(2.5 * stroke)) + 2
     box = cv2.copyMakeBorder(ink8, pad, pad, pad, pad, cv2.BORDER_CONSTANT, value=0)
-    body = box
-    for op, size in ((cv2.MORPH_CLOSE, stroke), (cv2.MORPH_OPEN, 2.5 * stroke)):
-        # squares (separable: a fraction of a disk's cost at 300 dpi); a square
-        # opening takes a diagonal line up to 1.4 x as wide, a body stays a body
-        k = max(3, round(size) | 1)
-        body = cv2.morphologyEx(body, op, np.ones((k, k), np.uint8))
+    body = _stroke_body(box, stroke)
     if cv2.countNonZero(body & box) < 0.2 * cv2.countNonZero(box):
         return 0.0
     # what lies outside the body's hull must hold a straight bar at least
@@ -1245,6 +1240,21 @@ def _reach_beyond_body(ctx: _Context, ink: np.ndarray, angle: float) -> float:
         # 21: the bars, then kept with the print, reached 117 % beyond its rib)
         points = np.concatenate([points, outline_points(np.isin(lab, ks[bars]))])
     return _mask_excess(box, body, angle)
+
+
+def _stroke_body(ink8: np.ndarray, stroke: float) -> np.ndarray:
+    """A print's body: its ink (uint8) closed by a square ``stroke`` [px] wide
+    (grooves, sipes, a file pattern's pores), then opened by one 2.5 strokes wide
+    (lines and slivers narrower go). Squares: separable, a fraction of a disk's cost
+    at 300 dpi; a square opening takes a diagonal line up to 1.4 x as wide, a body
+    stays a body."""
+    import cv2
+
+    body = ink8
+    for op, size in ((cv2.MORPH_CLOSE, stroke), (cv2.MORPH_OPEN, 2.5 * stroke)):
+        k = max(3, round(size) | 1)
+        body = cv2.morphologyEx(body, op, np.ones((k, k), np.uint8))
+    return body
 
 
 def _long_thin(out: np.ndarray, stroke: float, ctx: _Context) -> tuple:
@@ -1752,20 +1762,16 @@ def _letters_beside_pull(ctx: _Context, g: Group, kept: np.ndarray, m) -> float:
         return 0.0
     stroke = stroke_px(mm_per_px, ctx.opts)
     ink8 = kept.view(np.uint8) if kept.dtype == bool else kept.astype(np.uint8)
-    body = ink8
-    for op, size_px in ((cv2.MORPH_CLOSE, stroke), (cv2.MORPH_OPEN, 2.5 * stroke)):
-        k = max(3, round(size_px) | 1)
-        body = cv2.morphologyEx(body, op, np.ones((k, k), np.uint8))
-    k = max(3, round(THIN_PIECE * stroke) | 1)
-    stays = cv2.morphologyEx(ink8, cv2.MORPH_OPEN, np.ones((k, k), np.uint8)).view(bool)
-    n, lab, st, _ = components_with_stats(kept, connectivity=8)
-    held = np.bincount(lab[stays], minlength=n) > 0
-    thin_piece = ~held & (np.maximum(st[:, 2], st[:, 3]) <= 2 * size)
-    thin_piece[0] = False
-    if g.fine_area_mm2 > 0:  # a fine tread's elements are pen-thin pieces apart
-        thin_piece[:] = False
-    thin_piece &= np.bincount(lab[zone & kept], minlength=n) > 0  # (whole: a letter)
-    thin = kept & ~body.view(bool) & zone | thin_piece[lab]
+    thin = kept & ~_stroke_body(ink8, stroke).view(bool) & zone
+    if g.fine_area_mm2 <= 0:  # (a fine tread's elements are pen-thin pieces apart)
+        k = max(3, round(THIN_PIECE * stroke) | 1)
+        stays = cv2.morphologyEx(ink8, cv2.MORPH_OPEN, np.ones((k, k), np.uint8)).view(bool)
+        n, lab, st, _ = components_with_stats(kept, connectivity=8)
+        held = np.bincount(lab[stays], minlength=n) > 0
+        thin_piece = ~held & (np.maximum(st[:, 2], st[:, 3]) <= 2 * size)
+        thin_piece &= np.bincount(lab[zone & kept], minlength=n) > 0  # (whole: a letter)
+        thin_piece[0] = False
+        thin |= thin_piece[lab]
     if not thin.any():
         return 0.0
     rest = kept & ~thin
