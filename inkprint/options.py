@@ -412,8 +412,10 @@ class AnalysisOptions:
         2026 were all flagged at the former 1 degree); farther, or when the own
         axis is not confirmed by the principal axis, it is used as given and flags
         the print ``axis_misaligned`` ... (A print with under half its hull inked,
-        a knob or dot pattern, is snapped within 1 degree only:
-        ``analyze.SNAP_SOLIDITY``.)
+        a knob or dot pattern, is snapped within 1 degree only,
+        ``analyze.SNAP_SOLIDITY``, unless its three axis estimates give a length
+        and width within ``axis_misaligned_excess`` of each other:
+        ``analyze.settled_turn``.)
     axis_misaligned_excess : float [-]
         ... when measuring along the given axis also lengthens or widens it by more
         than this share (half the 1 % bar; a nearly round print reads the same along

@@ -16,7 +16,7 @@ from numpy.testing import assert_allclose
 
 import inkprint as ip
 from inkprint.accuracy import SILENT, compare
-from inkprint.analyze import own_axis
+from inkprint.analyze import own_axis, settled_turn
 from inkprint.batch import Job, Options, process_file
 from inkprint.read import Scan
 from inkprint.synth import PrintSpec, SheetSpec, render_sheet, save_scan
@@ -102,20 +102,33 @@ def test_lone_elements_flags_a_knob_sized_print_beside_a_knob_pattern():
     assert _lone_elements(r.prints, scan.mm_per_px, ip.AnalysisOptions()) == r.prints
 
 
-@pytest.mark.parametrize("angle", [4.0, 0.0])
-def test_analyze_scan_knob_pattern_turned_is_flagged_not_snapped(angle):
-    # a knob pattern (a quarter of its hull inked) turned 4 degrees against the given
-    # axis: its hull's axis estimates are not trusted beyond 1 degree (independent
-    # 111 sheet 31: both -5.5/-6.7 degrees on a print square to the sheet, length
-    # -8 % when snapped): measured along x and flagged; square, measured unflagged
+@pytest.mark.parametrize("angle", [4.0, -3.0, 7.0, 0.0])
+def test_analyze_scan_knob_pattern_turned_is_measured_along_itself(angle):
+    # a knob pattern (a fifth of its hull inked) turned against the given axis: its
+    # hull's rectangle, least width and principal axis give the same length and
+    # width (within axis_misaligned_excess), so it is measured along itself,
+    # unflagged (before: flagged axis_misaligned beyond 1 degree for every knob
+    # pattern, which a crooked sheet made of half the held-out knobby prints)
     p = PrintSpec(90, 45, (80, 60), angle, "mtb", block=5, gap=6.5, unevenness=0.0)
     scan, (t,) = scan_of(SheetSpec((p,), size=(160, 130), specks=0))
     (q,) = ip.analyze_scan(scan, sensitivity=False, rolling_axis="x").prints
-    assert q.metrics.solidity < 0.5 and q.metrics.orientation == pytest.approx(0.0, abs=0.02)
-    if angle:
-        assert q.flags == ("axis_misaligned",)
-    else:
-        assert q.flags == () and within(q.metrics, t)
+    assert q.metrics.solidity < 0.5
+    assert q.metrics.orientation == pytest.approx(math.radians(angle), abs=0.002)
+    assert q.flags == () and within(q.metrics, t)
+
+
+def test_settled_turn_is_none_when_the_estimates_disagree_in_length():
+    # a rhomboid hull (a knob pattern sheared by its stagger, independent 111 sheet
+    # 31): its rectangle, least width and principal axis lie degrees apart and give
+    # lengths more than 0.5 % apart: no snap; a rectangle turned 5 degrees: snapped
+    xy = np.array([[0, 0], [80, 0], [80, 40], [0, 40]], float)  # (x, y) [px]
+    c, s = math.cos(math.radians(5)), math.sin(math.radians(5))
+    x, y = (xy @ np.array([[c, s], [-s, c]])).T  # turned +5 deg from +x
+    turned = np.column_stack([-y, x])  # (row, col): rows run down
+    assert settled_turn(turned, 0.0, spread=0.005) == pytest.approx(5.0, abs=0.01)
+    sheared = np.array([[0, 0], [0, 80], [40, 92], [40, 12]], float)  # (row, col)
+    assert settled_turn(sheared, 0.0, spread=0.005) is None
+    assert settled_turn(sheared, 0.0, spread=0.5) is not None
 
 
 def test_group_blobs_car_ribs_make_one_print(tmp_path):

@@ -6,6 +6,7 @@ slick print's tip.
 ``python -m inkprint.accuracy``.
 """
 
+import re
 from types import SimpleNamespace
 
 import cv2
@@ -19,6 +20,7 @@ from inkprint.analyze import _thin_excess, edge_field
 from inkprint.group import thin_protrusions
 from inkprint.synth import render_sheet
 from inkprint.synth_cases import make_case
+from tests.inkprint.drawn import drawn_scan
 from tests.inkprint.test_classes import assert_passes, outcomes
 
 
@@ -357,3 +359,46 @@ def test_thin_excess_row_of_cut_elements_flags_a_label_bit_does_not():
         bits[r : r + 3, 760:763] = True
     assert _thin_excess(kept, m, bits, mm) == 0.0
     assert _thin_excess(kept, m, None, mm) == 0.0
+
+
+def _rib_print(*, dpi=400.0, ss=4, length=19.0, width=10.0, rib=1.0, phase=0):
+    """A tiny print drawn with exact truth: a slick centre rib ``rib`` mm wide along
+    its whole length, 1.2 mm diamonds at a 2 mm pitch beside it (none within 1.2 mm
+    of the rib), all cut by an ellipse ``length`` x ``width`` mm along x."""
+    import cv2
+
+    mm = 25.4 / dpi / ss
+    n = int(40 / mm)
+    cx = cy = n // 2
+    outline = np.zeros((n, n), np.uint8)
+    cv2.ellipse(outline, (cx, cy), (int(length / 2 / mm), int(width / 2 / mm)), 0, 0, 360, 1, -1)
+    ink = np.zeros((n, n), np.uint8)
+    half = int(length / 2 / mm)
+    cv2.line(ink, (cx - half, cy), (cx + half, cy), 1, int(rib / mm))
+    d = 0.6 / mm
+    for k, u in enumerate(np.arange(-length / 2, length / 2 + 2, 2.0)):
+        for v in np.arange(-width / 2, width / 2 + 2, 2.0) + ((k + phase) % 2):
+            if abs(v) >= rib / 2 + 1.2:
+                x, y = cx + u / mm, cy - v / mm
+                pts = np.array([[x - d, y], [x, y - d], [x + d, y], [x, y + d]], np.int32)
+                cv2.fillPoly(ink, [pts], 1)
+    return drawn_scan(ink & outline, dpi, ss, 0.6)
+
+
+@pytest.mark.parametrize("phase", [0, 1])
+def test_inner_line_excess_flags_a_slick_centre_rib_taken_for_a_ruler(phase):
+    # a tiny print's slick centre rib, straight and 19 mm long, is set aside as a
+    # ruler: its diamonds alone read 11-21 % short (held-out seed 2026 sheet 81:
+    # -2.3 %, unflagged). Flagged mark_on_edge with the excess the rib adds. (Phase
+    # 0: the diamonds make a lattice print, whose box held the rib's mark: the mark
+    # was dropped as one of its elements, the rib in neither the print nor the marks)
+    grey, mm_per_px, (length, _, _) = _rib_print(phase=phase)
+    r = ip.analyze_scan(ip.Scan(grey, mm_per_px, "given"), rolling_axis="x", sensitivity=False)
+    (p,) = r.prints
+    assert [mk.kind for mk in r.marks] == ["line"]
+    assert p.metrics.length < 0.95 * length  # the rib's ends are lost
+    assert p.flags == ("mark_on_edge",)
+    (pct,) = re.findall(
+        r"slick centre rib\? With it its length or width is ([\d.]+) %", p.warnings[-1]
+    )
+    assert_allclose(float(pct), 100 * (length / p.metrics.length - 1), atol=1.0)
