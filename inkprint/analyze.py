@@ -1129,21 +1129,8 @@ def measure_print(ctx: _Context, group: Group, *, index: int = 0, sensitivity: b
     ink = (kept, hidden, spots.thin)
     flags, warnings = _edge_mark_flags(ctx, g, m, index, ink, flags, warnings)
     faint = _faint_excess(ctx, g, spots, m, grey=grey, local=local, aside=aside, kept=kept)
-    if no_core:
-        flags += ("faint_edge",)
-        warnings += (
-            f"print #{index}: all its ink is edge spots by the section 7.1.1 rule (faint "
-            f"or small blobs apart from any core): measured with all of it; is it a print?",
-        )
-    elif faint > opts.edge_uncertainty:
-        flags += ("faint_edge",)
-        warnings += (
-            f"print #{index}: a blob larger than a dot at its edge, inked lighter than "
-            f"{opts.edge_spot_faintness:g} of the print was left out as not load-bearing "
-            f"(section 7.1.1); with it the length, width or hull area (counted half) is "
-            f"{100 * faint:.1f} % larger. Which is right is a judgement: see the overlay, "
-            f"or set --edge-spot-faintness (0 keeps every blob)",
-        )
+    faint = _faint_flag(opts, index, faint=faint, no_core=no_core)
+    flags, warnings = flags + faint[:1], warnings + faint[1:]
     coarse = _coarse_flag(group, m.metrics, index, s)
     flags, warnings = flags + coarse[:1], warnings + coarse[1:]
     light = _light_flag(ctx, g, grey, spots.load_bearing, index)
@@ -1162,6 +1149,28 @@ def measure_print(ctx: _Context, group: Group, *, index: int = 0, sensitivity: b
         warnings=warnings,
         unit=ctx.scan.unit,
     )
+
+
+def _faint_flag(opts, index: int, *, faint: float, no_core: bool) -> tuple:
+    """``("faint_edge", warning)`` when a print is all edge spots, or when the faint
+    blobs left out at its edge (section 7.1.1) change a measure by more than
+    ``edge_uncertainty``; else ``()``."""
+    if no_core:
+        return (
+            "faint_edge",
+            f"print #{index}: all its ink is edge spots by the section 7.1.1 rule (faint "
+            f"or small blobs apart from any core): measured with all of it; is it a print?",
+        )
+    if faint > opts.edge_uncertainty:
+        return (
+            "faint_edge",
+            f"print #{index}: a blob larger than a dot at its edge, inked lighter than "
+            f"{opts.edge_spot_faintness:g} of the print was left out as not load-bearing "
+            f"(section 7.1.1); with it the length, width or hull area (counted half) is "
+            f"{100 * faint:.1f} % larger. Which is right is a judgement: see the overlay, "
+            f"or set --edge-spot-faintness (0 keeps every blob)",
+        )
+    return ()
 
 
 def _load_bearing(ctx: _Context, group: Group, g: Group, spots) -> tuple:
