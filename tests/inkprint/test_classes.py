@@ -117,6 +117,54 @@ def test_analyze_scan_knob_pattern_turned_is_measured_along_itself(angle):
     assert q.flags == () and within(q.metrics, t)
 
 
+@pytest.mark.parametrize(
+    ("length", "width", "angle"), [(60, 40, 0.0), (60, 40, 3.0), (60, 40, 6.0), (60, 58, 6.0)]
+)
+def test_analyze_scan_coarse_knob_print_is_measured_along_its_tracks(length, width, angle):
+    # a few knobs across (5 mm knobs, 6 mm grooves): the hull is their outer corners,
+    # its rectangle, least width and principal axis agree on a turn that is not
+    # there (-4.1 deg square to the sheet: width -1.4 %, unflagged; 60 x 58 turned
+    # 6 deg: along x, +1.1 % long, unflagged); the knobs' tracks give the turn
+    p = PrintSpec(length, width, (80, 60), angle, "mtb", exponent=2.0, unevenness=0.0)
+    scan, (t,) = scan_of(SheetSpec((p,), size=(160, 130), specks=0))
+    (q,) = ip.analyze_scan(scan, sensitivity=False, rolling_axis="x").prints
+    assert q.metrics.solidity < 0.5
+    assert math.degrees(q.metrics.orientation) == pytest.approx(angle, abs=0.1)
+    assert q.flags == () and within(q.metrics, t)
+
+
+@pytest.mark.parametrize("angle", [3.1, -5.3])
+def test_analyze_scan_narrow_knurl_print_tracks_do_not_override_its_outline(angle):
+    # a knurl print three diamonds wide: its lateral profile peaks 5 deg off (its
+    # few tracks), its outline's axis is clear; along the tracks it read +21 to
+    # +40 % wide, flagged only coarse_elements. The tracks are not used: turned
+    # beyond 1 deg, a sparse print's outline alone is not trusted either: flagged
+    p = PrintSpec(22, 3.5, (40, 40), angle, "knurl", unevenness=0.0)
+    img, _ = render_sheet(SheetSpec((p,), size=(80, 80), specks=0, dpi=150))
+    (q,) = ip.analyze_scan(
+        ip.Scan(img, 25.4 / 150, "given"), sensitivity=False, rolling_axis="x"
+    ).prints
+    assert "axis_misaligned" in q.flags
+    assert q.metrics.orientation == 0.0
+
+
+def test_settled_turn_mirror_axis_decides_a_diamond_outline():
+    # a diamond (rhombus) outline turned 7 deg: its rectangle and least width lie
+    # along a side (38 deg), its principal axis at 7; their lengths disagree, the
+    # outline mirrors itself about 7 deg exactly: the principal axis is confirmed
+    from inkprint.analyze import mirror_axis
+
+    xy = np.array([[25, 0], [0, 15], [-25, 0], [0, -15]], float) * 10
+    c, s = math.cos(math.radians(7)), math.sin(math.radians(7))
+    xy = xy @ np.array([[c, s], [-s, c]])
+    turn, asymmetry = mirror_axis(xy, 0.0)
+    assert turn == pytest.approx(7.0, abs=0.01) and asymmetry < 1e-3
+    assert own_axis(np.column_stack([-xy[:, 1], xy[:, 0]]), 0.0)[0] == pytest.approx(38, abs=0.1)
+    assert settled_turn(np.column_stack([-xy[:, 1], xy[:, 0]]), 0.0, spread=0.005) == (
+        pytest.approx(7.0, abs=0.01)
+    )
+
+
 def test_settled_turn_is_none_when_the_estimates_disagree_in_length():
     # a rhomboid hull (a knob pattern sheared by its stagger, independent 111 sheet
     # 31): its rectangle, least width and principal axis lie degrees apart and give

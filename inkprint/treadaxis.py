@@ -1,0 +1,124 @@
+"""The direction of a tread pattern's tracks: the sharpest lateral profile.
+
+A tire's tread repeats around its circumference, so each tread element's track
+(its lateral position) repeats along the rolling direction: projected across that
+direction, the ink of a print of separate elements (knobs, dots, a file or knurl
+pattern) piles up into sharp peaks, one per track; projected across a direction
+turned from it, the peaks smear. The turn whose lateral profile is sharpest (the
+sum of squared bin counts, the skew detection of document scanners) is the
+print's own axis. It needs no outline: a knob pattern's hull is its outer knobs'
+corners, whose minimum-area rectangle and moments can lie degrees off (a staggered
+knob lattice shears the hull) while its tracks do not. Rows across the tire may
+slant (chevrons, staggered knobs): the profile along the rolling direction is not
+used (with it, 15 of 85 sparse prints of held-out seed 8 and independent set 111
+were found over 1 degree off; without, 4, each at the search's limit: no peak).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+#: the profile's bins across the rolling direction [mm] (at least one pixel): fine
+#: enough for a 0.6 mm groove between knurl diamonds
+ACROSS_MM = 0.15
+#: the mask is summed in cells this long along the rolling direction [mm]: a cell's
+#: own smear when turned by the coarse step, 2 mm x 0.5 deg = 0.02 mm, is nothing
+ALONG_MM = 2.0
+#: the coarse search's step [deg], then refined in steps of :data:`FINE_STEP_DEG`
+COARSE_STEP_DEG = 0.5
+FINE_STEP_DEG = 0.05
+
+
+@dataclass(frozen=True)
+class TreadTurn:
+    """The tread's own axis found from its tracks.
+
+    Attributes
+    ----------
+    turn : float [deg]
+        Own axis minus the given axis, within the searched limit.
+    contrast : float [-]
+        Sharpness at ``turn`` over the median sharpness of the searched turns:
+        about 1 for ink without tracks (a slick print), 1.05-2.5 for element
+        patterns.
+    resolution : float [deg]
+        One bin across over the ink's length along: the turn that shifts one
+        tip's ink by a bin against the other's (0.15 mm over 20 mm: 0.43 deg).
+    """
+
+    turn: float
+    contrast: float
+    resolution: float = 0.0
+
+
+def _cells(mask: np.ndarray, axis: str, mm_per_px: float) -> tuple[np.ndarray, np.ndarray]:
+    """Cells of the mask, :data:`ALONG_MM` along ``axis`` by :data:`ACROSS_MM`
+    across (whole pixels): their centres (along, across) [bins] about their mean,
+    across pointing left of the rolling direction, and their ink [px]."""
+    along = max(1, round(ALONG_MM / mm_per_px))
+    across = max(1, round(ACROSS_MM / mm_per_px))
+    import cv2
+
+    fr, fc = (across, along) if axis == "x" else (along, across)
+    h, w = mask.shape
+    total = cv2.integral(mask.view(np.uint8))  # (h + 1, w + 1): block sums by corners
+    r = np.append(np.arange(0, h, fr), h)
+    c = np.append(np.arange(0, w, fc), w)
+    ink = total[np.ix_(r[1:], c[1:])] - total[np.ix_(r[:-1], c[1:])]
+    ink = ink - total[np.ix_(r[1:], c[:-1])] + total[np.ix_(r[:-1], c[:-1])]
+    rows, cols = np.nonzero(ink)
+    if len(rows) < 2:
+        return np.zeros((0, 2)), np.zeros(0)
+    r, c = (rows + 0.5) * fr, (cols + 0.5) * fc
+    # x: along +col, across up (-row); y: along up (-row), across -col
+    pts = np.column_stack([c, -r] if axis == "x" else [-r, -c]).astype(np.float64)
+    return (pts - pts.mean(axis=0)) / across, ink[rows, cols].astype(np.float64)
+
+
+def _sharpness(pts: np.ndarray, ink: np.ndarray, turns: np.ndarray) -> np.ndarray:
+    """Sharpness of the lateral profiles of cells ``pts`` (along, across) [bins]
+    with ``ink``, across directions turned ``turns`` (t,) [rad]: the sum of squared
+    bin weights times the bins spanned (so a profile is not sharper merely for
+    being narrower). (t,)"""
+    v = np.outer(np.cos(turns), pts[:, 1]) - np.outer(np.sin(turns), pts[:, 0])  # (t, n)
+    k = (v - v.min(axis=1, keepdims=True)).astype(np.int64)
+    span = k.max(axis=1) + 1
+    offset = np.concatenate([[0], np.cumsum(span)[:-1]])
+    h = np.bincount((k + offset[:, None]).ravel(), weights=np.tile(ink, len(turns)))
+    return np.add.reduceat(h * h, offset) * span
+
+
+def tread_turn(mask: np.ndarray, axis: str, *, mm_per_px: float, limit_deg: float) -> TreadTurn:
+    """The turn of a tread pattern's tracks from a given rolling axis.
+
+    Only turns within ``limit_deg`` are searched: farther, a knob lattice's
+    diagonals can give a sharper lateral profile than its tracks (a staggered knob
+    pattern: at 22-33 degrees), and a print turned that far is told by its outline.
+
+    Parameters
+    ----------
+    mask : (h, w) bool
+        The print's ink, (row, col).
+    axis : {'x', 'y'}
+        Given rolling axis: x along the columns, y up the rows.
+    mm_per_px : float [mm / px]
+    limit_deg : float [deg]
+        Turns searched either side of ``axis`` (counter-clockwise positive).
+
+    Returns
+    -------
+    TreadTurn
+    """
+    pts, ink = _cells(mask, axis, mm_per_px)
+    if len(ink) < 2:
+        return TreadTurn(0.0, 1.0)
+    coarse = np.arange(-limit_deg, limit_deg + 1e-9, COARSE_STEP_DEG)
+    sharp = _sharpness(pts, ink, np.radians(coarse))
+    best = coarse[int(np.argmax(sharp))]
+    fine = best + np.arange(-COARSE_STEP_DEG, COARSE_STEP_DEG + 1e-9, FINE_STEP_DEG)
+    sharp_fine = _sharpness(pts, ink, np.radians(fine))
+    i = int(np.argmax(sharp_fine))
+    resolution = np.degrees(np.arctan(1.0 / max(np.ptp(pts[:, 0]), 1.0)))
+    return TreadTurn(float(fine[i]), float(sharp_fine[i] / np.median(sharp)), float(resolution))
