@@ -20,6 +20,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .coords import mm_to_px_length
+
 #: the profile's bins across the rolling direction [mm] (at least one pixel): fine
 #: enough for a 0.6 mm groove between knurl diamonds
 ACROSS_MM = 0.15
@@ -57,8 +59,8 @@ def _cells(mask: np.ndarray, axis: str, mm_per_px: float) -> tuple[np.ndarray, n
     """Cells of the mask, :data:`ALONG_MM` along ``axis`` by :data:`ACROSS_MM`
     across (whole pixels): their centres (along, across) [bins] about their mean,
     across pointing left of the rolling direction, and their ink [px]."""
-    along = max(1, round(ALONG_MM / mm_per_px))
-    across = max(1, round(ACROSS_MM / mm_per_px))
+    along = max(1, round(mm_to_px_length(ALONG_MM, mm_per_px)))
+    across = max(1, round(mm_to_px_length(ACROSS_MM, mm_per_px)))
     import cv2
 
     fr, fc = (across, along) if axis == "x" else (along, across)
