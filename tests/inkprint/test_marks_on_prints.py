@@ -93,7 +93,7 @@ def test_measure_print_lone_stroke_off_a_slick_tip_is_flagged():
     r, pr, errors = _one_print(spec)
     assert max(abs(e) for e in errors) < 0.003
     assert "mark_on_edge" in pr.flags
-    assert any("alone off its tip" in w for w in pr.warnings), pr.warnings
+    assert any("thin ink off its tip" in w for w in pr.warnings), pr.warnings
     assert any(m.kind == "sliver" for m in r.marks)
 
 
