@@ -88,3 +88,40 @@ def test_sort_ink_ragged_block_at_threshold_is_the_prints_own(tmp_path):
     assert not bad, bad
     (first,) = [r for r in results if r["err_length"] < -0.005]
     assert "faint_edge" in first["flags"]
+
+
+def _rib_and_dots(*, dpi=200.0, ss=4, length=20.0, width=9.0, rib=2.2, dot=0.5, pitch=1.4):
+    """A tiny print drawn with exact truth: a slick centre rib ``rib`` mm wide, and
+    ``dot`` mm diamonds at ``pitch`` beside it, all cut by an ellipse."""
+    from .drawn import drawn_scan
+
+    mm = 25.4 / dpi / ss
+    n = int(40 / mm)
+    c = n // 2
+    outline = np.zeros((n, n), np.uint8)
+    cv2.ellipse(outline, (c, c), (int(length / 2 / mm), int(width / 2 / mm)), 0, 0, 360, 1, -1)
+    ink = np.zeros((n, n), np.uint8)
+    cv2.ellipse(ink, (c, c), (int(length / 2 / mm), int(rib / 2 / mm)), 0, 0, 360, 1, -1)
+    d = dot / 2 / mm
+    for u in np.arange(-length / 2, length / 2 + pitch, pitch):
+        for v in np.arange(rib / 2 + 0.8, width / 2 + pitch, pitch):
+            for side in (1, -1):
+                x, y = c + u / mm, c - side * v / mm
+                pts = np.array([[x - d, y], [x, y - d], [x + d, y], [x, y + d]], np.int32)
+                cv2.fillPoly(ink, [pts], 1)
+    return drawn_scan(ink & outline, dpi, ss, 0.6)
+
+
+def test_measure_print_fine_diamonds_beside_a_slick_centre_flag_faint_edge():
+    # each diamond under the edge-spot size: all left out as edge spots, the print
+    # is its centre rib alone, a quarter of its width (held-out 8, 10, 12: -65 to
+    # -77 % wide, unflagged). Its edge spots more than double it: out of the
+    # section 7.1.1 rule's domain, flagged faint_edge with the spread
+    grey, mm_per_px, (_, width, _) = _rib_and_dots()
+    r = ip.analyze_scan(ip.Scan(grey, mm_per_px, "given"), rolling_axis="x", sensitivity=False)
+    (p,) = r.prints
+    assert p.metrics.width < 0.3 * width and p.n_edge_spots > 20
+    assert "faint_edge" in p.flags
+    (pct,) = [w for w in p.warnings if "edge spots, left out" in w]
+    spread = p.metrics_all.width / p.metrics.width - 1
+    assert f"{100 * spread:.0f} % longer or wider" in pct
