@@ -148,23 +148,6 @@ def test_analyze_scan_narrow_knurl_print_tracks_do_not_override_its_outline(angl
     assert q.metrics.orientation == 0.0
 
 
-def test_settled_turn_mirror_axis_decides_a_diamond_outline():
-    # a diamond (rhombus) outline turned 7 deg: its rectangle and least width lie
-    # along a side (38 deg), its principal axis at 7; their lengths disagree, the
-    # outline mirrors itself about 7 deg exactly: the principal axis is confirmed
-    from inkprint.analyze import mirror_axis
-
-    xy = np.array([[25, 0], [0, 15], [-25, 0], [0, -15]], float) * 10
-    c, s = math.cos(math.radians(7)), math.sin(math.radians(7))
-    xy = xy @ np.array([[c, s], [-s, c]])
-    turn, asymmetry = mirror_axis(xy, 0.0)
-    assert turn == pytest.approx(7.0, abs=0.01) and asymmetry < 1e-3
-    assert own_axis(np.column_stack([-xy[:, 1], xy[:, 0]]), 0.0)[0] == pytest.approx(38, abs=0.1)
-    assert settled_turn(np.column_stack([-xy[:, 1], xy[:, 0]]), 0.0, spread=0.005) == (
-        pytest.approx(7.0, abs=0.01)
-    )
-
-
 def test_settled_turn_is_none_when_the_estimates_disagree_in_length():
     # a rhomboid hull (a knob pattern sheared by its stagger, independent 111 sheet
     # 31): its rectangle, least width and principal axis lie degrees apart and give
