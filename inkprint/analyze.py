@@ -55,6 +55,7 @@ from .group import (
     SMALL_PRINT_MM2,
     Group,
     PrintCheck,
+    _at_the_ends,
     _sides,
     edge_spots,
     is_print,
@@ -454,7 +455,8 @@ def _tread_axis(mask, hull_px, given: str, solid: float, *, mm_per_px: float, sn
 
     base = 0.0 if given == "x" else math.pi / 2
     turn, _ = own_axis(hull_px, base)
-    if abs(turn) > snap_deg and _principal_agrees(hull_px, base, turn):
+    clear = _principal_agrees(hull_px, base, turn)  # the outline's own axis is clear
+    if abs(turn) > snap_deg and clear:
         return None  # turned farther, its outline says (flagged axis_misaligned)
     found = tread_turn(mask, given, mm_per_px=mm_per_px, limit_deg=TREAD_SEARCH_DEG)
     edge = abs(found.turn) > TREAD_SEARCH_DEG - TREAD_EDGE_DEG
@@ -462,11 +464,18 @@ def _tread_axis(mask, hull_px, given: str, solid: float, *, mm_per_px: float, sn
         return None
     if abs(turn - found.turn) <= TREAD_REFINE * found.resolution:
         return base + math.radians(turn)  # the outline's rectangle: the finer of the two
-    if _principal_agrees(hull_px, base, turn):
-        xy = np.column_stack([hull_px[:, 1], -hull_px[:, 0]]).astype(np.float64)
+    if clear:
+        xy = _sheet_xy(hull_px)
         if _turn_excess(xy, base + math.radians(found.turn), turn - found.turn) > TREAD_OUTLINE:
             return None  # the outline's clear axis makes the tracks' turn implausible
     return base + math.radians(found.turn)
+
+
+def _sheet_xy(hull_px) -> np.ndarray:
+    """(row, col) pixel points -> sheet directions (x = col, y = -row) [px], float64
+    (the scale does not change directions)."""
+    hull_px = np.asarray(hull_px)
+    return np.column_stack([hull_px[:, 1], -hull_px[:, 0]]).astype(np.float64)
 
 
 #: the hull's principal axis confirms its own axis (:func:`own_axis`) when turned
@@ -524,7 +533,7 @@ def rolling_angle(
                 return given + math.radians(turn)
         return given
     # sheet coordinates: x = col, y = -row (the scale does not change directions)
-    mo = cv2.moments(np.column_stack([hull_px[:, 1], -hull_px[:, 0]]).astype(np.float32))
+    mo = cv2.moments(_sheet_xy(hull_px).astype(np.float32))
     return 0.5 * math.atan2(2 * mo["mu11"], mo["mu20"] - mo["mu02"])
 
 
@@ -604,18 +613,13 @@ def settled_turn(hull_px, given: float, *, spread: float) -> float | None:
     float [deg] or None
         The rectangle's turn in [-45, 45), None when the estimates disagree.
     """
-    xy = np.column_stack([hull_px[:, 1], -hull_px[:, 0]]).astype(np.float64)
+    xy = _sheet_xy(hull_px)
     turn, _ = own_axis(hull_px, given)
     turns = (turn, _min_width_turn(xy, given), _principal_turn(hull_px, given))
     ext = np.array([_extents(xy, given + math.radians(t)) for t in turns])  # (3, 2)
-    if np.max(_spread(ext)) > spread:
+    if np.max(np.ptp(ext, axis=0) / np.maximum(ext.min(axis=0), 1e-9)) > spread:
         return None
     return turn
-
-
-def _spread(ext: np.ndarray) -> np.ndarray:
-    """Relative spread of extents ``ext`` (n, 2) [px] over the estimates: (2,) [-]."""
-    return np.ptp(ext, axis=0) / np.maximum(ext.min(axis=0), 1e-9)
 
 
 def _principal_turn(hull_px, given: float) -> float:
@@ -657,7 +661,7 @@ def own_axis(hull_px, angle: float) -> tuple[float, float]:
     """
     import cv2
 
-    xy = np.column_stack([hull_px[:, 1], -hull_px[:, 0]]).astype(np.float32)
+    xy = _sheet_xy(hull_px).astype(np.float32)
     own = math.radians(cv2.minAreaRect(xy)[2])
     turn = (math.degrees(own - angle) + 45.0) % 90.0 - 45.0
 
@@ -1758,13 +1762,15 @@ def _off_a_tip(bbox, m) -> bool:
     """Whether a mark's box (r0, c0, r1, c1) [px] lies off a tip of the print measured
     ``m`` (its centre beyond :data:`TIP_END` of the hull's half-length from its
     centre along the print's orientation), not beside it."""
-    hull = m.hull_px
+    at = np.array([[(bbox[0] + bbox[2]) / 2, (bbox[1] + bbox[3]) / 2]])
+    return bool(_at_the_ends(m.hull_px, at, end=TIP_END, axis=_along(m))[0])
+
+
+def _along(m) -> np.ndarray:
+    """The unit vector (row, col) of the orientation of the print measured ``m``
+    (rows run down)."""
     angle = float(m.metrics.orientation)
-    axis = np.array([-math.sin(angle), math.cos(angle)])  # (row, col): rows run down
-    centre = hull.mean(axis=0)
-    half = np.abs((hull - centre) @ axis).max()
-    at = np.array([(bbox[0] + bbox[2]) / 2, (bbox[1] + bbox[3]) / 2])
-    return bool(abs((at - centre) @ axis) > TIP_END * half)
+    return np.array([-math.sin(angle), math.cos(angle)])
 
 
 #: a mark lies off a print's tip beyond this fraction of its half-length
@@ -1792,8 +1798,7 @@ def _mirrored_pairs(boxes: list, m) -> list:
     along the print than across it: :func:`_across`)."""
     if len(boxes) < 2:
         return []
-    angle = float(m.metrics.orientation)
-    axis = np.array([-math.sin(angle), math.cos(angle)])  # (row, col)
+    axis = _along(m)
     normal = np.array([axis[1], -axis[0]])
     centre = m.hull_px.mean(axis=0)
     b = np.asarray(boxes, float)
@@ -1910,7 +1915,7 @@ def _axis_flags(
         ]
         if not cands:
             return flags, warnings
-        xy = np.column_stack([hull_px[:, 1], -hull_px[:, 0]]).astype(np.float64)
+        xy = _sheet_xy(hull_px)
         excess, turn = max((_turn_excess(xy, given, t), t) for t in cands)
         how = " (its own axis is uncertain)"
     if excess > most and (aspect > opts.axis_uncertain_aspect or excess > ROUND_EXCESS * most):

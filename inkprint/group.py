@@ -1987,10 +1987,14 @@ def _block_pattern(thick: np.ndarray, side_px: float) -> bool:
     return int(np.count_nonzero(area[1:] >= side_px**2)) >= 2
 
 
-def _at_the_ends(hull_xy: np.ndarray, points: np.ndarray, *, end: float = 0.8) -> np.ndarray:
-    """Whether each point (x, y) lies off a hull's ends along its major axis (beyond
-    ``end`` x its half-length from the centre), not beside it."""
-    c, axis = _major_axis(hull_xy)
+def _at_the_ends(
+    hull_xy: np.ndarray, points: np.ndarray, *, end: float = 0.8, axis: np.ndarray | None = None
+) -> np.ndarray:
+    """Whether each point (x, y) lies off a hull's ends along its major axis, or
+    along ``axis`` (a unit vector in the points' frame), beyond ``end`` x its
+    half-length from the centre (the vertices' mean), not beside it."""
+    c, major = _major_axis(hull_xy)
+    axis = major if axis is None else axis
     half = np.abs((hull_xy - c) @ axis).max()
     return np.abs((points - c) @ axis) > end * half
 

@@ -21,6 +21,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .coords import mm_to_px_length
+from .errors import InvalidInput
 
 #: the profile's bins across the rolling direction [mm] (at least one pixel): fine
 #: enough for a 0.6 mm groove between knurl diamonds
@@ -59,10 +60,10 @@ def _cells(mask: np.ndarray, axis: str, mm_per_px: float) -> tuple[np.ndarray, n
     """Cells of the mask, :data:`ALONG_MM` along ``axis`` by :data:`ACROSS_MM`
     across (whole pixels): their centres (along, across) [bins] about their mean,
     across pointing left of the rolling direction, and their ink [px]."""
-    along = max(1, round(mm_to_px_length(ALONG_MM, mm_per_px)))
-    across = max(1, round(mm_to_px_length(ACROSS_MM, mm_per_px)))
     import cv2
 
+    along = max(1, round(mm_to_px_length(ALONG_MM, mm_per_px)))
+    across = max(1, round(mm_to_px_length(ACROSS_MM, mm_per_px)))
     fr, fc = (across, along) if axis == "x" else (along, across)
     h, w = mask.shape
     total = cv2.integral(mask.view(np.uint8))  # (h + 1, w + 1): block sums by corners
@@ -112,8 +113,20 @@ def tread_turn(mask: np.ndarray, axis: str, *, mm_per_px: float, limit_deg: floa
     Returns
     -------
     TreadTurn
+
+    Raises
+    ------
+    InvalidInput
+        ``axis`` not 'x' or 'y', ``limit_deg`` outside (0, 45), ``mm_per_px`` not
+        positive.
     """
-    pts, ink = _cells(mask, axis, mm_per_px)
+    if axis not in ("x", "y"):
+        raise InvalidInput("axis", axis, "x | y")
+    if not 0 < limit_deg < 45:
+        raise InvalidInput("limit_deg", limit_deg, "0 < limit_deg < 45 [deg]")
+    if not mm_per_px > 0:
+        raise InvalidInput("mm_per_px", mm_per_px, "> 0 [mm / px]")
+    pts, ink = _cells(np.asarray(mask, bool), axis, mm_per_px)
     if len(ink) < 2:
         return TreadTurn(0.0, 1.0)
     coarse = np.arange(-limit_deg, limit_deg + 1e-9, COARSE_STEP_DEG)

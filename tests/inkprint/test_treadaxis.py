@@ -76,3 +76,20 @@ def test_tread_turn_mirrored_pattern_turns_the_other_way(turn, pitch, stagger):
     b = tread_turn(mask[::-1], "x", mm_per_px=MM_PER_PX, limit_deg=12.0)
     assert b.turn == pytest.approx(-turn, abs=0.15)
     assert a.turn == pytest.approx(turn, abs=0.15)
+
+
+@pytest.mark.parametrize(
+    ("kw", "name"),
+    [
+        ({"axis": "z"}, "axis"),
+        ({"limit_deg": 0.0}, "limit_deg"),
+        ({"mm_per_px": -0.1}, "mm_per_px"),
+    ],
+)
+def test_tread_turn_bad_input_names_the_parameter(kw, name):
+    from inkprint.errors import InvalidInput
+
+    args = {"axis": "x", "mm_per_px": MM_PER_PX, "limit_deg": 12.0} | kw
+    axis = args.pop("axis")
+    with pytest.raises(InvalidInput, match=rf"^{name} = "):
+        tread_turn(np.zeros((10, 10), bool), axis, **args)
