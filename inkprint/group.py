@@ -265,7 +265,7 @@ def element_graph(
     import cv2
 
     widths = _element_widths(labels if box is None else labels[box], n, px_mm)
-    lab = labels[::step, ::step] if step > 1 else labels
+    lab = _sampled(labels, n, step, box) if step > 1 else labels
     ink = lab > 0
     dist, nearest = cv2.distanceTransformWithLabels(
         (~ink).astype(np.uint8), cv2.DIST_L2, 3, labelType=cv2.DIST_LABEL_PIXEL
@@ -280,6 +280,30 @@ def element_graph(
     gmin = np.minimum.reduceat(g, first) if len(first) else np.zeros(0)
     uk = key[first]
     return ElementGraph(widths, uk // (n + 1) - 1, uk % (n + 1) - 1, gmin)
+
+
+def _sampled(labels: np.ndarray, n: int, step: int, box: tuple | None) -> np.ndarray:
+    """``labels`` sampled every ``step``-th pixel, each element that no sample hits
+    (narrower than ``step`` px) given the sample its first pixel falls in, where
+    that is paper: a fine tread's diamond tips the outline cut to 0.5 mm triangles
+    fell between the samples, were nobody's neighbours and went as dust (held-out
+    9 sheet 87, a knurl print's last rows: width -1.6 %, unflagged)."""
+    lab = labels[::step, ::step].copy()
+    have = np.zeros(n + 1, bool)
+    have[lab[lab > 0]] = True
+    if have[1:].all():
+        return lab
+    sub = labels if box is None else labels[box]
+    r0, c0 = (0, 0) if box is None else (box[0].start or 0, box[1].start or 0)
+    rows, cols = np.nonzero(sub)
+    vals = sub[rows, cols]
+    miss = ~have[vals]
+    k, first = np.unique(vals[miss], return_index=True)
+    r = (rows[miss][first] + r0) // step
+    c = (cols[miss][first] + c0) // step
+    free = lab[r, c] == 0
+    lab[r[free], c[free]] = k[free]
+    return lab
 
 
 def _voronoi_pairs(lab, ink, dist, nearest) -> tuple:

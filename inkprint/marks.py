@@ -154,6 +154,12 @@ SLIVER_STROKES = 3.0
 #: :data:`TREAD_BLOCK_SPREAD`, are its tread's blocks (a file shoulder beside a slick
 #: centre rib), not a marker's letters: few letters are compact (a bold 'O', '0')
 TREAD_BLOCKS = 8
+#: beside a fine field, a stroke more than this many times longer than wide is a
+#: line's piece, no letter (:meth:`_BoldJudge._field_kinds`; as
+#: :data:`inkprint.analyze.LETTER_ASPECT`)
+FIELD_BAR_ASPECT = 8.0
+#: a fine field is a print's body when it holds this share of the print's thick ink
+FIELD_SHARE = 0.75
 TREAD_BLOCK_SPREAD = 1.5
 #: a fine tread's element is at least this long [mm] (pixel noise is smaller)
 FINE_ELEMENT_MIN_MM = 0.3
@@ -972,7 +978,9 @@ class _Bold:
     bars: np.ndarray | None = None
 
 
-def _bold_strokes(parts: _Parts, comp: np.ndarray, pooled: _Pooled, opts: AnalysisOptions):
+def _bold_strokes(
+    parts: _Parts, comp: np.ndarray, pooled: _Pooled, opts: AnalysisOptions, network=None
+):
     """Bold pen strokes among the thick ink (a :class:`_Bold`). Marker letters whose
     strokes are wider than ``stroke_width_mm`` survive the opening as thick ink and
     the footprint rule links them to the print they touch (a label of 1.1-1.4 mm
@@ -1003,9 +1011,9 @@ def _bold_strokes(parts: _Parts, comp: np.ndarray, pooled: _Pooled, opts: Analys
     out = np.zeros(n, bool)
     if n == 0:
         return _Bold(out, None)
-    judge = _BoldJudge(parts, comp, pooled, opts)
+    judge = _BoldJudge(parts, comp, pooled, opts, network)
     pixels, bars = None, None
-    for g in np.unique(comp[judge.cored | judge.long]):
+    for g in np.unique(comp[judge.cored | judge.long | judge.fine]):
         if g < 0:
             continue
         found = judge.print_strokes(np.flatnonzero(comp == g) + 1)
@@ -1028,12 +1036,24 @@ class _BoldJudge:
     """The judgement of :func:`_bold_strokes`, print by print (its sheet-wide
     quantities computed once)."""
 
-    def __init__(self, parts: _Parts, comp: np.ndarray, pooled: _Pooled, opts):
+    def __init__(self, parts: _Parts, comp: np.ndarray, pooled: _Pooled, opts, network=None):
         st, px = parts.thick_stats, pooled.px_mm
         self.parts, self.pooled, self.opts, self.st = parts, pooled, opts, st
         box = parts.box if parts.box is not None else (slice(None), slice(None))
         core_px = np.bincount(parts.thick[box][parts.core[box]], minlength=parts.n_thick + 1)
         self.cored = core_px[1:] >= 0.5 * st[1:, 4]
+        # a fine tread's elements: thin pieces of a field (:func:`_split`), or thick
+        # elements that make one (dots of 2.4 mm, 3.5 mm apart, survive the opening;
+        # as thick ink they lie up to twice ``fine_element_mm`` apart)
+        centres = st[:, :2] + 0.5 * st[:, 2:4]
+        spaced = dataclasses.replace(opts, fine_spacing_mm=2.0 * opts.fine_element_mm)
+        self.fine = _fine_fields(st, centres, px, spaced)[1:]
+        if parts.fine is not None:
+            self.fine |= parts.fine[1:]
+        # the elements a line set aside touched (``network``: (H, W) bool or None)
+        self.on_line = np.zeros(parts.n_thick + 1, bool)
+        if network is not None:
+            self.on_line = np.bincount(parts.thick[network], minlength=parts.n_thick + 1) > 0
         self.long = px_to_mm_length(np.maximum(st[1:, 2], st[1:, 3]), px) >= opts.line_length_mm
         self.lut = np.r_[0, comp]  # an element's print, -1: set aside
         self.over = mm_to_px_length(opts.mark_overhang_mm, px)
@@ -1071,7 +1091,7 @@ class _BoldJudge:
             slice(x0, (st[els, 0] + st[els, 2]).max()),
         )
         local = self.parts.thick[box]
-        body, is_body = self._body(els, local, box)
+        body, is_body, field_area = self._body(els, local, box)
         if not body.any():
             return None
         hull = cv2.convexHull(outline_points(body)).reshape(-1, 2).astype(float)
@@ -1087,6 +1107,8 @@ class _BoldJudge:
             mine = _filled(member[local].view(np.uint8)).view(bool)
             cut, rest = self._rim(local, body, mine, shaved, hull)
         kinds, reach = self._elements(els, is_body, box, hull)
+        if field_area:
+            kinds = self._field_kinds(els, kinds, field_area)
         sizes = self._block_sizes(els, kinds)
         if sizes is not None:  # the tread's blocks, and the rim's pieces as large
             kinds = {
@@ -1113,6 +1135,28 @@ class _BoldJudge:
         if rest:
             self._feet(rest, taken, box, shaved, hull, cut)
         return els[strokes], box, cut, tread
+
+    def _field_kinds(self, els, kinds: dict, field_area: float) -> dict:
+        """``kinds`` judged beside a fine field (median element ``field_area`` [px]):
+        a blob more than twice as large is a letter (the field's elements are alike,
+        those the outline cut smaller); a stroke a line set aside touched, or more
+        than :data:`FIELD_BAR_ASPECT` times longer than wide, is a line's piece, no
+        letter (held-out 7 sheet 93: a ruler's 8 x 1.2 mm stub beyond a file print's
+        tip, set aside as a letter, flagged the print), left to the lines' rules; so
+        is a lone stroke (a label is two letters or more)."""
+        out = {}
+        for i, k in kinds.items():
+            if k == "blob" and self.st[els[i], 4] > 2 * field_area:
+                k = "stroke"
+            elif k == "stroke" and self.on_line[els[i]]:
+                k = ""
+            elif k == "stroke":
+                _, a, b = _piece_shape(_crop(self.parts.thick, self.st, els[i]).view(np.uint8))
+                k = "" if a > FIELD_BAR_ASPECT * b else k
+            out[i] = k
+        if sum(k == "stroke" for k in out.values()) < 2:  # a label has letters, a stub none
+            out = {i: ("" if k == "stroke" else k) for i, k in out.items()}
+        return out
 
     def _block_sizes(self, els, kinds: dict) -> tuple | None:
         """The range of areas [px] of the print's tread blocks: the largest set of
@@ -1200,20 +1244,55 @@ class _BoldJudge:
         return out
 
     def _body(self, els, local, box) -> tuple:
-        """The print's body (bool over its box) and which of ``els`` make it."""
+        """The print's body (bool over its box), which of ``els`` make it and, when
+        it is a fine field, the field's median element area [px] (else None).
+
+        A print holding a fine field (``fine_min_elements`` of its elements a fine
+        tread's: dots, knurl) has that field for body when no element has a core
+        (none wider than two strokes), and no short element (under
+        ``line_length_mm``: a letter, not a rib or a slick centre) reaching more
+        than ``mark_overhang_mm`` out of the field's hull is in it. The field must
+        hold :data:`FIELD_SHARE` of the print's ink (a file tread at 150 dpi, some
+        of its slanted bars a field, the others reaching out of it: 277 of them set
+        aside as letters, the print in four pieces). A marker label
+        overlapping a dot-field print had its letters grouped with the dots
+        (held-out 12 sheet 64: 'run 11' across its tip, length +40 %; held-out 8
+        sheet 119: 'F=840N' over its shoulder, bold digits with a core, width
+        +9.9 %; both unflagged)."""
         import cv2
 
+        cored = self.cored[els - 1].copy()
+        fine = self.fine[els - 1]
+        area = None  # the field's median element [px]
         member = np.zeros(len(self.lut), bool)
-        member[els[self.cored[els - 1]]] = True
+        area_of = self.st[els, 4]
+        if (
+            np.count_nonzero(fine) >= self.opts.fine_min_elements
+            and area_of[fine].sum() >= FIELD_SHARE * area_of.sum()
+        ):
+            member[els[fine]] = True
+            field = member[local]
+            area = float(np.median(self.st[els[fine], 4]))
+            if not cored.any():
+                return field, fine.copy(), area
+            hull = cv2.convexHull(outline_points(field)).reshape(-1, 2).astype(float)
+            x0, y0 = box[1].start, box[0].start
+            for i in np.flatnonzero(cored & ~fine & ~self.long[els - 1]):
+                x, y, w, h = self.st[els[i], :4]
+                e = outline_points(local[y - y0 : y - y0 + h, x - x0 : x - x0 + w] == els[i])
+                e = e.reshape(-1, 2) + np.array([x - x0, y - y0])
+                cored[i] = _outside_distance(e.astype(float), hull).max() <= self.over
+            member[:] = False
+        member[els[cored]] = True
         body = member[local] & self.parts.core[box]
-        is_body = self.cored[els - 1].copy()
+        is_body = cored
         for i in np.flatnonzero(~self.cored[els - 1] & self.long[els - 1]):
             el = (local == els[i]).view(np.uint8)  # its pores filled, then its core
             c = cv2.morphologyEx(_filled(el), cv2.MORPH_OPEN, self.core_disk).view(bool)
             if np.count_nonzero(c & el.view(bool)) >= 0.5 * np.count_nonzero(el):
                 is_body[i] = True
                 body |= c
-        return _main_pieces(body, local), is_body
+        return _main_pieces(body, local), is_body, area
 
     def _rim(self, local, body, mine, shaved, hull) -> tuple:
         """The pieces of the body's elements outside the body: the strokes cut (bool
@@ -1753,7 +1832,7 @@ class _Sorted:
 def _sort_pooled(pooled: _Pooled, opts: AnalysisOptions, network=None, bridge=None) -> _Sorted:
     parts = _split(pooled, opts)
     joined = _groups_of_elements(parts, pooled, opts, bridge)
-    bold = _bold_strokes(parts, joined.comp, pooled, opts)
+    bold = _bold_strokes(parts, joined.comp, pooled, opts, network)
     bars = bold.bars  # (of the last grouping)
     for _ in range(BOLD_PASSES):
         if not bold.elements.any():
@@ -1762,7 +1841,7 @@ def _sort_pooled(pooled: _Pooled, opts: AnalysisOptions, network=None, bridge=No
         # apart from a print may now join it (independent set 1 file 30: the rest of
         # a label took the print's place beside it, width +133 %)
         joined = _groups_of_elements(parts, pooled, opts, bridge, drop=bold.elements)
-        more = _bold_strokes(parts, joined.comp, pooled, opts)
+        more = _bold_strokes(parts, joined.comp, pooled, opts, network)
         bars = more.bars
         if not more.elements.any():
             break

@@ -361,6 +361,30 @@ def test_thin_excess_row_of_cut_elements_flags_a_label_bit_does_not():
     assert _thin_excess(kept, m, None, mm) == 0.0
 
 
+def test_thin_excess_pair_off_both_tips_flags_one_piece_does_not():
+    # held-out seed 12 sheet 112: a knurl print on chart paper, the diamond the
+    # outline cut to a triangle at each tip left out as pen-thin ink (length -6.2 %,
+    # unflagged): two pieces, too few for a row, alike and off either tip. At 300
+    # dpi: a 60 x 20 mm print, 1 mm^2 triangles 1 mm beyond each tip
+    mm = 25.4 / 300
+    kept = np.zeros((320, 800), bool)
+    kept[50:286, 45:754] = True  # 236 x 709 px: 20 x 60 mm
+    m = SimpleNamespace(metrics=SimpleNamespace(orientation=0.0))
+    fore, aft = np.zeros_like(kept), np.zeros_like(kept)
+    fore[162:174, 766:778] = True  # 12 x 12 px beyond the right tip
+    aft[162:174, 21:33] = True  # and its mirror beyond the left one
+    excess = _thin_excess(kept, m, fore | aft, mm)
+    assert_allclose(excess, (778 - 21) / 709 - 1, rtol=1e-6)
+    assert excess > ip.AnalysisOptions().edge_uncertainty
+    assert _thin_excess(kept, m, fore, mm) == 0.0  # one piece: a label's letter
+    same = fore.copy()
+    same[190:202, 766:778] = True  # two off the same tip: no pair
+    assert _thin_excess(kept, m, same, mm) == 0.0
+    big = fore.copy()
+    big[150:186, 9:33] = True  # six times as large: no pair
+    assert _thin_excess(kept, m, big, mm) == 0.0
+
+
 def _rib_print(*, dpi=400.0, ss=4, length=19.0, width=10.0, rib=1.0, phase=0):
     """A tiny print drawn with exact truth: a slick centre rib ``rib`` mm wide along
     its whole length, 1.2 mm diamonds at a 2 mm pitch beside it (none within 1.2 mm
