@@ -154,13 +154,16 @@ SLIVER_STROKES = 3.0
 #: :data:`TREAD_BLOCK_SPREAD`, are its tread's blocks (a file shoulder beside a slick
 #: centre rib), not a marker's letters: few letters are compact (a bold 'O', '0')
 TREAD_BLOCKS = 8
+TREAD_BLOCK_SPREAD = 1.5
 #: beside a fine field, a stroke more than this many times longer than wide is a
 #: line's piece, no letter (:meth:`_BoldJudge._field_kinds`; as
 #: :data:`inkprint.analyze.LETTER_ASPECT`)
 FIELD_BAR_ASPECT = 8.0
 #: a fine field is a print's body when it holds this share of the print's thick ink
 FIELD_SHARE = 0.75
-TREAD_BLOCK_SPREAD = 1.5
+#: thick elements make a fine field up to this many ``fine_element_mm`` apart (dots
+#: of 2.4 mm, 3.5 mm apart, survive the stroke-wide opening whole)
+FIELD_THICK_SPACING = 2.0
 #: a fine tread's element is at least this long [mm] (pixel noise is smaller)
 FINE_ELEMENT_MIN_MM = 0.3
 #: ... fills at least this share of its box (a dot 0.79, a diamond 0.5; a letter's
@@ -1043,10 +1046,10 @@ class _BoldJudge:
         core_px = np.bincount(parts.thick[box][parts.core[box]], minlength=parts.n_thick + 1)
         self.cored = core_px[1:] >= 0.5 * st[1:, 4]
         # a fine tread's elements: thin pieces of a field (:func:`_split`), or thick
-        # elements that make one (dots of 2.4 mm, 3.5 mm apart, survive the opening;
-        # as thick ink they lie up to twice ``fine_element_mm`` apart)
+        # elements that make one (:data:`FIELD_THICK_SPACING`)
         centres = st[:, :2] + 0.5 * st[:, 2:4]
-        spaced = dataclasses.replace(opts, fine_spacing_mm=2.0 * opts.fine_element_mm)
+        spacing = FIELD_THICK_SPACING * opts.fine_element_mm
+        spaced = dataclasses.replace(opts, fine_spacing_mm=spacing)
         self.fine = _fine_fields(st, centres, px, spaced)[1:]
         if parts.fine is not None:
             self.fine |= parts.fine[1:]
