@@ -1514,8 +1514,8 @@ def _tip_pair(kept: np.ndarray, m, piece: np.ndarray, area: np.ndarray, centres)
     if np.count_nonzero(piece) < 2:
         return out
     along = _along(m)  # (row, col)
-    rc = np.argwhere(kept)
-    t = rc @ along
+    # (the ink's extremes along any direction lie on its rows' first and last pixels)
+    t = outline_points(kept).reshape(-1, 2)[:, ::-1] @ along
     c, half = 0.5 * (t.max() + t.min()), 0.5 * (t.max() - t.min())
     idx = np.flatnonzero(piece)
     u = (centres[idx][:, ::-1] @ along - c) / max(half, 1.0)
@@ -2124,11 +2124,9 @@ def _letters_beside_pull(ctx: _Context, g: Group, kept: np.ndarray, m) -> float:
     import cv2
 
     mm_per_px = ctx.scan.mm_per_px
-    boxes = _letters_beside(ctx, g, kept)
-    zone = _letters_zone(boxes, kept.shape)
+    zone, size = _letters_zone(_letters_beside(ctx, g, kept), kept.shape)
     if zone is None or not (zone & kept).any():
         return 0.0
-    size = int(np.median([max(c - a, d - b) for a, b, c, d in boxes]))  # a letter's [px]
     stroke = stroke_px(mm_per_px, ctx.opts)
     ink8 = kept.view(np.uint8) if kept.dtype == bool else kept.astype(np.uint8)
     thin = kept & ~_stroke_body(ink8, stroke).view(bool) & zone
@@ -2158,7 +2156,7 @@ def _letters_beside(
     ``own``: or within their own size, the next letter's place), shorter than
     ``line_length_mm`` and at most :data:`LETTER_ASPECT` times longer than wide."""
     mm_per_px = ctx.scan.mm_per_px
-    beside = mm_to_px_length(LETTERS_BESIDE_MM, mm_per_px)
+    near = mm_to_px_length(LETTERS_BESIDE_MM, mm_per_px)
     longest = mm_to_px_length(ctx.opts.line_length_mm, mm_per_px)
     r0, c0 = g.rows.start, g.cols.start
     h, w = kept.shape
@@ -2171,8 +2169,7 @@ def _letters_beside(
         if long_side > LETTER_ASPECT * short_side:  # a ruler's stub or tick, no letter
             continue
         a, b, c, d = a - r0, b - c0, c - r0, d - c0
-        if own:
-            beside = max(mm_to_px_length(LETTERS_BESIDE_MM, mm_per_px), long_side)
+        beside = max(near, long_side) if own else near
         lo = (max(int(a - beside), 0), max(int(b - beside), 0))
         hi = (min(int(np.ceil(c + beside)), h), min(int(np.ceil(d + beside)), w))
         if hi[0] > lo[0] and hi[1] > lo[1] and kept[lo[0] : hi[0], lo[1] : hi[1]].any():
@@ -2180,16 +2177,16 @@ def _letters_beside(
     return boxes
 
 
-def _letters_zone(boxes: list, shape) -> np.ndarray | None:
+def _letters_zone(boxes: list, shape) -> tuple:
     """Within a letter's size (the boxes' median) of the letters' ``boxes``: (h, w)
-    bool over ``shape``, None without letters."""
+    bool over ``shape`` and that size [px]; (None, 0) without letters."""
     if not boxes:
-        return None
+        return None, 0
     size = int(np.median([max(c - a, d - b) for a, b, c, d in boxes]))  # a letter's [px]
     zone = np.zeros(shape, bool)
     for a, b, c, d in boxes:
         zone[max(a - size, 0) : max(c + size, 0), max(b - size, 0) : max(d + size, 0)] = True
-    return zone
+    return zone, size
 
 
 #: a label's ink is a pen's, not the print's, when the median grey of the letters
@@ -2216,7 +2213,7 @@ def _dark_letters_pull(ctx: _Context, g: Group, kept: np.ndarray, m) -> float:
     # (a label's piece alone beside the prints is a fragment: '=' of 'F=640N')
     # (a letter's size from the print: the letter joined to it was one)
     boxes = _letters_beside(ctx, g, kept, ("text", "writing", "fragment"), own=True)
-    zone = _letters_zone(boxes, kept.shape)
+    zone, _ = _letters_zone(boxes, kept.shape)
     if zone is None or not (zone & kept).any():
         return 0.0
     grey = _grey(ctx.scan, ctx.page, g.rows, g.cols)
