@@ -133,6 +133,11 @@ COMPACT_ASPECT = 4.0
 LINE_COMPACT_ASPECT = 2.5
 #: ... and fills at least this fraction of its convex hull
 COMPACT_SOLIDITY = 0.85
+#: a lone thin piece off a print's tip is a tread block the outline cut (convex)
+#: when it fills at least this share of its hull after closing: such a sliver 3 x 12
+#: pooled px filled 0.71 (mixed set 5006 file 29); a label's first letter beside a
+#: tip 0.25-0.59 ('4', 'B', 'F' at 150-400 dpi, strokes 0.35-0.8 mm)
+TIP_SLIVER_SOLIDITY = 0.65
 #: straight segments at least this long are a line's (Hough, on the long marks)
 LINE_SEGMENT_MM = 5.0
 #: a line fitted to them is inked along at least this share of its course across
@@ -1679,10 +1684,11 @@ def _judge_thin(t: _ThinStats, parts: _Parts, opts: AnalysisOptions, network=Non
 def _lone_tip_pieces(t: _ThinStats, parts: _Parts, cand, own, prints: tuple, opts):
     """Which of the thin pieces ``cand`` ((n,) bool: near a print, apart from its thick
     ink, neither a dot nor a compact blob) lie alone off the ends of that print along
-    its major axis (beyond 0.8 of its half-length from its centre): no other piece
-    near a print, longer than ``dot_mm`` and not its ``own``, within twice
-    ``group_distance_mm`` of it (a letter has its word about it, some touching the
-    print; a label's '5' lay 3.05 mm from its 'E', mixed set 5001 file 24). A tread
+    its major axis (beyond 0.8 of its half-length from its centre), convex (filling
+    :data:`TIP_SLIVER_SOLIDITY` of its hull), with no other piece longer than ``dot_mm``
+    and not a print's ``own`` within twice ``group_distance_mm`` of it (a letter
+    has its word about it, some touching the print; a label's '5' lay 3.05 mm from
+    its 'E', mixed set 5001 file 24). A tread
     block the outline cut to a sliver at a print's tip (mixed set 5006 file 29 at 150
     dpi: 1.9 x 0.24 mm, 1.5 mm beyond the print; set aside as a pen mark, length
     -2.15 %, unflagged) and a lone pen stroke look alike there. ``prints``: the
@@ -1700,12 +1706,20 @@ def _lone_tip_pieces(t: _ThinStats, parts: _Parts, cand, own, prints: tuple, opt
         hull = hulls[t.target[k]]
         if hull is not None and len(hull) >= 3:
             out[k] = bool(_at_the_ends(hull.reshape(-1, 2).astype(float), centre[k : k + 1])[0])
+        # the outline cuts a block to a convex piece; a letter ('4', 'B') fills
+        # less of its hull (sweep of labels at tips: first letters of '4.5 bar',
+        # 'B7' kept as tip blocks, length +5..+10 %, unflagged)
+        if out[k]:
+            solid = _piece_shape(_crop(parts.thin, st, k).view(np.uint8))[0]
+            out[k] = solid >= TIP_SLIVER_SOLIDITY
     if not out.any():
         return out
-    # alone: no other such piece near a print within the distance (box to box)
+    # alone: no other piece longer than a dot, not the print's own, within the
+    # distance (box to box), near the print or not (a word's next letters lie
+    # farther from the print than the letter touching it)
     far = mm_to_px_length(2.0 * opts.group_distance_mm, prints[2])
-    near = (t.target >= 0) & (t.gap <= opts.group_distance_mm)
-    others = np.flatnonzero(near & ~own & (t.extent > opts.dot_mm))
+    others = np.flatnonzero(~own & (t.extent > opts.dot_mm))
+    others = others[others > 0]
     x0, y0 = st[others, 0], st[others, 1]
     x1, y1 = x0 + st[others, 2], y0 + st[others, 3]
     for k in np.flatnonzero(out):

@@ -125,8 +125,12 @@ def test_measure_print_label_letter_joined_at_a_tip_is_flagged(tread, shift):
     # print's tip, one letter ('=', '7', the 'p' of 'p=') joined to the print, its
     # neighbours set aside as letters: length +1.2..+4.9 % with status ok. Here
     # +1.2 % (slick, ribbed) and +3.8 % (knobby): the pen-thin ink near the letters
-    # beside the print is measured out and the print flagged
+    # beside the print is measured out and the print flagged. On the knobby print
+    # the 'p' is since no lone tip block (``marks.TIP_SLIVER_SOLIDITY``): exact
     pr, errors = _one_print_y(_label_over_tip(tread, shift, -0.3))
+    if tread == "knobby":
+        assert max(abs(e) for e in errors) < 0.003, errors
+        return
     assert errors[0] > 0.01, errors  # the trap is real: the letter is measured
     assert "mark_on_edge" in pr.flags, (errors, pr.warnings)
     assert any("letters set aside lie beside it" in w for w in pr.warnings), pr.warnings
@@ -318,12 +322,14 @@ def test_measure_print_dark_letter_joined_at_a_tip_is_flagged(tread, dx, dy, dpi
     # set aside: length +3.1 %) and held-out 2026 sheet 61 ('F' of 'F=640N' grouped
     # with the tip, '=' a fragment: +2.2 %), both unflagged: the joined letter is
     # neither pen-thin nor apart, but a marker's ink, darker than the print's. Here
-    # before: length +2.0, +2.8, +1.1, +5.0 %, all unflagged
+    # before: length +2.0, +2.8, +1.1, +5.0 %, all unflagged. The ribbed print's 'p'
+    # 0.5 mm off its tip is since measured out (no lone tip block: a letter fills
+    # less of its hull, ``marks.TIP_SLIVER_SOLIDITY``); the others stay joined
     pr, errors = _axis_x(_dark_label_sheet(tread, dx, dy, dpi))
     within = abs(errors[0]) <= 0.01 and abs(errors[1]) <= 0.01 and abs(errors[2]) <= 0.02
     assert within or "mark_on_edge" in pr.flags, (errors, pr.flags)
-    assert not within, errors  # (the case is one: the letter is measured)
-    assert any("a pen's ink darker than the print's" in w for w in pr.warnings), pr.warnings
+    if not within:
+        assert any("a pen's ink darker than the print's" in w for w in pr.warnings), pr.warnings
 
 
 @pytest.mark.parametrize("tread", ["slick", "ribbed", "knobby"])
@@ -334,3 +340,31 @@ def test_measure_print_dark_label_apart_from_the_tip_is_not_flagged(tread):
         pr, errors = _axis_x(_dark_label_sheet(tread, dx, dy, 300.0))
         assert max(abs(e) for e in errors[:2]) <= 0.01 and abs(errors[2]) <= 0.02, errors
         assert "mark_on_edge" not in pr.flags, pr.warnings
+
+
+def _first_letter_off_tip(tread, text, height, stroke, gap, dpi) -> SheetSpec:
+    """A print rolling along x, its tip at x = 150 mm, and a pen label (ink as dark
+    as the print's) starting ``gap`` mm beyond the tip on the print's axis."""
+    p = PrintSpec(90.0, 28.0, (105.0, 140.0), 0.0, tread, ink=0.85)
+    label = Text(text, (150.0 + gap, 140.0 - height / 2), height, stroke, 0.85)
+    return SheetSpec((p,), dpi=dpi, size=(215.9, 279.4), seed=7, specks=5, marks=(label,))
+
+
+@pytest.mark.parametrize(
+    "tread, text, height, stroke, gap, dpi",
+    [
+        ("ribbed", "4.5 bar", 5.8, 0.42, 2.0, 400.0),
+        ("ribbed", "B7", 7.1, 0.45, 1.0, 200.0),
+        ("mtb", "4", 7.2, 0.79, 1.0, 200.0),
+        ("knobby", "F=840N", 5.5, 0.46, 0.8, 150.0),
+    ],
+)
+def test_sort_ink_first_letter_off_a_tip_is_no_tip_block(tread, text, height, stroke, gap, dpi):
+    # a sweep of pen labels at prints' tips (400 sheets, exact truth): a label's
+    # first letter 1-2.5 mm off the tip of a block-pattern print, its next letters
+    # farther than group_distance_mm from the print, was kept as a lone tip block
+    # (the outline's sliver): length +5..+10 %, unflagged, 7 of 400; here +4.9..+10 %
+    # before. A letter is
+    # no convex sliver and has its word about it: set aside, the print exact
+    pr, errors = _axis_x(_first_letter_off_tip(tread, text, height, stroke, gap, dpi))
+    assert max(abs(e) for e in errors) < 0.005, (errors, pr.flags)
