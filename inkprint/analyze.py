@@ -1554,7 +1554,7 @@ def _reach_beyond_body(ctx: _Context, ink: np.ndarray, angle: float) -> float:
         lab, st, ks = _long_thin(out, stroke, ctx)
         if not len(ks):
             return 0.0
-        bars = _bar_tread(lab, st, ks, ctx)
+        bars = _bar_tread(lab, st, ks, ctx) | _lenses(lab, st, ks)
         if bars.all():
             return 0.0
         if not bars.any():
@@ -1603,6 +1603,20 @@ def _long_thin(out: np.ndarray, stroke: float, ctx: _Context) -> tuple:
         reduce_at(np.maximum, widest, lab[on], values=dt[on])
         ks = ks[2.0 * widest[ks] <= 2.5 * stroke + 1.0]
     return lab, st, ks
+
+
+def _lenses(lab: np.ndarray, st: np.ndarray, ks: np.ndarray) -> np.ndarray:
+    """Which of the long thin pieces ``ks`` (labels in ``lab``, OpenCV's stats
+    ``st``) taper to both ends, convex (:func:`inkprint.marks._lens`): outer ribs
+    the outline cut, not a line ((k,) bool)."""
+
+    from .marks import _lens
+
+    out = np.zeros(len(ks), bool)
+    for i, k in enumerate(ks):
+        x, y, w, h = st[k, :4]
+        out[i] = _lens((lab[y : y + h, x : x + w] == k).view(np.uint8))
+    return out
 
 
 def _bar_tread(lab: np.ndarray, st: np.ndarray, ks: np.ndarray, ctx: _Context) -> np.ndarray:

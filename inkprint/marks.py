@@ -138,6 +138,10 @@ COMPACT_SOLIDITY = 0.85
 #: pooled px filled 0.71 (mixed set 5006 file 29); a label's first letter beside a
 #: tip 0.25-0.59 ('4', 'B', 'F' at 150-400 dpi, strokes 0.35-0.8 mm)
 TIP_SLIVER_SOLIDITY = 0.65
+#: a long thin convex piece beside a print filling at most this share of its smallest
+#: box tapers to both ends: a lens, the print's outer rib the outline cut (a
+#: parabolic lens fills 2/3; a ruler's edge, as wide all along, about 1)
+LENS_RECT_FILL = 0.8
 #: straight segments at least this long are a line's (Hough, on the long marks)
 LINE_SEGMENT_MM = 5.0
 #: a line fitted to them is inked along at least this share of its course across
@@ -1676,9 +1680,23 @@ def _judge_thin(t: _ThinStats, parts: _Parts, opts: AnalysisOptions, network=Non
         blocks = np.r_[_block_prints(parts, prints[1], prints[2], opts), False]
         own |= tip & blocks[t.target]
         kind = np.where(tip & ~blocks[t.target], "sliver", kind)
-    keep = np.where(long, t.inside >= 0.5, own)
+    lens = np.zeros(len(own), bool)
+    for k in np.flatnonzero(near & long & ~on_line & (t.inside < 0.5)):
+        lens[k] = _lens(_crop(parts.thin, parts.thin_stats, k).view(np.uint8))
+    keep = np.where(long, (t.inside >= 0.5) | lens, own)
     owner = np.where(keep, t.target, -1)
     return owner, kind
+
+
+def _lens(piece: np.ndarray) -> bool:
+    """Whether a long thin piece (uint8 crop) beside a print is a lens: convex
+    (filling :data:`COMPACT_SOLIDITY` of its hull) and tapering to both ends (filling
+    at most :data:`LENS_RECT_FILL` of its smallest box): a print's outer rib the
+    outline cut, its own. A ruler's or a drawn line is as wide all along (held-out
+    ribbed road prints: both outer ribs, 34-38 mm long and up to 1.5 mm wide, set
+    aside as lines, width -21 and -25 % unflagged)."""
+    solid, a, b = _piece_shape(piece)
+    return solid >= COMPACT_SOLIDITY and np.count_nonzero(piece) <= LENS_RECT_FILL * a * b
 
 
 def _lone_tip_pieces(t: _ThinStats, parts: _Parts, cand, own, prints: tuple, opts):
@@ -1875,7 +1893,8 @@ def _sort_pooled(pooled: _Pooled, opts: AnalysisOptions, network=None, bridge=No
     owner[0] = -1
     for k in np.flatnonzero((stats.extent >= opts.line_length_mm) & (owner >= 0)):
         ids = hull_map[_box(parts.thin_stats, k)][_crop(parts.thin, parts.thin_stats, k)]
-        owner[k] = int(np.bincount(ids[ids > 0]).argmax()) - 1  # the print holding most
+        if (ids > 0).any():  # the print holding most (a lens outside: the nearest)
+            owner[k] = int(np.bincount(ids[ids > 0]).argmax()) - 1
     doubt = (joined.doubt_gap, joined.doubt_joined)
     bold_px = bold.pixels
     if bold.elements.any():  # the elements set aside, with the pieces of the others
