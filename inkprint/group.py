@@ -109,8 +109,10 @@ SMALL_BODY_FILL = 0.7
 RIB_STACK_MIN = 3
 #: ... their longer sides within this angle [deg] of their mean direction ...
 RIB_STACK_PARALLEL_DEG = 10.0
-#: ... counting the pieces of at least this share of the largest (not specks)
+#: ... counting the pieces of at least this share of the largest (not specks); two
+#: bars do when they are at least this long [mm] (a marker's '=' is shorter)
 RIB_STACK_SPECK = 0.05
+RIB_PAIR_MM = 10.0
 SMALL_BODY_SHARE = 0.7
 #: a line of writing has at least this many letters spanning its width, they hold
 #: this share of its ink and leave gaps: the ink fills less than TEXT_LINE_FILL of
@@ -1297,13 +1299,18 @@ def _rib_stack(mask: np.ndarray, mm_per_px: float, opts) -> bool:
     grooves a disk two strokes wide closes to :data:`SMALL_PRINT_FILL` of its hull
     (held-out 2026-11-29 seeds 1 and 2: 10-16 mm prints of three ribs 2.2-3 mm
     wide, 0.74 of the hull inked, set aside as "a letter or a mark"; six missing).
-    A marker's '=' is two bars."""
+    Two bars are a rib print when the group is :data:`RIB_PAIR_MM` long or more
+    (seeds 1-3: 13-18 mm prints of two ribs, missing); a marker's '=' is two
+    shorter bars."""
     import cv2
 
     n, lab, st, _ = components_with_stats(mask.view(np.uint8), connectivity=8)
     areas = st[1:, cv2.CC_STAT_AREA]
     big = 1 + np.flatnonzero(areas >= RIB_STACK_SPECK * areas.max()) if n > 1 else []
-    if len(big) < RIB_STACK_MIN:
+    pts = outline_points(mask).reshape(-1, 2).astype(np.float32)
+    longest = px_to_mm_length(max(cv2.minAreaRect(pts)[1]) + 1, mm_per_px)
+    least = RIB_STACK_MIN if longest < RIB_PAIR_MM else 2
+    if len(big) < least:
         return False
     stroke = mm_to_px_length(opts.stroke_width_mm, mm_per_px)
     angles, wide = [], 0
@@ -1313,7 +1320,7 @@ def _rib_stack(mask: np.ndarray, mm_per_px: float, opts) -> bool:
         (_, _), (a, b), angle = cv2.minAreaRect(pts)
         wide += min(a, b) + 1 >= 2.0 * stroke
         angles.append(np.deg2rad(angle + (0.0 if a >= b else 90.0)))
-    if wide < RIB_STACK_MIN - 1:  # (the outer ribs the outline cut may be thin)
+    if wide < least - 1:  # (the outer ribs the outline cut may be thin)
         return False
     # axial directions: doubled angles, their mean resultant
     c, s = np.cos(2 * np.array(angles)), np.sin(2 * np.array(angles))

@@ -290,3 +290,36 @@ def test_outlined_needs_pixels_off_one_line():
     assert not _outlined(line) and not _outlined(np.zeros((3, 3), bool))
     line[5, 3] = True
     assert _outlined(line)
+
+
+def test_no_slivers_measured_narrower_than_a_print_become_marks():
+    # fifth held-out generator (2026-11-29) seed 2: bits of dark millimetre chart
+    # paper grouped with specks passed the print floors, then, measured without the
+    # specks (section 7.1.1), came out as 64 flagged "prints" 5-20 mm long and 0.1
+    # mm wide on two PDF pages. Measured under min_patch_width_mm (or, unless
+    # clipped, min_patch_length_mm) they are marks; the rest is numbered again
+    from inkprint.analyze import _no_slivers
+
+    img, _ = render_sheet(one_print_sheet(length=60.0, width=20.0, tread="slick"))
+    (p,) = ip.analyze_scan(Scan(img, 25.4 / 300.0, "given"), sensitivity=False).prints
+    opts = ip.AnalysisOptions()
+
+    def shaped(index, length, width, flags=()):
+        m = dataclasses.replace(p.metrics, length=length, width=width)
+        note = (f"print #{index}: a note",)
+        return dataclasses.replace(p, index=index, metrics=m, flags=flags, warnings=note)
+
+    prints = [
+        shaped(0, 60.0, 20.0),
+        shaped(1, 10.1, 0.1),  # a gridline's bits
+        shaped(2, 4.0, 3.0),  # shorter than a print
+        shaped(3, 4.0, 3.0, ("clipped",)),  # a clipped print's end
+        shaped(4, 30.0, 12.0),
+    ]
+    kept, marks = _no_slivers(prints, 25.4 / 300.0, opts)
+    assert [(k.index, k.metrics.length) for k in kept] == [(0, 60.0), (1, 4.0), (2, 30.0)]
+    assert [k.warnings for k in kept][1:] == [("print #1: a note",), ("print #2: a note",)]
+    assert [m.kind for m in marks] == ["line", "writing"]
+    assert "0.10 mm" in marks[0].reason
+    same, none = _no_slivers(prints[:1], 25.4 / 300.0, opts)
+    assert same == prints[:1] and none == []

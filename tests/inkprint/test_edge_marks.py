@@ -423,7 +423,7 @@ def test_inner_line_excess_flags_a_slick_centre_rib_taken_for_a_ruler(phase):
     assert p.metrics.length < 0.95 * length  # the rib's ends are lost
     assert p.flags == ("mark_on_edge",)
     (pct,) = re.findall(
-        r"slick centre rib\? With it its length or width is ([\d.]+) %", p.warnings[-1]
+        r"a rib of its tread\? With it its length or width is ([\d.]+) %", p.warnings[-1]
     )
     assert_allclose(float(pct), 100 * (length / p.metrics.length - 1), atol=1.0)
 
