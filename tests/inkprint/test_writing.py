@@ -232,3 +232,26 @@ def test_is_print_line_of_lower_case_letters_is_writing(dpi):
     g = Group(slice(0, mask.shape[0]), slice(0, mask.shape[1]), mask.astype(bool))
     check = is_print(g, mm_per_px=mm)
     assert not check.ok and "line of writing" in check.reason
+
+
+def test_rows_of_letters_knob_rows_among_specks_are_no_writing():
+    # fifth held-out generator (2026-11-29) seed 3 sheet 31: a knob print (3 x 5 mm
+    # knobs, 7 mm apart, staggered) on 1 mm chart paper, the paper's bits in its
+    # group, set aside as "lines of writing": missing. The median piece was a
+    # speck's (no wider than a stroke); over the pieces larger than specks it is a
+    # knob's, wider than two strokes
+    from inkprint.group import _rows_of_letters, outline_points
+    from inkprint.options import AnalysisOptions
+
+    mm = 25.4 / 240
+    h, w = round(80 / mm), round(52 / mm)
+    mask = np.zeros((h, w), bool)
+    for i, v in enumerate(np.arange(2.5, 78, 7.0)):
+        for u in np.arange(1.5, 50, 14.0) + (7.0 if i % 2 else 0.0):
+            if u + 3 <= 52:
+                mask[round(v / mm) : round((v + 5) / mm), round(u / mm) : round((u + 3) / mm)] = 1
+    knobs = mask.copy()
+    rng = np.random.default_rng(0)
+    mask[rng.integers(0, h, 400), rng.integers(0, w, 400)] = True  # the chart's bits
+    for m in (knobs, mask):
+        assert not _rows_of_letters(m, outline_points(m).reshape(-1, 2), mm, AnalysisOptions())
