@@ -162,6 +162,11 @@ TEXT_ROW_SAMPLE = 5000
 #: longer than wide: half the largest pieces of rows of writing are no bars (an 'l',
 #: a '1', a '-' are), a tread's bars in rows all are
 TEXT_BAR_FILL = 0.8
+#: ... and are no tread: pieces within this relative difference of the median
+#: piece's ink are alike ...
+TEXT_ALIKE_AREA = 0.1
+#: ... and when this share of the pieces is, they are a tread's elements
+TEXT_ALIKE_SHARE = 0.5
 TEXT_BAR_ASPECT = 2.5
 #: A tread's teeth (:func:`_teeth`) line each side of a print along at least this
 #: share of its length. An elliptic outline cuts a file tread's shoulder rows to
@@ -1458,7 +1463,9 @@ def _rows_of_letters(mask: np.ndarray, pts: np.ndarray, mm_per_px: float, opts) 
     :data:`TEXT_ROW_SPAN` of it, :data:`TEXT_LINE_INK` of its ink), inking
     less than :data:`TEXT_LINE_FILL` of its rectangle; its median piece no wider
     than two strokes (``stroke_width_mm``), half its largest pieces no bars
-    (:data:`TEXT_BAR_FILL`, :data:`TEXT_BAR_ASPECT`): a label's lines of marker
+    (:data:`TEXT_BAR_FILL`, :data:`TEXT_BAR_ASPECT`), and not half of them alike in
+    ink (:data:`TEXT_ALIKE_AREA`, :data:`TEXT_ALIKE_SHARE`: a tread's elements;
+    specks left out of these counts): a label's lines of marker
     letters joined into one group (held-out 6 sheet 79: 'Compass Stampede Pass 32'
     over 'p = 5.3 bar', an 86 x 15 mm "print" on a page of writing only). A car
     print's ribs are solid; a knobby print's rows of knobs are wider than strokes."""
@@ -1506,8 +1513,15 @@ def _rows_of_letters(mask: np.ndarray, pts: np.ndarray, mm_per_px: float, opts) 
     # median a speck's, and a knob print's rows "letters": fifth held-out seed 3
     # sheet 31, 3 x 5 mm knobs on 1 mm chart paper, missing)
     areas = st[1:, cv2.CC_STAT_AREA]
-    pieces = widest[1:][areas >= RIB_STACK_SPECK * areas.max()]
-    if 2.0 * np.median(pieces) > mm_to_px_length(2.0 * opts.stroke_width_mm, mm_per_px):
+    big = areas >= RIB_STACK_SPECK * areas.max()
+    if 2.0 * np.median(widest[1:][big]) > mm_to_px_length(2.0 * opts.stroke_width_mm, mm_per_px):
+        return False
+    # a tread's elements are alike (the outline cuts only the outer ones); letters
+    # differ in ink (siped blocks, each three slits in a 6 mm square, read as 'E's
+    # in rows: fifth held-out seed 3 sheet 97, a 91 x 64 mm print missing)
+    sizes = areas[big]
+    alike = np.abs(sizes / np.median(sizes) - 1.0) <= TEXT_ALIKE_AREA
+    if len(sizes) >= 2 * TEXT_ROW_LETTERS and alike.mean() >= TEXT_ALIKE_SHARE:
         return False
     # letters are curved or crossed strokes; a tread's bars are straight
     bars = []

@@ -255,3 +255,32 @@ def test_rows_of_letters_knob_rows_among_specks_are_no_writing():
     mask[rng.integers(0, h, 400), rng.integers(0, w, 400)] = True  # the chart's bits
     for m in (knobs, mask):
         assert not _rows_of_letters(m, outline_points(m).reshape(-1, 2), mm, AnalysisOptions())
+
+
+def test_rows_of_letters_siped_blocks_alike_are_no_writing():
+    # fifth held-out generator (2026-11-29) seed 3 sheet 97: a 91 x 64 mm print of
+    # 4.8 x 5.7 mm blocks, each with three closed 0.5 mm sipes, in columns 7.6 mm
+    # apart: strokes 1-1.3 mm wide, no bars, in rows, read as "lines of writing":
+    # missing. A tread's elements are alike; a label's letters differ in ink
+    from inkprint.group import _rows_of_letters, outline_points
+    from inkprint.options import AnalysisOptions
+
+    mm = 25.4 / 300
+    mask = np.zeros((round(91 / mm), round(64 / mm)), bool)
+    for j, u in enumerate(np.arange(0.0, 60, 7.6)):
+        for v in np.arange(0.0, 80, 8.4) + (4.2 if j % 2 else 0.0):
+            r0, c0 = round(v / mm), round(u / mm)
+            mask[r0 : r0 + round(5.7 / mm), c0 : c0 + round(4.8 / mm)] = True
+            for y in (1.5, 2.9, 4.2):
+                rr = r0 + round(y / mm)
+                mask[rr : rr + round(0.5 / mm), c0 + round(0.35 / mm) : c0 + round(4.45 / mm)] = 0
+    opts = AnalysisOptions()
+    assert not _rows_of_letters(mask, outline_points(mask).reshape(-1, 2), mm, opts)
+    # two lines of a marker's writing at the same scale still are
+    text = np.zeros((round(30 / mm), round(90 / mm)), np.uint8)
+    for k, line in enumerate(["Compass Stampede", "p = 5.3 bar 32"]):
+        cv2.putText(
+            text, line, (5, round((10 + 12 * k) / mm)), cv2.FONT_HERSHEY_SIMPLEX, 2.2, 1, 9
+        )
+    ink = text > 0
+    assert _rows_of_letters(ink, outline_points(ink).reshape(-1, 2), mm, opts)
