@@ -126,3 +126,26 @@ def test_crossings_keep_each_lines_first_and_last():
     # hull's), every column's both
     pts = {tuple(p) for p in np.round(_crossings(_plain_level(np.array([[-1.0, 1.0, -1.0]]))), 12)}
     assert pts == {(1.0, 0.5), (1.0, 3.5), (0.5, 1.0), (1.5, 1.0), (0.5, 3.0), (1.5, 3.0)}
+
+
+def test_framed_ribbed_print_with_straight_sides_is_no_frame():
+    # fifth held-out generator (2026-11-29) seed 4 sheet 16: a 92 x 21 mm print of
+    # ribs in a boxy outline, its outer ribs straight along both long sides and the
+    # line a quarter of its width in lying in a groove: "a ruler or a frame",
+    # missing. A rib inked along the whole length inside is no frame's; a ruler's
+    # frame with its ticks still is
+    from inkprint.group import _framed, outline_points
+
+    mm = 25.4 / 300
+    h, w = round(20.5 / mm), round(92 / mm)
+    y, x = np.mgrid[0:h, 0:w]
+    u, v = (x + 0.5) * mm - 46, (y + 0.5) * mm - 10.25
+    inside = (np.abs(u) / 46) ** 40 + (np.abs(v) / 10.25) ** 40 <= 1
+    ribs = inside & (np.mod(v + 10.25, 5.5) < 4.0)  # ribs 4 mm, grooves 1.5 mm
+    frame = np.zeros((h, w), bool)
+    frame[: round(1 / mm)] = frame[-round(1 / mm) :] = True
+    frame[:, : round(0.8 / mm)] = frame[:, -round(0.8 / mm) :] = True
+    frame[round(1 / mm) : round(4 / mm), :: round(5 / mm)] = True  # ticks
+    for mask, framed in ((ribs, False), (frame, True)):
+        pts = outline_points(mask).reshape(-1, 2).astype(np.float32)
+        assert _framed(mask, cv2.minAreaRect(pts)) is framed
