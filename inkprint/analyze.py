@@ -2683,18 +2683,18 @@ LONE_ELEMENT_FACTOR = 3.0
 LONE_ELEMENT_PEERS = 4
 
 
-def _no_slivers(prints: list, mm_per_px: float, opts: AnalysisOptions) -> tuple[list, list]:
+def _no_slivers(prints: list, opts: AnalysisOptions) -> tuple[list, list]:
     """The prints measured at least ``min_patch_width_mm`` wide and, unless clipped,
-    ``min_patch_length_mm`` long (numbered again, in order; a scan without a scale:
-    all), and the others as marks. A group passes those floors with its specks; measured without them
-    (section 7.1.1) a few gridline bits of millimetre chart paper printed dark came
-    out as "prints" 5-20 mm long and 0.1 mm wide, each flagged (fifth held-out
-    generator, seed 2: 64 such on two PDF pages).
+    ``min_patch_length_mm`` long (numbered again, in order, their warnings too; a
+    scan without a scale: all), and the others as marks. A group passes those
+    floors with its specks; measured without them (section 7.1.1) a few gridline
+    bits of millimetre chart paper printed dark came out as "prints" 5-20 mm long
+    and 0.1 mm wide, each flagged (fifth held-out generator, seed 2: 64 such on
+    two PDF pages).
 
     Parameters
     ----------
     prints : list of PrintResult
-    mm_per_px : float [mm/px]
     opts : AnalysisOptions
 
     Returns
@@ -2722,8 +2722,14 @@ def _no_slivers(prints: list, mm_per_px: float, opts: AnalysisOptions) -> tuple[
         return prints, []
     out = []
     for new, p in enumerate(keep):
-        old = f"print #{p.index}:"
-        warnings = tuple(w.replace(old, f"print #{new}:", 1) for w in p.warnings)
+        # every print's warning starts "print #<index>" (then ':', ' is turned', ...)
+        old = f"print #{p.index}"
+        warnings = tuple(
+            f"print #{new}{w[len(old) :]}"
+            if w.startswith(old) and not w[len(old) : len(old) + 1].isdigit()
+            else w
+            for w in p.warnings
+        )
         out.append(dataclasses.replace(p, index=new, warnings=warnings))
     return out, marks
 
@@ -2949,7 +2955,7 @@ def analyze_scan(
         raise NoInk(no_print_message(found))
     ctx = _Context(scan, page, b, found, rolling_axis, opts)
     measured, too_small = _no_slivers(
-        _measure_all(ctx, found.groups, sensitivity=sensitivity, threads=threads), s, opts
+        _measure_all(ctx, found.groups, sensitivity=sensitivity, threads=threads), opts
     )
     if not measured:
         found = dataclasses.replace(found, groups=[], marks=found.marks + too_small)

