@@ -406,6 +406,17 @@ def measure_mask(
 #: unflagged); their true tracks read 1.15-1.25, and on the held-out sets 8 of
 #: 360 prints decided by the tracks read 1.05-1.10, each left to the hull's rules
 TREAD_CONTRAST = 1.10
+#: ... or, for a turn within :data:`AXIS_AGREE_DEG`, when the edges of its profile
+#: line up this much more sharply there than their median over the searched turns
+#: (:class:`inkprint.treadaxis.TreadTurn` ``edge_contrast``). Knob prints at 200-400
+#: dpi turned under a degree have their plateaus' sums of squares flat (contrast
+#: 0.94-1.09: the tracks not trusted, the principal axis off the rectangle's: no
+#: snap, no flag; width +1.0..+1.7 %, +12.9 % on a 25 mm print); their edges'
+#: peak lay within 0.18 deg of the truth for every synth knob print of 200 with an
+#: edge contrast over 4 (the worst: prints turned 0.2 deg read 0, the pixel grid's
+#: own edges), one under it 1.1 deg off. Farther turns read wrong by 2-9 deg with
+#: edge contrasts up to 6.5: there the sums of squares decide alone
+TREAD_EDGE_CONTRAST = 4.0
 #: turns searched for the tread's tracks [deg]; a sharpest turn within
 #: :data:`TREAD_EDGE_DEG` of this limit is no peak (the profile still sharpening
 #: beyond it: a slanted row or a pattern without tracks)
@@ -444,7 +455,8 @@ def _tread_axis(mask, hull_px, given: str, solid: float, *, mm_per_px: float, sn
     solid print, a turn beyond ``snap_deg`` [deg] (the tracks', or the outline's
     when its rectangle and principal axis agree on it: a print turned 30 deg had a
     lesser peak of its tracks' profile at 1 deg), or no clear peak
-    (:data:`TREAD_CONTRAST`, :data:`TREAD_EDGE_DEG`). The hull's rectangle, when it
+    (:data:`TREAD_CONTRAST`, or :data:`TREAD_EDGE_CONTRAST` within
+    :data:`AXIS_AGREE_DEG`; :data:`TREAD_EDGE_DEG`). The hull's rectangle, when it
     agrees within :data:`TREAD_REFINE` of the tracks' resolution, gives the turn;
     when it is clear and the tracks' turn makes the print much larger
     (:data:`TREAD_OUTLINE`), the tracks are not used.
@@ -460,7 +472,9 @@ def _tread_axis(mask, hull_px, given: str, solid: float, *, mm_per_px: float, sn
         return None  # turned farther, its outline says (flagged axis_misaligned)
     found = tread_turn(mask, given, mm_per_px=mm_per_px, limit_deg=TREAD_SEARCH_DEG)
     edge = abs(found.turn) > TREAD_SEARCH_DEG - TREAD_EDGE_DEG
-    if found.contrast < TREAD_CONTRAST or edge or abs(found.turn) > snap_deg:
+    lined_up = found.edge_contrast >= TREAD_EDGE_CONTRAST and abs(found.turn) <= AXIS_AGREE_DEG
+    weak = found.contrast < TREAD_CONTRAST and not lined_up
+    if weak or edge or abs(found.turn) > snap_deg:
         return None
     if abs(turn - found.turn) <= TREAD_REFINE * found.resolution:
         return base + math.radians(turn)  # the outline's rectangle: the finer of the two
@@ -1564,7 +1578,11 @@ def _reach_beyond_body(ctx: _Context, ink: np.ndarray, angle: float) -> float:
         lab, st, ks = _long_thin(out, stroke, ctx)
         if not len(ks):
             return 0.0
-        bars = _bar_tread(lab, st, ks, ctx) | _lenses(lab, st, ks)
+        # (a rib judged against the rest of the ink: the body, opened by 2.5
+        # strokes, loses a narrow rib print's tapering tips)
+        rest = outline_points(box & ~np.isin(lab, ks))
+        bars = _bar_tread(lab, st, ks, ctx)
+        bars |= _lenses(lab, st, ks, points if rest is None else rest, stroke)
         if bars.all():
             return 0.0
         if not bars.any():
@@ -1615,17 +1633,25 @@ def _long_thin(out: np.ndarray, stroke: float, ctx: _Context) -> tuple:
     return lab, st, ks
 
 
-def _lenses(lab: np.ndarray, st: np.ndarray, ks: np.ndarray) -> np.ndarray:
+def _lenses(
+    lab: np.ndarray, st: np.ndarray, ks: np.ndarray, body: np.ndarray, stroke: float
+) -> np.ndarray:
     """Which of the long thin pieces ``ks`` (labels in ``lab``, OpenCV's stats
-    ``st``) taper to both ends, convex (:func:`inkprint.marks._lens`): outer ribs
-    the outline cut, not a line ((k,) bool)."""
+    ``st``) are outer ribs the outline cut, not a line ((k,) bool): convex and
+    tapering to both ends (:func:`inkprint.marks._lens`), or straight along the
+    rest of the print (``body``: its outline points, (x, y) [px]) from tip to tip
+    within a ``stroke`` [px] (:func:`inkprint.marks._rib_along`)."""
 
-    from .marks import _lens
+    from .marks import _lens, _rib_along
 
     out = np.zeros(len(ks), bool)
     for i, k in enumerate(ks):
         x, y, w, h = st[k, :4]
-        out[i] = _lens((lab[y : y + h, x : x + w] == k).view(np.uint8))
+        piece = lab[y : y + h, x : x + w] == k
+        out[i] = _lens(piece.view(np.uint8))
+        if not out[i]:
+            ys, xs = np.nonzero(piece)
+            out[i] = _rib_along(np.column_stack([xs + x, ys + y]), body.reshape(-1, 2), stroke)
     return out
 
 

@@ -133,6 +133,36 @@ def test_analyze_scan_coarse_knob_print_is_measured_along_its_tracks(length, wid
     assert q.flags == () and within(q.metrics, t)
 
 
+@pytest.mark.parametrize(
+    ("length", "width", "angle", "block", "gap", "dpi", "uneven", "exponent"),
+    [
+        (58.1, 12.5, 0.7, 4.8, 2.9, 200, 0.03, 4.0),  # before: width +1.5 %, unflagged
+        (52.2, 14.7, -0.88, 3.7, 3.4, 200, 0.14, 3.0),  # +1.05 %
+        (81.5, 16.7, 0.69, 4.7, 2.6, 200, 0.13, 4.0),  # +1.66 %
+        (25.3, 13.0, 0.92, 3.0, 2.6, 400, 0.0, 3.0),  # length +2.4 %, width +12.9 %
+    ],
+)
+def test_analyze_scan_knob_print_turned_under_a_degree_is_measured_along_its_tracks(
+    length, width, angle, block, gap, dpi, uneven, exponent
+):
+    # knob prints turned under a degree, their knobs' lateral profile a row of
+    # plateaus: its sum of squares is flat over a degree (contrast 0.96-0.99, the
+    # tracks not trusted), and with the hull's principal axis off the rectangle's
+    # they were measured along the sheet, unflagged. The steps at the plateaus'
+    # edges line up only along the tracks (treadaxis._edges)
+    p = PrintSpec(
+        length, width, (length / 2 + 20, width / 2 + 20), angle, "mtb",
+        block=block, gap=gap, unevenness=uneven, exponent=exponent,
+    )  # fmt: skip
+    spec = SheetSpec((p,), size=(length + 40, width + 40), specks=0, dpi=float(dpi))
+    scan, (t,) = scan_of(spec)
+    (q,) = ip.analyze_scan(scan, sensitivity=False, rolling_axis="x").prints
+    assert q.flags == () and within(q.metrics, t), (
+        q.metrics.length / t.length,
+        q.metrics.width / t.width,
+    )
+
+
 @pytest.mark.parametrize("angle", [3.1, -5.3])
 def test_analyze_scan_narrow_knurl_print_tracks_do_not_override_its_outline(angle):
     # a knurl print three diamonds wide: its lateral profile peaks 5 deg off (its

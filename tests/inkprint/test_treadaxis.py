@@ -68,6 +68,8 @@ def test_tread_turn_of_an_empty_mask_is_no_turn():
 @settings(max_examples=12, deadline=None)
 @given(turn=st.floats(-10.0, 10.0), pitch=st.floats(4.5, 8.0), stagger=st.sampled_from([0.0, 0.5]))
 @example(turn=0.125, pitch=5.0, stagger=0.0)  # CI's first: -0.15 for the mirror of 0.05
+@example(turn=9.5, pitch=5.0, stagger=0.0)  # whole-bin profiles: 9.65 (a jitter peak)
+@example(turn=10.0, pitch=5.0, stagger=0.0)  # whole-bin profiles: 10.15
 def test_tread_turn_mirrored_pattern_turns_the_other_way(turn, pitch, stagger):
     # a mirror image across the rolling axis (rows flipped) negates the turn (within
     # the fine step's rounding either way: the cells are not mirrored with the ink)
