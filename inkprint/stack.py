@@ -30,8 +30,15 @@ from .lattice import ELEMENT_KINDS, box_overlap, element_fields, leftover_ink
 
 __all__ = ["join_stacks", "stroke_stacks"]
 
-#: fewest strokes of a stack (a 56 mm herringbone print of 3.6 mm pitch has 15)
+#: fewest strokes of a stack (a 56 mm herringbone print of 3.6 mm pitch has 15) ...
 STACK_MIN = 8
+#: ... or of one of long straight strokes, each STACK_LINE_MM long or more: a rib
+#: print's ribs narrower than two strokes, set aside as ruler lines, are 4-8 (a
+#: line of text has no such letters; a ruler's edges lie farther apart than a
+#: tread's pitch; a sheet's ruled lines or a hatching leave too much paper between
+#: them for a print, ``min_net_to_gross``)
+STACK_LINES_MIN = 4
+STACK_LINE_MM = 12.0
 #: the shortest stroke [mm] (the box's longer side): specks and a lattice's dots
 #: are no strokes
 STACK_ELEMENT_MIN_MM = 2.0
@@ -69,6 +76,12 @@ STACK_ALONG = 0.4
 #: the widest print [mm]: a sheet's ruled lines reach farther
 STACK_MAX_WIDTH_MM = 150.0
 
+#: marks whose ink may be a stack's strokes: a lattice's elements, and straight
+#: lines (a rib print whose ribs are narrower than two strokes: each rib, as long
+#: as the print and straight, set aside as a ruler's line; fifth held-out seed 2
+#: sheet 4, eight ribs 1.6 mm wide and 39-82 mm long, missing)
+STACK_KINDS = (*ELEMENT_KINDS, "line")
+
 #: share of the median stroke's area above which a blob is one of the print's
 #: strokes, not an edge spot (the tip's short strokes are a few times smaller)
 STACK_PART = 0.1
@@ -80,7 +93,7 @@ def _candidate_box(marks: list, mm_per_px: float) -> tuple | None:
     long as a stack of them; else None (most sheets: the search is skipped). A
     stack's strokes grouped by the footprint rule were set aside as one piece of
     writing (held-out 13 sheet 68: a 120 mm herringbone print lost)."""
-    kept = [m for m in marks if m.kind in ELEMENT_KINDS]
+    kept = [m for m in marks if m.kind in STACK_KINDS]
     boxes = np.array([m.bbox for m in kept], float).reshape(-1, 4)
     ext = px_to_mm_length(
         np.maximum(boxes[:, 2] - boxes[:, 0], boxes[:, 3] - boxes[:, 1]), mm_per_px
@@ -88,13 +101,14 @@ def _candidate_box(marks: list, mm_per_px: float) -> tuple | None:
     stroke = ext >= STACK_ELEMENT_MIN_MM
     whole = np.array([m.kind in ("writing", "fragment") for m in kept], bool).reshape(-1)
     whole &= ext >= STACK_MIN * STACK_PITCH_MM[0]
-    if stroke.sum() < STACK_MIN and not whole.any():
+    lines = np.array([m.kind == "line" for m in kept], bool).reshape(-1)
+    if stroke.sum() < STACK_MIN and not whole.any() and lines.sum() < STACK_LINES_MIN:
         return None
     use = boxes[stroke | whole]
     return tuple(int(v) for v in (*use[:, :2].min(axis=0), *use[:, 2:].max(axis=0)))
 
 
-def stack_order(centres, pitch_limits_px) -> tuple | None:
+def stack_order(centres, pitch_limits_px, *, least: int = STACK_MIN) -> tuple | None:
     """The strokes on one line at a regular pitch, in order along it.
 
     Parameters
@@ -103,17 +117,19 @@ def stack_order(centres, pitch_limits_px) -> tuple | None:
         The strokes' centres (x, y).
     pitch_limits_px : (2,) float [px]
         The least and largest pitch (:data:`STACK_PITCH_MM`).
+    least : int
+        Fewest strokes on the line (:data:`STACK_MIN`, :data:`STACK_LINES_MIN`).
 
     Returns
     -------
     tuple of ((m,) int, (2,) float, float) or None
         The indices of the strokes on the line in order along it, the unit normal
         to the line (x, y) and the pitch [px]; None when the centres are no such
-        stack (fewer than :data:`STACK_MIN` on a line, pitch out of range, or the
-        gaps irregular).
+        stack (fewer than ``least`` on a line, pitch out of range, or the gaps
+        irregular).
     """
     c = np.asarray(centres, float)
-    if len(c) < STACK_MIN:
+    if len(c) < least:
         return None
     mean = c.mean(axis=0)
     _, _, vt = np.linalg.svd(c - mean, full_matrices=False)
@@ -123,7 +139,7 @@ def stack_order(centres, pitch_limits_px) -> tuple | None:
     gaps = np.diff(np.sort(t))
     pitch = float(np.median(gaps)) if len(gaps) else 0.0
     on = np.flatnonzero(np.abs(r) <= STACK_OFF_LINE * max(pitch, 1.0))
-    if len(on) < STACK_MIN:
+    if len(on) < least:
         return None
     order = on[np.argsort(t[on])]
     gaps = np.diff(t[order])
@@ -166,7 +182,10 @@ def stroke_stacks(ink, taken: list, *, marks: list, mm_per_px: float) -> list:
     ext = px_to_mm_length(np.maximum(st[:, 2], st[:, 3]).astype(float), mm_per_px)
     stroke = ext >= STACK_ELEMENT_MIN_MM
     stroke[0] = False
-    if stroke.sum() < STACK_MIN:
+    if (
+        stroke.sum() < STACK_MIN
+        and np.count_nonzero(ext[stroke] >= STACK_LINE_MM) < STACK_LINES_MIN
+    ):
         return []
     m, of, fst = element_fields(lab, stroke, size_px=2 * reach + 1)
     out = []
@@ -204,9 +223,12 @@ def _stack(parts: _Parts, ids: np.ndarray, mine: np.ndarray, mm_per_px: float):
     import cv2
     from scipy import ndimage
 
-    if len(ids) < STACK_MIN:
+    ext = px_to_mm_length(np.maximum(parts.st[ids, 2], parts.st[ids, 3]).astype(float), mm_per_px)
+    least = STACK_LINES_MIN if len(ids) and (ext >= STACK_LINE_MM).all() else STACK_MIN
+    if len(ids) < least:
         return None
-    found = stack_order(parts.cen[ids], mm_to_px_length(np.array(STACK_PITCH_MM), mm_per_px))
+    pitches = mm_to_px_length(np.array(STACK_PITCH_MM), mm_per_px)
+    found = stack_order(parts.cen[ids], pitches, least=least)
     if found is None:
         return None
     order, v, pitch = found

@@ -193,14 +193,31 @@ def test_word_in_a_line_tiny_print_under_a_label_is_no_word():
     assert word_in_a_line(g, down, mm_per_px=0.0847)
 
 
+def _glyph(mask: np.ndarray, k: int, x: int, y: int, w: int, h: int, t: int) -> None:
+    """The ``k``-th of five letter shapes (an 'O', 'L', 'T', 'X', 'U'), ``w`` x ``h``
+    [px] from (``x``, ``y``), strokes ``t`` [px] wide: neighbouring letters differ (a
+    row of one shape repeated is a tread's elements, group.TEXT_SHAPE_ALIKE)."""
+    x1, y1 = x + w, y + h
+    strokes = [
+        [((x, y), (x1, y)), ((x1, y), (x1, y1)), ((x1, y1), (x, y1)), ((x, y1), (x, y))],
+        [((x, y), (x, y1)), ((x, y1), (x1, y1))],
+        [((x, y), (x1, y)), ((x + w // 2, y), (x + w // 2, y1))],
+        [((x, y), (x1, y1)), ((x1, y), (x, y1))],
+        [((x, y), (x, y1)), ((x, y1), (x1, y1)), ((x1, y1), (x1, y))],
+    ][k % 5]
+    for a, b in strokes:
+        cv2.line(mask, a, b, 1, thickness=t)
+
+
 def _underlined_word(mm: float, bar_mm: float) -> Group:
-    """Ten ring letters 6 mm high and 4 mm wide (1 mm strokes) 6 mm apart, a bar
-    ``bar_mm`` high and 55 mm long 0.6 mm under them (an underline's stretch)."""
+    """Ten letters 6 mm high and 4 mm wide (1 mm strokes, :func:`_glyph`) 6 mm apart,
+    a bar ``bar_mm`` high and 55 mm long 0.6 mm under them (an underline's
+    stretch)."""
     px = lambda v: round(v / mm)
     mask = np.zeros((px(12.0), px(66.0)), np.uint8)
     for k in range(10):
         x, y = px(2.0 + 6.0 * k), px(2.0)
-        cv2.rectangle(mask, (x, y), (x + px(4.0), y + px(6.0)), 1, thickness=px(1.0))
+        _glyph(mask, k, x, y, px(4.0), px(6.0), px(1.0))
     y = px(2.0 + 6.0 + 0.6 + 0.5)
     cv2.rectangle(mask, (px(2.0), y), (px(57.0), y + px(bar_mm)), 1, thickness=-1)
     return Group(slice(0, mask.shape[0]), slice(0, mask.shape[1]), mask.astype(bool))
@@ -221,14 +238,14 @@ def test_is_print_line_of_lower_case_letters_is_writing(dpi):
     # held-out set 13 sheet 42: 'Bridgestone S22 190/55 ZR17 2.2 bar 1812 N', a
     # 108 x 4.2 mm "print" with status ok: its lower-case letters (2.3-2.5 mm) were
     # under TEXT_LETTER_MM; here three capitals 3.3 mm high, nine letters 2.4 mm
-    # (rings of 0.5 mm strokes)
+    # (strokes 0.5 mm wide, :func:`_glyph`)
     mm = 25.4 / dpi
     px = lambda v: round(v / mm)
     mask = np.zeros((px(6.0), px(40.0)), np.uint8)
     for k in range(12):
         high = 2.8 if k in (0, 5, 9) else 1.9
         x, y = px(1.0 + 3.0 * k), px(1.0 + 3.3 - high)
-        cv2.rectangle(mask, (x, y), (x + px(2.0), y + px(high)), 1, thickness=px(0.5))
+        _glyph(mask, k, x, y, px(2.0), px(high), px(0.5))
     g = Group(slice(0, mask.shape[0]), slice(0, mask.shape[1]), mask.astype(bool))
     check = is_print(g, mm_per_px=mm)
     assert not check.ok and "line of writing" in check.reason
@@ -284,3 +301,34 @@ def test_rows_of_letters_siped_blocks_alike_are_no_writing():
         )
     ink = text > 0
     assert _rows_of_letters(ink, outline_points(ink).reshape(-1, 2), mm, opts)
+
+
+@pytest.mark.parametrize(
+    ("dpi", "length", "width", "pitch", "bar"),
+    [(300.0, 85.0, 16.4, 5.6, 3.2), (240.0, 105.7, 15.2, 5.0, 2.8), (200.0, 92.5, 17.8, 6.0, 3.0)],
+)
+def test_analyze_scan_row_of_chevrons_is_a_print(dpi, length, width, pitch, bar):
+    # fifth held-out generator (2026-11-29) seeds 2 and 4: elliptic road prints of
+    # chevrons, each V apart from the next, the outline cutting them to slightly
+    # different sizes: "a line of writing (letters across it)", three prints
+    # missing. Each V is its neighbour shifted; letters differ from theirs. (Not
+    # covered, docs/inkprint.md Known limits: arms as narrow as a marker's strokes,
+    # ~1.8 mm, are set aside as a marker's letters; a V's arm the outline cut to a
+    # speck off a tip is an edge spot, length -1.1..-1.8 %)
+    from tests.inkprint.drawn import drawn_scan
+
+    ss = 3
+    mm = 25.4 / dpi / ss
+    h, w = round((width + 20.0) / mm), round((length + 20.0) / mm)
+    y, x = np.mgrid[0:h, 0:w]
+    u, v = (x + 0.5) * mm - w * mm / 2, (y + 0.5) * mm - h * mm / 2
+    inside = (u / (length / 2)) ** 2 + (v / (width / 2)) ** 2 <= 1.0
+    vees = np.mod(u + 0.9 * np.abs(v), pitch) < bar
+    grey, mm_px, (t_len, t_wid, t_area) = drawn_scan(
+        (inside & vees).astype(np.uint8), dpi, ss, 0.6
+    )
+    r = ip.analyze_scan(ip.Scan(grey, mm_px, "given"), rolling_axis="x", sensitivity=False)
+    (pr,) = r.prints
+    assert pr.flags == (), pr.warnings
+    assert_allclose([pr.metrics.length, pr.metrics.width], [t_len, t_wid], rtol=0.01)
+    assert_allclose(pr.metrics.hull_area, t_area, rtol=0.02)
