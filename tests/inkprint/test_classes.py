@@ -163,6 +163,21 @@ def test_analyze_scan_knob_print_turned_under_a_degree_is_measured_along_its_tra
     )
 
 
+def test_analyze_scan_knob_print_tip_knob_cut_thin_a_pattern_gap_out_is_its_own():
+    # a knob print (2.6 mm knobs, 3.6 mm grooves) whose outline cut a tip knob to a
+    # 2.4 x 1.3 mm piece 3.5 mm beyond the next knob: farther than
+    # group_distance_mm, it was set aside as a pen mark (length -8.6 %, unflagged).
+    # Off a block pattern's tip a lone convex piece may lie 1.5 x that distance out
+    L, W = 56.3465, 30.3975
+    p = PrintSpec(
+        L, W, (L / 2 + 20, W / 2 + 20), -0.75406, "mtb",
+        block=2.62932, gap=3.62548, unevenness=0.14682, exponent=2.0,
+    )  # fmt: skip
+    scan, (t,) = scan_of(SheetSpec((p,), size=(L + 40, W + 40), specks=0, dpi=400.0, seed=1))
+    (q,) = ip.analyze_scan(scan, sensitivity=False, rolling_axis="x").prints
+    assert q.flags == () and within(q.metrics, t), q.metrics.length / t.length - 1
+
+
 @pytest.mark.parametrize("angle", [3.1, -5.3])
 def test_analyze_scan_narrow_knurl_print_tracks_do_not_override_its_outline(angle):
     # a knurl print three diamonds wide: its lateral profile peaks 5 deg off (its
