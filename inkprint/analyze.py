@@ -1637,21 +1637,16 @@ def _lenses(
     lab: np.ndarray, st: np.ndarray, ks: np.ndarray, body: np.ndarray, stroke: float
 ) -> np.ndarray:
     """Which of the long thin pieces ``ks`` (labels in ``lab``, OpenCV's stats
-    ``st``) are outer ribs the outline cut, not a line ((k,) bool): convex and
-    tapering to both ends (:func:`inkprint.marks._lens`), or straight along the
-    rest of the print (``body``: its outline points, (x, y) [px]) from tip to tip
-    within a ``stroke`` [px] (:func:`inkprint.marks._rib_along`)."""
+    ``st``) are outer ribs the outline cut, not a line ((k,) bool), judged against
+    the rest of the print (``body``: its outline points, (x, y) [px]) within a
+    ``stroke`` [px] (:func:`inkprint.marks._outer_rib`)."""
 
-    from .marks import _lens, _rib_along
+    from .marks import _outer_rib
 
     out = np.zeros(len(ks), bool)
     for i, k in enumerate(ks):
         x, y, w, h = st[k, :4]
-        piece = lab[y : y + h, x : x + w] == k
-        out[i] = _lens(piece.view(np.uint8))
-        if not out[i]:
-            ys, xs = np.nonzero(piece)
-            out[i] = _rib_along(np.column_stack([xs + x, ys + y]), body.reshape(-1, 2), stroke)
+        out[i] = _outer_rib(lab[y : y + h, x : x + w] == k, (x, y), body, stroke)
     return out
 
 

@@ -1514,12 +1514,36 @@ def _alike_neighbours(lab: np.ndarray, st: np.ndarray, pieces: np.ndarray, along
     return alike >= TEXT_ALIKE_SHARE * (len(pieces) - 1)
 
 
-def _extents(ids: np.ndarray, values: np.ndarray, n: int) -> np.ndarray:
-    """Per piece (labels 0..n-1 of pixels ``ids`` in raster order), the extent of
-    ``values`` over its pixels, max - min + 1 (-inf for a piece with none)."""
+def piece_range(ids: np.ndarray, values: np.ndarray, n: int) -> tuple[np.ndarray, np.ndarray]:
+    """Per piece, the least and the largest of a value over its pixels.
+
+    Numpy only (``components.reduce_at``): scipy's ``ndimage`` minimum and maximum
+    cost a one-file run its import.
+
+    Parameters
+    ----------
+    ids : (k,) int
+        Each pixel's piece, 0..n-1 (best in raster order: runs reduce first).
+    values : (k,) float
+        The value at each pixel.
+    n : int
+        Number of pieces.
+
+    Returns
+    -------
+    lo, hi : (n,) float
+        Least and largest value per piece (+inf and -inf for a piece with none).
+    """
     lo, hi = np.full(n, np.inf), np.full(n, -np.inf)
     reduce_at(np.minimum, lo, ids, values=values)
     reduce_at(np.maximum, hi, ids, values=values)
+    return lo, hi
+
+
+def _extents(ids: np.ndarray, values: np.ndarray, n: int) -> np.ndarray:
+    """Per piece (labels 0..n-1 of pixels ``ids`` in raster order), the extent of
+    ``values`` over its pixels, max - min + 1 (-inf for a piece with none)."""
+    lo, hi = piece_range(ids, values, n)
     return hi - lo + 1
 
 

@@ -1697,18 +1697,27 @@ def _judge_thin(t: _ThinStats, parts: _Parts, opts: AnalysisOptions, network=Non
         own |= tip & blocks[t.target]
         kind = np.where(tip & ~blocks[t.target], "sliver", kind)
     lens = np.zeros(len(own), bool)
+    stroke = mm_to_px_length(opts.stroke_width_mm, prints[2]) if prints is not None else 0.0
     for k in np.flatnonzero(near & long & ~on_line & (t.inside < 0.5)):
-        lens[k] = _lens(_crop(parts.thin, parts.thin_stats, k).view(np.uint8))
-        if not lens[k] and prints is not None:
-            hull = prints[0][t.target[k]]
-            stroke = mm_to_px_length(opts.stroke_width_mm, prints[2])
-            if hull is not None:
-                ys, xs = np.nonzero(_crop(parts.thin, parts.thin_stats, k))
-                xy = np.column_stack([xs, ys]) + parts.thin_stats[k, :2]
-                lens[k] = _rib_along(xy, hull.reshape(-1, 2), stroke)
+        hull = prints[0][t.target[k]] if prints is not None else None
+        piece = _crop(parts.thin, parts.thin_stats, k)
+        lens[k] = _outer_rib(piece, parts.thin_stats[k, :2], hull, stroke)
     keep = np.where(long, (t.inside >= 0.5) | lens, own)
     owner = np.where(keep, t.target, -1)
     return owner, kind
+
+
+def _outer_rib(piece: np.ndarray, origin, body: np.ndarray | None, stroke: float) -> bool:
+    """Whether a long thin piece (bool crop whose corner is at ``origin``, (x, y)
+    [px]) beside a print is its outer rib the outline cut, not a line: a lens
+    (:func:`_lens`), or straight along ``body`` (the print's hull or outline points,
+    (x, y) [px]; None: not judged) from tip to tip (:func:`_rib_along`)."""
+    if _lens(piece.view(np.uint8)):
+        return True
+    if body is None:
+        return False
+    ys, xs = np.nonzero(piece)
+    return _rib_along(np.column_stack([xs, ys]) + np.asarray(origin), body.reshape(-1, 2), stroke)
 
 
 def _rib_along(piece: np.ndarray, hull: np.ndarray, stroke: float) -> bool:

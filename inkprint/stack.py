@@ -23,9 +23,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .components import components_with_stats, reduce_at
+from .components import components_with_stats
 from .coords import area_px_to_mm2, mm_to_px_length, px_to_mm_length
-from .group import Group, union
+from .group import Group, piece_range, union
 from .lattice import ELEMENT_KINDS, box_overlap, element_fields, leftover_ink
 
 __all__ = ["join_stacks", "stroke_stacks"]
@@ -238,8 +238,8 @@ def _stack(parts: _Parts, ids: np.ndarray, mine: np.ndarray, mm_per_px: float):
     ys, xs = np.nonzero(np.isin(parts.lab, line))
     proj, labels = xs * v[0] + ys * v[1], parts.lab[ys, xs]
     n = len(parts.st)
-    span = 1.0 + _per_piece(np.maximum, proj, labels, n)[line]
-    span -= _per_piece(np.minimum, proj, labels, n)[line]
+    lo, hi = piece_range(labels, proj, n)
+    span = (1.0 + hi - lo)[line]
     if np.median(span) < STACK_SPAN * pitch or span.max() > mm_to_px_length(
         STACK_MAX_WIDTH_MM, mm_per_px
     ):
@@ -257,8 +257,7 @@ def _stack(parts: _Parts, ids: np.ndarray, mine: np.ndarray, mm_per_px: float):
     if len(pieces):
         ys, xs = np.nonzero(np.isin(parts.lab, pieces))
         labels = parts.lab[ys, xs]
-        near = _per_piece(np.minimum, away[ys, xs], labels, n)[pieces]
-        far = _per_piece(np.maximum, away[ys, xs], labels, n)[pieces]
+        near, far = (r[pieces] for r in piece_range(labels, away[ys, xs], n))
         # each piece's longer side (its least rectangle), its pixels grouped by label
         order = np.argsort(labels, kind="stable")
         starts = np.searchsorted(labels[order], pieces)
@@ -271,15 +270,6 @@ def _stack(parts: _Parts, ids: np.ndarray, mine: np.ndarray, mm_per_px: float):
             (near <= STACK_PIECE * pitch) & (far - near <= STACK_ALONG * np.maximum(along, 1.0))
         ]
     return np.isin(parts.lab, np.r_[line, keep]), line
-
-
-def _per_piece(ufunc, values: np.ndarray, labels: np.ndarray, n: int) -> np.ndarray:
-    """Per label 0..n-1, the minimum or maximum (``ufunc``) of ``values`` over its
-    pixels (``labels``; +-inf for none): numpy only, as scipy's ``ndimage`` cost a
-    one-file run 0.3 s of imports."""
-    out = np.full(n, np.inf if ufunc is np.minimum else -np.inf)
-    reduce_at(ufunc, out, labels, values=values.astype(float))
-    return out
 
 
 def join_stacks(groups: list, stacks: list, *, mm_per_px: float) -> tuple[list, list]:

@@ -124,25 +124,20 @@ def _profiles(pts: np.ndarray, ink: np.ndarray, turns: np.ndarray):
     return window, offset, (top + 1) / q
 
 
-def _sharpness(pts: np.ndarray, ink: np.ndarray, turns: np.ndarray) -> np.ndarray:
-    """Sharpness of the lateral profiles (:func:`_profiles`): the sum of squared bin
-    weights times the bins spanned (so a profile is not sharper merely for being
-    narrower). (t,)"""
-    window, offset, extent = _profiles(pts, ink, turns)
-    return np.add.reduceat(window * window, offset) / PHASES * extent
-
-
-def _edges(pts: np.ndarray, ink: np.ndarray, turns: np.ndarray) -> np.ndarray:
-    """Edge energy of the lateral profiles (:func:`_profiles`): the sum of squared
-    steps from bin to bin. A knob's track is a plateau as wide as the knob, and
-    turning the profile only smears its two edges: the sum of squares barely
+def _measures(pts: np.ndarray, ink: np.ndarray, turns: np.ndarray) -> tuple:
+    """Sharpness and edge energy of the lateral profiles (:func:`_profiles`), each
+    (t,). Sharpness: the sum of squared bin weights times the bins spanned (so a
+    profile is not sharper merely for being narrower). Edge energy: the sum of
+    squared steps from bin to bin. A knob's track is a plateau as wide as the knob,
+    and turning the profile only smears its two edges: the sum of squares barely
     changes over a degree and its peak wanders (held-out knob prints: 0.5-1.1 deg
     off, width +1.5..+3.1 %, unflagged), while the steps at the edges are steepest
-    where the tracks are. (t,)"""
-    window, offset, _ = _profiles(pts, ink, turns)
+    where the tracks are."""
+    window, offset, extent = _profiles(pts, ink, turns)
     step = np.zeros_like(window)
     step[PHASES:] = window[PHASES:] - window[:-PHASES]  # (each profile starts empty)
-    return np.add.reduceat(step * step, offset) / PHASES
+    sharp = np.add.reduceat(window * window, offset) / PHASES * extent
+    return sharp, np.add.reduceat(step * step, offset) / PHASES
 
 
 def tread_turn(mask: np.ndarray, axis: str, *, mm_per_px: float, limit_deg: float) -> TreadTurn:
@@ -182,10 +177,10 @@ def tread_turn(mask: np.ndarray, axis: str, *, mm_per_px: float, limit_deg: floa
     if len(ink) < 2:
         return TreadTurn(0.0, 1.0)
     coarse = np.arange(-limit_deg, limit_deg + 1e-9, COARSE_STEP_DEG)
-    edges = _edges(pts, ink, np.radians(coarse))
+    sharp, edges = _measures(pts, ink, np.radians(coarse))
     best = coarse[int(np.argmax(edges))]
     fine = best + np.arange(-COARSE_STEP_DEG, COARSE_STEP_DEG + 1e-9, FINE_STEP_DEG)
-    edges_fine = _edges(pts, ink, np.radians(fine))
+    edges_fine = _measures(pts, ink, np.radians(fine))[1]
     i = int(np.clip(np.argmax(edges_fine), 1, len(fine) - 2))
     # the parabola through the peak and its neighbours: a fraction of the fine step
     s0, s1, s2 = edges_fine[i - 1 : i + 2]
@@ -193,8 +188,7 @@ def tread_turn(mask: np.ndarray, axis: str, *, mm_per_px: float, limit_deg: floa
     shift = 0.5 * (s0 - s2) / bend if bend < 0 else 0.0
     turn = fine[i] + float(np.clip(shift, -0.5, 0.5)) * FINE_STEP_DEG
     # whether there are tracks at all: the profile's sharpness there over its median
-    sharp = _sharpness(pts, ink, np.radians(np.append(coarse, turn)))
-    contrast = sharp[-1] / np.median(sharp[:-1])
+    contrast = _measures(pts, ink, np.radians([turn]))[0][0] / np.median(sharp)
     resolution = np.degrees(np.arctan(1.0 / max(np.ptp(pts[:, 0]), 1.0)))
     return TreadTurn(
         float(turn), float(contrast), float(resolution), float(edges_fine.max() / np.median(edges))

@@ -149,7 +149,7 @@ def test_analyze_scan_knob_print_turned_under_a_degree_is_measured_along_its_tra
     # plateaus: its sum of squares is flat over a degree (contrast 0.96-0.99, the
     # tracks not trusted), and with the hull's principal axis off the rectangle's
     # they were measured along the sheet, unflagged. The steps at the plateaus'
-    # edges line up only along the tracks (treadaxis._edges)
+    # edges line up only along the tracks (treadaxis._measures)
     p = PrintSpec(
         length, width, (length / 2 + 20, width / 2 + 20), angle, "mtb",
         block=block, gap=gap, unevenness=uneven, exponent=exponent,

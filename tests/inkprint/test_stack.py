@@ -260,14 +260,15 @@ def test_analyze_scan_ruled_lines_are_no_print():
         ip.analyze_scan(scan, rolling_axis="x", sensitivity=False)
 
 
-def test_per_piece_min_and_max_match_a_loop():
+def test_piece_range_matches_a_loop():
     # the numpy per-label reduction that replaced scipy.ndimage.minimum / maximum
-    from inkprint.stack import _per_piece
+    # in the stack search (group.piece_range, also behind group._extents)
+    from inkprint.group import piece_range
 
     rng = np.random.default_rng(3)
     labels = np.sort(rng.integers(1, 6, 200))
     values = rng.normal(size=200)
-    lo, hi = _per_piece(np.minimum, values, labels, 7), _per_piece(np.maximum, values, labels, 7)
+    lo, hi = piece_range(labels, values, 7)
     for k in range(7):
         on = labels == k
         assert lo[k] == (values[on].min() if on.any() else np.inf)
