@@ -925,6 +925,32 @@ def test_analyze_scan_print_off_the_sheet_is_flagged_clipped(tmp_path):
     assert "image's edge" in flagged[0]["warnings"]
 
 
+@pytest.mark.parametrize(
+    ("x_mm", "y_mm", "cut"),
+    [
+        (72.0, 120.0, False),  # ribs unbroken to their ends 12 mm off the left edge
+        (120.0, 63.0, False),  # 18 mm off the bottom edge: more than 1.5 grooves
+        (55.0, 120.0, True),  # run 5 mm off the left edge: the ribs are cut
+        (120.0, 52.0, True),  # 7 mm off the bottom: it could end in a 10 mm groove
+    ],
+)
+def test_analyze_scan_car_print_near_the_edge_is_clipped_only_where_a_groove_fits(
+    x_mm, y_mm, cut
+):
+    # held-out seed 5 sheet 93 (and seeds 1, 3): a car print of four ribs along the
+    # rolling axis with 10 mm grooves, 12 mm off the left edge, was flagged clipped
+    # (the margin was 1.5 grooves both ways); along the ribs there is no groove to
+    # end in, across them there is
+    p = PrintSpec(120.0, 150.0, (x_mm, y_mm), 0.0, "car", exponent=6.0)
+    p = dataclasses.replace(p, width=90.0, block=18.0, gap=10.0, sipe=0.0)
+    img, (t,) = render_sheet(SheetSpec((p,), dpi=200.0, size=(240.0, 240.0), specks=0))
+    res = ip.analyze_scan(Scan(img, 25.4 / 200.0, "given"), rolling_axis="x", sensitivity=False)
+    (pr,) = res.prints
+    assert ("clipped" in pr.flags) is cut, pr.warnings
+    if not cut:
+        assert_allclose([pr.metrics.length, pr.metrics.width], [t.length, t.width], rtol=0.01)
+
+
 # -- edge spots and small prints ------------------------------------------------------------
 
 
