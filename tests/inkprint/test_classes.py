@@ -934,9 +934,7 @@ def test_analyze_scan_print_off_the_sheet_is_flagged_clipped(tmp_path):
         (120.0, 52.0, True),  # 7 mm off the bottom: it could end in a 10 mm groove
     ],
 )
-def test_analyze_scan_car_print_near_the_edge_is_clipped_only_where_a_groove_fits(
-    x_mm, y_mm, cut
-):
+def test_analyze_scan_car_print_near_the_edge_is_clipped_only_where_a_groove_fits(x_mm, y_mm, cut):
     # held-out seed 5 sheet 93 (and seeds 1, 3): a car print of four ribs along the
     # rolling axis with 10 mm grooves, 12 mm off the left edge, was flagged clipped
     # (the margin was 1.5 grooves both ways); along the ribs there is no groove to
