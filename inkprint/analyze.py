@@ -68,6 +68,7 @@ from .lattice import CORNER_FLAG, CORNER_SHORT_PX, TIP_SHORT_PX, coarse_elements
 from .light import Page, light_spread, prepare_page
 from .marks import BOLD_REASON, TICK_REASON, Mark, SortedInk, sort_ink
 from .options import AnalysisOptions, resolve_options, resolve_threads
+from .pattern import join_pattern_pieces
 from .read import Scan, read_scan
 from .results import BAND_KEYS, PrintResult, SheetResult, contact_pressure, marks_summary
 from .stack import join_stacks, stroke_stacks
@@ -833,6 +834,7 @@ def find_prints(
     if grid is not None:
         marks.append(_grid_mark(grid.removed, mm_per_px))
     parts = [p for g0 in ink.groups for p in split_apart(g0, mm_per_px=mm_per_px, options=opts)]
+    short = []  # (piece, its mark's index): too short for a print (is_print)
     for g0 in parts:
         g = dataclasses.replace(g0, mask=remove_specks(g0.mask, speck_px))
         if not g.mask.any():
@@ -849,7 +851,13 @@ def find_prints(
         if check.ok:
             kept.append(g)
         else:
+            if check.short:
+                short.append((g, len(marks)))
             marks.append(_group_mark(g, check.kind, check.reason, mm_per_px))
+    kept, joined = join_pattern_pieces(kept, [g for g, _ in short])
+    if joined.any():
+        gone = {k for (_, k), j in zip(short, joined, strict=True) if j}
+        marks = [m for k, m in enumerate(marks) if k not in gone]
     kept = _without_texture_bits(kept, marks, shape, mm_per_px)
     kept = _without_words(kept, marks, mm_per_px)
     biggest = max((g.n_pixels for g in kept), default=0)

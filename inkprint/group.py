@@ -957,11 +957,16 @@ class PrintCheck:
         Why not ('' when ``ok``).
     kind : str
         What it is instead: 'dust', 'fragment', 'line', 'writing' or 'texture'.
+    short : bool
+        Set aside only for being shorter than a print (``min_patch_length_mm``): a
+        letter's piece, or an element of a print its grouping left out
+        (:func:`inkprint.pattern.join_pattern_pieces`).
     """
 
     ok: bool
     reason: str = ""
     kind: str = ""
+    short: bool = False
 
 
 def is_print(
@@ -1023,6 +1028,7 @@ def is_print(
             False,
             f"a mark or a letter's piece ({length:.1f} mm long: shorter than a print)",
             "writing",
+            short=True,
         )
     if width < opts.min_patch_width_mm:
         return PrintCheck(False, f"a line ({width:.2f} mm wide)", "line")
