@@ -458,3 +458,50 @@ def test_sliver_excess_flags_tip_crescents_set_aside_as_pen_ticks():
     assert p.flags == ("mark_on_edge",)
     (pct,) = re.findall(r"thin ink off its tip.* is ([\d.]+) % larger", p.warnings[-1])
     assert_allclose(float(pct), 100 * (length / p.metrics.length - 1), atol=0.5)
+
+
+def _round_print_under_a_label(dpi: float, ss: int, dy: float) -> tuple:
+    """A slick round print 21.5 mm across (grey 0.75 darker than paper) and a
+    pen label 'F=620N' (Hershey strokes 0.3 mm, 0.45 darker) written across its
+    bottom edge, its baseline ``dy`` mm below the print's lowest point; grey image,
+    mm per px and the print's truth (length along x, width along y, hull area)."""
+    mm = 25.4 / dpi / ss
+    h = w = int(40 / mm)
+    cx, cy, r = w // 2, int(15 / mm), int(10.75 / mm)
+    disk = np.zeros((h, w), np.uint8)
+    cv2.circle(disk, (cx, cy), r, 1, -1)
+    pen = np.zeros_like(disk)
+    scale = 5.0 / mm / 22.0  # Hershey simplex caps are about 22 units tall: 5 mm
+    org = (cx - int(9.0 / mm), cy + r + int(dy / mm))
+    cv2.putText(pen, "F=620N", org, cv2.FONT_HERSHEY_SIMPLEX, scale, 1, max(1, int(0.3 / mm)))
+    pts = cv2.findNonZero(disk).reshape(-1, 2)
+    truth = (
+        (np.ptp(pts[:, 0]) + 1) * mm,
+        (np.ptp(pts[:, 1]) + 1) * mm,
+        cv2.contourArea(cv2.convexHull(pts)) * mm * mm,
+    )
+    size = (w // ss, h // ss)
+    cover = cv2.resize(disk.astype(np.float32), size, interpolation=cv2.INTER_AREA)
+    ink = cv2.resize(pen.astype(np.float32), size, interpolation=cv2.INTER_AREA)
+    grey = 0.92 - np.maximum(0.75 * cover, 0.45 * ink)
+    grey += np.random.default_rng(0).normal(0, 0.01, grey.shape)
+    return grey.astype(np.float32), 25.4 / dpi, truth
+
+
+@pytest.mark.parametrize(("dpi", "dy"), [(300.0, 4.6), (200.0, 5.0), (400.0, 4.3)])
+def test_measure_print_label_across_a_round_print_s_edge_is_within_or_flagged(dpi, dy):
+    # held-out seed 5 sheet 81: a label's letters across the bottom of a round
+    # print took its edge with them; measured without it the hull's bottom was flat
+    # over two edges, and each edge's tangent on the far side was the other edge:
+    # the bound under the letters read 0.06 % and the width -1.6 % had status ok
+    # (here: width -2.6 % at 300 dpi and -2.2 % at 200 dpi, status ok before)
+    grey, mm, (length, width, area) = _round_print_under_a_label(dpi, 4, dy)
+    res = ip.analyze_scan(ip.Scan(grey, mm, "given"), rolling_axis="x", sensitivity=False)
+    (pr,) = res.prints
+    m = pr.metrics
+    within = (
+        abs(m.length / length - 1) <= 0.01
+        and abs(m.width / width - 1) <= 0.01
+        and abs(m.hull_area / area - 1) <= 0.02
+    )
+    assert within or "mark_on_edge" in pr.flags, (m.length / length, m.width / width)

@@ -565,11 +565,11 @@ def test_sort_ink_pen_line_beside_a_rib_print_is_no_rib(line):
 
 def _siped(dpi: float, ss: int, length: float, shift: float) -> tuple:
     """A road print of siped blocks (held-out seed 5 sheet 105): three staggered
-    rows 8.8 mm apart of 7.6 x 8 mm blocks 9.5 mm apart, each with three 0.5 mm
+    rows 9.2 mm apart of 7.6 x 8 mm blocks 9.5 mm apart, each with three 0.5 mm
     sipes 1.9 mm apart (closed in the centre row, open to the outside in the outer
-    rows, whose blocks the sides cut to solid bars) inside a rounded rectangle ``length`` x 24 mm (corner 4 mm) that cuts the
-    blocks at its ends and sides, the rows shifted ``shift`` mm along;
-    :func:`drawn_scan` of it."""
+    rows, whose blocks the sides cut to solid bars) inside a rounded rectangle
+    ``length`` x 24 mm (corner 4 mm) that cuts the blocks at its ends and sides,
+    the rows shifted ``shift`` mm along; :func:`drawn_scan` of it."""
     mm = 25.4 / dpi / ss
     h, w = int(50 / mm), int((length + 30) / mm)
     cx, cy = w / 2, h / 2
@@ -584,34 +584,14 @@ def _siped(dpi: float, ss: int, length: float, shift: float) -> tuple:
                 s0 = round(cx + (x + 1.9 + 1.9 * k) / mm)
                 p0, p1 = (s0, round(cy + (y + top) / mm)), (s0, round(cy + (y + bottom) / mm))
                 cv2.line(ink, p0, p1, 0, max(1, round(0.5 / mm)))
-    outline = np.zeros_like(ink)
-    half, rad = (round(length / 2 / mm), round(12 / mm)), round(4 / mm)
-    cv2.rectangle(
-        outline,
-        (round(cx) - half[0], round(cy) - half[1]),
-        (round(cx) + half[0], round(cy) + half[1]),
-        1,
-        -1,
-    )
-    corner = np.zeros_like(ink)
-    for sx in (-1, 1):
-        for sy in (-1, 1):
-            px, py = round(cx) + sx * (half[0] - rad), round(cy) + sy * (half[1] - rad)
-            cv2.rectangle(
-                corner,
-                (min(px, px + sx * rad), min(py, py + sy * rad)),
-                (max(px, px + sx * rad), max(py, py + sy * rad)),
-                1,
-                -1,
-            )
-            cv2.circle(outline, (px, py), rad, 1, -1)
-            cv2.rectangle(
-                outline,
-                (min(px, px + sx * rad), min(py, py + sy * rad)),
-                (max(px, px + sx * rad), max(py, py + sy * rad)),
-                0,
-                -1,
-            )
+    outline = np.zeros_like(ink)  # a rounded rectangle: two crossed bars, four disks
+    x0, x1 = round(cx - length / 2 / mm), round(cx + length / 2 / mm)
+    y0, y1 = round(cy - 12 / mm), round(cy + 12 / mm)
+    rad = round(4 / mm)
+    cv2.rectangle(outline, (x0 + rad, y0), (x1 - rad, y1), 1, -1)
+    cv2.rectangle(outline, (x0, y0 + rad), (x1, y1 - rad), 1, -1)
+    for px in (x0 + rad, x1 - rad):
+        for py in (y0 + rad, y1 - rad):
             cv2.circle(outline, (px, py), rad, 1, -1)
     return drawn_scan(ink & outline, dpi, ss, 0.8)
 
