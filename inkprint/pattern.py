@@ -44,8 +44,10 @@ PIECE_AREA = (0.3, 1.5)
 MISMATCH = 0.2
 #: the typical elements laid under a piece (spread over their areas)
 TRIES = 8
-#: pattern steps: the vectors from each typical element to this many nearest
+#: pattern steps: the vectors from each typical element to this many nearest ...
 STEPS = 4
+#: ... from at most this many elements spread over the print
+STEP_SAMPLE = 256
 
 
 def _elements(g: Group) -> tuple:
@@ -64,12 +66,15 @@ def _typical(areas: np.ndarray) -> np.ndarray:
 
 def _steps(cen: np.ndarray) -> np.ndarray:
     """The pattern's steps: (m, 2) vectors [px] from each element to its
-    :data:`STEPS` nearest, both ways."""
-    d = np.linalg.norm(cen[:, None] - cen[None], axis=2)
-    np.fill_diagonal(d, np.inf)
+    :data:`STEPS` nearest, both ways; from at most :data:`STEP_SAMPLE` elements
+    spread over the print (a fine tread's thousands of dots: the distances of
+    every pair were 3000 x 3000)."""
+    pick = np.unique(np.linspace(0, len(cen) - 1, min(len(cen), STEP_SAMPLE)).astype(int))
+    d = np.linalg.norm(cen[pick, None] - cen[None], axis=2)
+    d[np.arange(len(pick)), pick] = np.inf
     k = min(STEPS, len(cen) - 1)
     near = np.argsort(d, axis=1)[:, :k]
-    v = (cen[near] - cen[:, None]).reshape(-1, 2)
+    v = (cen[near] - cen[pick, None]).reshape(-1, 2)
     return np.concatenate([v, -v])
 
 
