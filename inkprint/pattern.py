@@ -52,10 +52,11 @@ STEP_SAMPLE = 256
 
 def _elements(g: Group) -> tuple:
     """The group's elements: centroids (k, 2) sheet (row, col) [px], areas (k,)
-    [px], stats (k, 5) (x, y, w, h, area over the group's box) and labels."""
+    [px], OpenCV's stats (k + 1, 5) (x, y, w, h, area over the group's box; row
+    0: the background) and labels (1..k)."""
     _, lab, st, cen = components_with_stats(g.mask.view(np.uint8), connectivity=8)
     cen = cen[1:, ::-1] + [g.rows.start, g.cols.start]
-    return cen, st[1:, 4].astype(float), st[1:], lab
+    return cen, st[1:, 4].astype(float), st, lab
 
 
 def _typical(areas: np.ndarray) -> np.ndarray:
@@ -171,6 +172,14 @@ def join_pattern_pieces(prints: list, pieces: list) -> tuple[list, list]:
     joined = np.zeros(len(pieces), bool)
     if not pieces:
         return prints, joined
+    single = {}  # a piece's centroid when it is one element (a word's letters: None)
+
+    def centroid(i: int):
+        if i not in single:
+            own = _elements(pieces[i])[0]
+            single[i] = own[0] if len(own) == 1 else None
+        return single[i]
+
     out = []
     for g in prints:
         cen, areas, st, lab = _elements(g)
@@ -182,7 +191,7 @@ def join_pattern_pieces(prints: list, pieces: list) -> tuple[list, list]:
         steps = _steps(cen[typ])
         reach = np.linalg.norm(steps, axis=1).max() * 1.2
         tol = 0.5 * np.sqrt(med)
-        refs = typical_elements(lab, np.vstack([np.zeros((1, 5), st.dtype), st]), typ + 1)
+        refs = typical_elements(lab, st, typ + 1)
         anchors = cen.copy()
         grew = True
         while grew:
@@ -191,10 +200,9 @@ def join_pattern_pieces(prints: list, pieces: list) -> tuple[list, list]:
                 p = pieces[i]
                 if not PIECE_AREA[0] * med <= p.n_pixels <= PIECE_AREA[1] * med:
                     continue
-                own = _elements(p)[0]
-                if len(own) != 1:  # one element, not a word's letters
+                c = centroid(i)
+                if c is None:
                     continue
-                c = own[0]
                 d = np.linalg.norm(anchors - c, axis=1)
                 j = int(np.argmin(d))
                 if d[j] > reach:
