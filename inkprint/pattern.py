@@ -59,6 +59,13 @@ def _elements(g: Group) -> tuple:
     return cen, st[1:, 4].astype(float), st, lab
 
 
+def _one_element(p: Group) -> np.ndarray | None:
+    """The centroid (2,) sheet (row, col) [px] of a piece that is one element; None
+    for several (a word's letters)."""
+    own = _elements(p)[0]
+    return own[0] if len(own) == 1 else None
+
+
 def _typical(areas: np.ndarray) -> np.ndarray:
     """Indices of the elements within :data:`TYPICAL_SPREAD` of the median area."""
     med = np.median(areas)
@@ -172,14 +179,7 @@ def join_pattern_pieces(prints: list, pieces: list) -> tuple[list, list]:
     joined = np.zeros(len(pieces), bool)
     if not pieces:
         return prints, joined
-    single = {}  # a piece's centroid when it is one element (a word's letters: None)
-
-    def centroid(i: int):
-        if i not in single:
-            own = _elements(pieces[i])[0]
-            single[i] = own[0] if len(own) == 1 else None
-        return single[i]
-
+    single = {}  # piece -> its centroid, found once (a word's letters: None)
     out = []
     for g in prints:
         cen, areas, st, lab = _elements(g)
@@ -200,7 +200,9 @@ def join_pattern_pieces(prints: list, pieces: list) -> tuple[list, list]:
                 p = pieces[i]
                 if not PIECE_AREA[0] * med <= p.n_pixels <= PIECE_AREA[1] * med:
                     continue
-                c = centroid(i)
+                if i not in single:
+                    single[i] = _one_element(p)
+                c = single[i]
                 if c is None:
                     continue
                 d = np.linalg.norm(anchors - c, axis=1)
