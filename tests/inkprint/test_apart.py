@@ -149,3 +149,25 @@ def test_analyze_scan_ribs_far_over_the_limit_are_flagged(group_mm):
         )
     else:
         assert all("grouping_uncertain" in p.flags for p in found)
+
+
+@pytest.mark.parametrize(
+    ("second", "shift", "flagged"),
+    [(81.3, 0.0, True), (75.0, 0.0, False), (81.3, 5.0, False)],
+)
+def test_analyze_scan_two_prints_as_long_side_by_side_with_ends_level_are_flagged(
+    second, shift, flagged
+):
+    # held-out seed 7 sheet 3: a rib print whose middle ribs were set aside as ruler
+    # lines came out as two prints 81.3 mm long, 6.8 mm apart: one unflagged at
+    # -52 % width. Two such halves (ribbed prints 81.3 x 13 and x 7 mm, 6.8 mm
+    # apart, nearly rectangular: superellipses of exponent 8, straight sides) are
+    # flagged grouping_uncertain; a shorter neighbour, or one whose ends are 5 mm
+    # off, is a print of its own (two round prints: test_classes.py's
+    # test_group_blobs_side_by_side_prints_near_the_limit_are_flagged)
+    a = PrintSpec(81.3, 13.0, (80.0, 60.0), 0.0, "ribbed", exponent=8.0)
+    b = PrintSpec(second, 7.0, (80.0 + shift, 60.0 + 6.5 + 6.8 + 3.5), 0.0, "ribbed", exponent=8.0)
+    prints, _ = _analyze([a, b])
+    assert len(prints) == 2
+    for p in prints:
+        assert ("grouping_uncertain" in p.flags) == flagged, (p.flags, p.warnings)

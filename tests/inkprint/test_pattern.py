@@ -7,7 +7,7 @@ from numpy.testing import assert_allclose
 
 import inkprint as ip
 from inkprint.group import Group
-from inkprint.pattern import join_pattern_pieces
+from inkprint.pattern import join_pattern_pieces, mark_pieces
 from tests.inkprint.drawn import drawn_scan
 
 STEP = (60, 50)  # (row, col) [px] between knobs
@@ -129,3 +129,88 @@ def test_analyze_scan_sparse_knob_print_row_cut_to_dashes_is_kept_or_flagged():
     (pr,) = res.prints
     if pr.status == "ok":
         assert_allclose(pr.metrics.width, width, rtol=0.01)
+
+
+BAR = (80, 12)  # (rows, cols) [px] of a long bar (a chevron's arm, a rib's block)
+BAR_STEP = 30  # [px] between bars, along the columns
+
+
+def _bars(rows: int = 2, cols: int = 5) -> Group:
+    """A print of ``rows`` x ``cols`` long bars, ``BAR_STEP`` apart along the
+    columns and a bar and a half apart along the rows (sheet px, at the origin)."""
+    dy = BAR[0] + BAR[0] // 2
+    h, w = rows * dy, cols * BAR_STEP
+    mask = np.zeros((h, w), bool)
+    for r in range(rows):
+        for c in range(cols):
+            mask[r * dy : r * dy + BAR[0], c * BAR_STEP : c * BAR_STEP + BAR[1]] = True
+    return Group(slice(0, h), slice(0, w), mask)
+
+
+@pytest.mark.parametrize("end", ["top", "bottom"])
+def test_join_pattern_pieces_bar_cut_far_off_its_middle_joins(end):
+    # the next bar of the row cut by the outline to its top or bottom 30 rows: its
+    # centroid lies 25 px off the bar's (more than half a bar's side, 16 px), but
+    # it lies within a bar laid one step on
+    g = _bars()
+    y = 0 if end == "top" else BAR[0] - 30
+    p = _piece(y, 5 * BAR_STEP, np.ones((30, BAR[1]), bool))
+    out, joined = join_pattern_pieces([g], [p])
+    assert joined.all()
+    assert out[0].n_pixels == g.n_pixels + 30 * BAR[1]
+
+
+@pytest.mark.parametrize(
+    "where", [(0, 5 * BAR_STEP + BAR_STEP // 2), (BAR[0] + 5, 5 * BAR_STEP), (0, 10 * BAR_STEP)]
+)
+def test_join_pattern_pieces_bar_piece_off_the_lattice_stays_apart(where):
+    # half a step aside (in the groove), below the row's end (in the gap between the
+    # rows), or three steps out
+    g = _bars()
+    out, joined = join_pattern_pieces([g], [_piece(*where, np.ones((30, BAR[1]), bool))])
+    assert not joined.any() and out[0] is g
+
+
+def test_mark_pieces_whole_pieces_in_a_box_not_the_print_s():
+    ink = np.zeros((100, 120), bool)
+    ink[10:30, 10:25] = True  # a knob inside the box
+    ink[10:30, 40:50] = True  # a print's element reaching into the box
+    ink[50:54, 0:120] = True  # a line running on out of the box
+    ink[60:80, 60:75] = True  # a knob a one-pixel line runs through, on out of the box
+    ink[55:100, 67] = True
+    prt = Group(slice(0, 40), slice(40, 60), ink[0:40, 40:60].copy())
+    pieces, owner = mark_pieces(ink, [(5, 5, 90, 90)], [prt])
+    boxes = sorted((p.rows.start, p.cols.start, p.rows.stop, p.cols.stop) for p in pieces)
+    assert boxes == [(10, 10, 30, 25), (60, 60, 80, 75)]
+    assert owner == [0, 0]
+    assert all(p.mask.all() for p in pieces)
+
+
+@pytest.mark.parametrize(
+    ("length", "width", "ink", "text", "origin", "height", "stroke", "dpi"),
+    [
+        (43.3, 19.0, 0.77, "4.5 bar", (100.04, 152.0), 6.68, 0.39, 300.0),
+        (83.9, 37.0, 0.73, "39 psi", (105.27, 158.5), 4.69, 0.75, 150.0),
+    ],
+)
+def test_analyze_scan_label_beside_a_knurl_print_is_not_its_elements(
+    length, width, ink, text, origin, height, stroke, dpi
+):
+    # label sweep cases 142 and 220: a knurl print's lattice is so dense that any
+    # place beside it lies a step from an element, and the label's letters, pieces
+    # of marks set aside, were joined as its elements: width +16 % and +6 %
+    from inkprint.synth import PrintSpec, SheetSpec, render_sheet
+    from inkprint.synth_effects import Text
+
+    label = Text(text, origin, height, stroke, ink)
+    sheet = SheetSpec(
+        (PrintSpec(length, width, (105.0, 140.0), 0.0, "knurl", ink=ink),),
+        dpi=dpi,
+        seed=3,
+        specks=0,
+        marks=(label,),
+    )
+    img, (t,) = render_sheet(sheet)
+    res = ip.analyze_scan(ip.Scan(img, 25.4 / dpi, "given"), rolling_axis="x", sensitivity=False)
+    (p,) = res.prints
+    assert_allclose([p.metrics.length, p.metrics.width], [t.length, t.width], rtol=0.01)

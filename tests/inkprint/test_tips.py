@@ -285,3 +285,131 @@ def test_analyze_scan_bold_letter_touching_a_tip_is_set_apart(angle):
     (pr,) = res.prints
     _assert_within(_errors(pr.metrics, length, width, area))
     assert any(m.kind == "text" for m in res.marks)
+
+
+def _rib_print(length, width, rib, groove, dpi, *, speck=None, ss=4):
+    """A print of ribs along y (``rib`` wide, ``groove`` apart, one centred) in an
+    ellipse ``length`` (y) x ``width`` (x) [mm], in an 80 x 80 mm sheet, blurred
+    0.64 px; ``speck``: (gap, diameter [mm], outer) of a dust dot that far above the
+    tip of the middle rib (or the outermost rib). :func:`drawn_scan` of it, truth
+    (length along y, width along x, hull area) of the print without the speck."""
+    import cv2
+
+    from tests.inkprint.drawn import drawn_scan
+
+    mm = 25.4 / dpi / ss
+    n = int(80 / mm)
+    yy, xx = (np.mgrid[0:n, 0:n] - n / 2) * mm
+    pitch = rib + groove
+    ribs = np.mod(xx + rib / 2, pitch) < rib
+    ink = (ribs & ((2 * yy / length) ** 2 + (2 * xx / width) ** 2 <= 1.0)).astype(np.uint8)
+    _, _, (w, h, a) = drawn_scan(ink, dpi, ss, 0.6)
+    if speck is not None:
+        gap, d, outer = speck
+        c = round(n / 2 + (np.floor(width / 2 / pitch) * pitch if outer else 0.0) / mm)
+        cy = np.flatnonzero(ink[:, c]).min() - (gap + d / 2) / mm
+        cv2.circle(ink, (c, round(cy)), max(round(d / 2 / mm), 1), 1, -1)
+    grey, px, _ = drawn_scan(ink, dpi, ss, 0.6)
+    return cv2.GaussianBlur(grey, (0, 0), 0.64), px, (h, w, a)
+
+
+@pytest.mark.parametrize(
+    "length, width, rib, groove",
+    [
+        (9.0, 7.7, 1.73, 1.33),
+        (9.7, 7.3, 1.55, 1.35),
+        pytest.param(
+            12.3,
+            7.7,
+            1.6,
+            1.45,
+            marks=pytest.mark.xfail(
+                strict=True, reason="known limit: a 12 mm rib 1.6 mm wide is a ruler's line"
+            ),
+        ),
+        (8.9, 7.2, 2.8, 1.56),
+    ],
+)
+def test_analyze_scan_tiny_rib_print_at_600_dpi_is_a_print(length, width, rib, groove):
+    # held-out seeds 3, 4, 5 (sheets 36, 101, 36, 49): tiny prints of two or three
+    # ribs 1.5-1.7 mm wide (under two 0.9 mm strokes), or two 2.8 mm ribs 8.9 mm
+    # long (under RIB_PAIR_MM), set aside as "a letter or a mark": missing
+    grey, px, (ln, wd, area) = _rib_print(length, width, rib, groove, 600.0)
+    res = ip.analyze_scan(ip.Scan(grey, px, "given"), rolling_axis="y", sensitivity=False)
+    (pr,) = res.prints
+    _assert_within(_errors(pr.metrics, ln, wd, area))
+
+
+@pytest.mark.parametrize("text", ["=", "III", "II", "E"])
+def test_analyze_scan_marker_bars_are_no_tiny_rib_print(text):
+    # a marker's bars (0.9 mm strokes, 7 mm high letters) alone on a sheet: the
+    # controls for the rib rules above
+    img, _ = render_sheet(
+        SheetSpec(
+            (), dpi=600.0, size=(60.0, 40.0), marks=(Text(text, (20.0, 15.0), 7.0, 0.9),), seed=3
+        )
+    )
+    with pytest.raises(ip.NoInk):
+        ip.analyze_scan(ip.Scan(img, 25.4 / 600.0, "given"), sensitivity=False)
+
+
+@pytest.mark.parametrize("gap, outer", [(1.9, False), (2.8, True), (2.8, False)])
+@pytest.mark.parametrize("dpi", [300.0, 600.0])
+def test_analyze_scan_dust_speck_off_a_rib_print_s_tip_is_an_edge_spot(gap, outer, dpi):
+    # held-out seeds 2, 3, 6 (sheets 38, 103, 74): a dust dot 1.9-2.8 mm off a
+    # print's tip, within twice its tread gap, kept as a tip block: length +1.8 %,
+    # +5.4 %, +8.3 % with status ok (drawn, a 0.3 mm dot: +6.4 % and +0.9 % at
+    # 300 dpi before)
+    grey, px, (ln, wd, area) = _rib_print(33.3, 16.7, 2.9, 1.7, dpi, speck=(gap, 0.3, outer))
+    res = ip.analyze_scan(ip.Scan(grey, px, "given"), rolling_axis="y", sensitivity=False)
+    (pr,) = res.prints
+    _assert_within(_errors(pr.metrics, ln, wd, area))
+
+
+def _siped_blocks(tip: str) -> np.ndarray:
+    """Three rows of six blocks 30 x 16 px (cols x rows), 8 px apart, each with a
+    closed sipe 3 px wide across its middle; the middle row runs on at the left
+    with ``tip``: 'frame', a block the outline cut 3 px left of its sipe (a 3 px
+    strip and 3 px frame bars left of the sipe, its right half solid), or
+    'stroke', a pen stroke 3 px wide and 40 px long reaching out of a whole block."""
+    mask = np.zeros((3 * 24 + 8, 8 * 38 + 60), bool)
+
+    def block(x0, y0, x_from=0):
+        b = np.ones((16, 30), bool)
+        b[3:13, 13:16] = False  # the sipe
+        b[:, :x_from] = False
+        mask[y0 : y0 + 16, x0 : x0 + 30] |= b
+
+    for r in range(3):
+        for c in range(6):
+            block(90 + c * 38, 8 + r * 24)
+    if tip == "frame":
+        block(90 - 38, 32, x_from=10)  # 3 px strip (10-12), the sipe (13-15)
+    else:
+        block(90 - 38, 32)
+        mask[38:41, 90 - 38 - 40 : 90 - 38] = True
+    return mask
+
+
+def test_thin_protrusions_keep_a_cut_siped_block_s_frame():
+    # held-out seed 6 sheet 87: a siped block at a print's tip cut through near its
+    # sipe kept a frame thinner than a stroke, dropped as a label's foot: length
+    # -1.55 % with status ok
+    mask = _siped_blocks("frame")
+    out = thin_protrusions(mask, width_px=6.0)
+    assert np.flatnonzero(out.any(axis=0)).min() == 90 - 38 + 10
+    assert out.sum() == mask.sum()
+
+
+@pytest.mark.parametrize("tip, copy", [("frame", True), ("stroke", False)])
+def test_frame_copies_a_cut_block_s_frame_not_a_stroke_s(tip, copy):
+    import cv2
+
+    from inkprint.pattern import frame_copies
+
+    mask = _siped_blocks(tip)
+    _, lab, st, _ = cv2.connectedComponentsWithStats(mask.view(np.uint8), connectivity=8)
+    k = lab[40, 90 - 38 + 20]  # the tip block's piece
+    part = np.zeros_like(mask)
+    part[:, : 90 - 38 + 13] = mask[:, : 90 - 38 + 13]  # left of its sipe
+    assert frame_copies(lab, st, np.array([k]), part=part).tolist() == [copy]

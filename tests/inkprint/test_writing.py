@@ -332,3 +332,39 @@ def test_analyze_scan_row_of_chevrons_is_a_print(dpi, length, width, pitch, bar)
     assert pr.flags == (), pr.warnings
     assert_allclose([pr.metrics.length, pr.metrics.width], [t_len, t_wid], rtol=0.01)
     assert_allclose(pr.metrics.hull_area, t_area, rtol=0.02)
+
+
+def _siped_two_rows(dpi: float, ss: int = 4) -> tuple:
+    """A 78 x 18.2 mm print (a rounded rectangle along y, corners 3 mm) of blocks
+    9.5 mm across and 7 mm along in two rows 2.9 mm apart, each block with three
+    0.6 mm sipes across it inside a 1 mm frame; the outline cuts the outer row's
+    blocks open, to 'E's (held-out seed 3 sheet 9 page 2). :func:`drawn_scan` of it,
+    truth (length along y, width along x, hull area)."""
+    from tests.inkprint.drawn import drawn_scan
+
+    mm = 25.4 / dpi / ss
+    h, w = int(100 / mm), int(50 / mm)
+    yy, xx = (np.mgrid[0:h, 0:w] - [[[h / 2]], [[w / 2]]]) * mm
+    blocks = np.zeros((h, w), bool)
+    for x0 in (-9.1, 3.3):  # the outer row runs 3.7 mm past the outline
+        for y0 in np.arange(-39.0, 39.0, 9.9):
+            u, v = xx - x0, yy - y0
+            block = (u >= 0) & (u <= 9.5) & (v >= 0) & (v <= 7.0)
+            slits = (u >= 1.0) & (u <= 8.5) & (np.abs(np.mod(v - 1.45, 1.75) - 0.3) <= 0.3)
+            blocks |= block & ~(slits & (v <= 6.0))
+    r = 3.0
+    qx, qy = np.maximum(np.abs(xx) - (9.1 - r), 0), np.maximum(np.abs(yy) - (39.0 - r), 0)
+    ink = (blocks & (qx**2 + qy**2 <= r * r)).astype(np.uint8)
+    grey, px, (w_mm, h_mm, area) = drawn_scan(ink, dpi, ss, 0.6)
+    return grey, px, (h_mm, w_mm, area)
+
+
+@pytest.mark.parametrize("dpi", [200.0, 300.0])
+def test_analyze_scan_siped_blocks_cut_to_e_s_are_a_print(dpi):
+    grey, px, (length, width, area) = _siped_two_rows(dpi)
+    res = ip.analyze_scan(ip.Scan(grey, px, "given"), rolling_axis="y", sensitivity=False)
+    (p,) = res.prints
+    if p.status == "ok":
+        m = p.metrics
+        assert_allclose([m.length, m.width], [length, width], rtol=0.01)
+        assert_allclose(m.hull_area, area, rtol=0.02)
