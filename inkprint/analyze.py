@@ -2905,6 +2905,12 @@ def _lone_elements(prints: list, mm_per_px: float, opts: AnalysisOptions) -> lis
                     f"--group-mm over the gap",
                 )
                 break
+    return _uncertain_grouping(prints, notes)
+
+
+def _uncertain_grouping(prints: list, notes: dict) -> list:
+    """``prints`` with those in ``notes`` ({index: warning}) flagged
+    ``grouping_uncertain`` and warned."""
     out = list(prints)
     for i, why in notes.items():
         p = out[i]
@@ -2970,12 +2976,7 @@ def _split_twins(prints: list, mm_per_px: float, opts: AnalysisOptions) -> list:
                 f"set aside as lines or writing)? Both are uncertain; see the overlay, or "
                 f"give --group-mm over the gap",
             )
-    out = list(prints)
-    for i, why in notes.items():
-        p = out[i]
-        flags = p.flags if "grouping_uncertain" in p.flags else (*p.flags, "grouping_uncertain")
-        out[i] = dataclasses.replace(p, flags=flags, warnings=(*p.warnings, why))
-    return out
+    return _uncertain_grouping(prints, notes)
 
 
 def no_print_message(found: FoundPrints) -> str:
