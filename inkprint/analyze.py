@@ -2951,11 +2951,11 @@ def _split_twins(prints: list, mm_per_px: float, opts: AnalysisOptions) -> list:
     list of PrintResult
         The same, flagged where it applies.
     """
-    if len(prints) < 2:
-        return prints
     hulls = [_hull_mm(p, mm_per_px) for p in prints]
     notes = {}
-    for i, j in itertools.combinations(range(len(prints)), 2):
+    # (a hull that is no polygon, a line of pixels, has no sides to compare)
+    ok = [h.geom_type == "Polygon" and not h.is_empty for h in hulls]
+    for i, j in itertools.combinations(np.flatnonzero(ok), 2):
         a, b = prints[i].metrics, prints[j].metrics
         turn = abs((a.orientation - b.orientation + np.pi / 2) % np.pi - np.pi / 2)
         if turn > np.deg2rad(TWIN_ANGLE_DEG) or abs(a.length - b.length) > TWIN_ENDS * a.length:
