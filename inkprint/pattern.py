@@ -158,6 +158,32 @@ def typical_elements(labels: np.ndarray, stats: np.ndarray, ids: np.ndarray) -> 
     return out
 
 
+def _hull_mask(piece: np.ndarray) -> tuple:
+    """A piece's (uint8 0/1 crop) ink pixels (OpenCV points; None for no ink) and
+    its convex hull filled, uint8 0/1 (None for no ink)."""
+    import cv2
+
+    pts = cv2.findNonZero(piece)
+    if pts is None:
+        return None, None
+    return pts, cv2.fillConvexPoly(np.zeros(piece.shape, np.uint8), cv2.convexHull(pts), 1)
+
+
+def _best_shifts(piece: np.ndarray, hull: np.ndarray, refs: list):
+    """For each of ``refs`` at least as large as ``piece`` (uint8 0/1 crop), in
+    order: (ref, row, col, mismatch) of ``piece`` laid over it at the best shift,
+    the squared difference summed within its ``hull`` (:func:`_hull_mask`)."""
+    import cv2
+
+    p, m = piece.astype(np.float32), hull.astype(np.float32)
+    for e in refs:
+        if e.shape[0] < p.shape[0] or e.shape[1] < p.shape[1]:
+            continue
+        miss = cv2.matchTemplate(e, p, cv2.TM_SQDIFF, mask=m)
+        r, c = np.unravel_index(int(np.argmin(miss)), miss.shape)
+        yield e, r, c, float(miss[r, c])
+
+
 def whole_copies(labels: np.ndarray, stats: np.ndarray, ids: np.ndarray) -> int:
     """How many of a group's pieces are whole copies of one of its typical elements
     (:func:`typical_elements`; the element the most are copies of): laid over it at
@@ -184,13 +210,14 @@ def whole_copies(labels: np.ndarray, stats: np.ndarray, ids: np.ndarray) -> int:
     for k in ids:
         x, y, w, h = stats[k, :4]
         crops.append((labels[y : y + h, x : x + w] == k).astype(np.float32))
+    sums = [float(p.sum()) for p in crops]
     most = 0
     for e in refs:
         n_e, count = float(e.sum()), 0
-        for p in crops:
+        for p, n_p in zip(crops, sums, strict=True):
             pad = ((p.shape[0], p.shape[0]), (p.shape[1], p.shape[1]))
             both = float(cv2.matchTemplate(np.pad(e, pad), p, cv2.TM_CCORR).max())
-            count += both >= WHOLE_IOU * (n_e + float(p.sum()) - both)
+            count += both >= WHOLE_IOU * (n_e + n_p - both)
         most = max(most, count)
     return most
 
@@ -220,8 +247,6 @@ def frame_copies(
     -------
     (k,) bool
     """
-    import cv2
-
     # (the other pieces' typical elements: a block with a stroke can be typical)
     refs = typical_elements(labels, stats, np.setdiff1d(np.arange(1, len(stats)), ids))
     out = np.zeros(len(ids), bool)
@@ -229,15 +254,9 @@ def frame_copies(
         x, y, w, h = stats[k, :4]
         piece = (labels[y : y + h, x : x + w] == k).view(np.uint8)
         own = part[y : y + h, x : x + w] & piece.view(bool)
-        pts = cv2.findNonZero(piece)
-        hull = cv2.fillConvexPoly(np.zeros(piece.shape, np.uint8), cv2.convexHull(pts), 1)
-        p, m = piece.astype(np.float32), hull.astype(np.float32)
-        for e in refs:
-            if e.shape[0] < h or e.shape[1] < w:
-                continue
-            miss = cv2.matchTemplate(e, p, cv2.TM_SQDIFF, mask=m)
-            r, c = np.unravel_index(int(np.argmin(miss)), miss.shape)
-            if miss[r, c] > MISMATCH * len(pts):
+        pts, hull = _hull_mask(piece)
+        for e, r, c, miss in _best_shifts(piece, hull, refs):
+            if miss > MISMATCH * len(pts):
                 continue
             if np.count_nonzero(own & (e[r : r + h, c : c + w] == 0)) <= MISMATCH * own.sum():
                 out[i] = True
@@ -263,22 +282,13 @@ def cut_copy(piece: np.ndarray, refs: list, *, solid: float = 1.0) -> bool:
     -------
     bool
     """
-    import cv2
-
     piece = piece.view(np.uint8)
-    pts = cv2.findNonZero(piece)
+    pts, hull = _hull_mask(piece)
     if pts is None or not refs:
         return False
-    hull = cv2.fillConvexPoly(np.zeros(piece.shape, np.uint8), cv2.convexHull(pts), 1)
     if len(pts) >= solid * np.count_nonzero(hull) and solid < 1.0:
         return False
-    p, m = piece.astype(np.float32), hull.astype(np.float32)
-    for e in refs:
-        if e.shape[0] < p.shape[0] or e.shape[1] < p.shape[1]:
-            continue
-        if cv2.matchTemplate(e, p, cv2.TM_SQDIFF, mask=m).min() <= MISMATCH * len(pts):
-            return True
-    return False
+    return any(miss <= MISMATCH * len(pts) for *_, miss in _best_shifts(piece, hull, refs))
 
 
 def laid_elements(refs: list, tol: float) -> list:
@@ -352,8 +362,7 @@ def placed_copy(piece: Group, anchors: np.ndarray, steps: np.ndarray, *, laid: l
         if not len(near):
             continue
         if paper is None:
-            hull = cv2.convexHull(cv2.findNonZero(mask))
-            hull = cv2.fillConvexPoly(np.zeros(mask.shape, np.uint8), hull, 1)
+            hull = _hull_mask(mask)[1]
             paper = np.argwhere((hull > 0) & (mask == 0)) + origin
         miss = _outside(ink, near, ce, grown, True) + _outside(paper, near, ce, shrunk, False)
         if (miss <= MISMATCH * len(ink)).any():
@@ -452,9 +461,10 @@ def mark_pieces(ink: np.ndarray, boxes: list, prints: list) -> tuple[list, list]
     A mark set aside before grouping (a letter, a straight line) can be one of a
     print's elements: a knob cut by the outline beside a gridline, or under a
     ruler's ticks, read as a letter (held-out seed 5 sheet 109 and seed 1 sheet 69:
-    a corner knob left out, hull area -3.9 % and -3.7 % with status ok), a chevron print's last bars, cut straight by its outline, read as
-    lines (seed 2 sheet 40: -3.9 %). Only boxes within half a print's longer side
-    of its box are looked into.
+    a corner knob left out, hull area -3.9 % and -3.7 % with status ok), a chevron
+    print's last bars, cut straight by its outline, read as lines (seed 2 sheet 40:
+    -3.9 %). Only boxes within half a print's longer side of its box are looked
+    into.
 
     Parameters
     ----------
