@@ -1721,13 +1721,17 @@ def _bar_tread(lab: np.ndarray, st: np.ndarray, ks: np.ndarray, ctx: _Context) -
     a line ((k,) bool): a herringbone print's bars off its centre rib reach 3 x
     beyond it; the pieces like them (:func:`inkprint.marks._like_bars`: its last
     bars, farther apart) are too."""
-    from .marks import BAR_FIELD_MIN, _bar_field, _like_bars, _piece_rects
+    from .marks import BAR_FIELD_MIN, _bar_field, _comb_teeth, _like_bars, _piece_rects
 
     if len(ks) < BAR_FIELD_MIN:
         return np.zeros(len(ks), bool)
     rects, corners = _piece_rects(lab, st, ks)
-    field = _bar_field(rects, corners, ctx.scan.mm_per_px)
-    return field | _like_bars(rects, corners, field)
+    px = ctx.scan.mm_per_px
+    field = _bar_field(rects, corners, px)
+    # (a comb's teeth, :func:`inkprint.marks._comb_teeth`: a car print's shoulder
+    # bars 7 widths apart; all of this print, a share of it no body can be under)
+    comb = _comb_teeth(rects, corners, (np.zeros(len(ks), int), np.zeros(len(ks))), px)
+    return field | _like_bars(rects, corners, field) | comb
 
 
 def _under_text(ctx: _Context, g: Group, kept: np.ndarray) -> np.ndarray | None:

@@ -103,6 +103,9 @@ BAR_SPACING = 4.0
 #: print, lie 5.2 mm apart along themselves; held-out 11 sheet 21, 150 dpi)
 BAR_ALONG = 0.75
 BAR_MAX_MM = 40.0
+#: a comb's teeth (bars reaching out of one print's body) lie side by side with no gap
+#: over this many times their median gap (see ``_comb_teeth``)
+COMB_GAP = 2.5
 #: ... nor a chevron's arms: two meeting end to end within CHEVRON_GAP of their
 #: widths, turned CHEVRON_TURN_DEG or more from each other (see ``_chevron_arms``)
 CHEVRON_GAP = 2.0
@@ -356,7 +359,11 @@ def _split(pooled: _Pooled, opts: AnalysisOptions) -> _Parts:
         core[box] = cv2.morphologyEx(opened[box], cv2.MORPH_OPEN, core_disk)
         skinny = opened[box] & ~core[box]
         origin = (box[0].start, box[1].start)
-        opened[box] &= ~_straight_skinny(skinny, pooled, opts, origin=origin)
+        lines, teeth = _straight_skinny(skinny, pooled, opts, origin=origin)
+        opened[box] &= ~lines
+        # (a comb's teeth count into the print's hull as its body does: dust at
+        # their tips is the print's, not a pen mark on its outline)
+        core[box] |= teeth
     n1, l1, s1, _ = components_with_stats_in(opened, box, connectivity=8)
     area = s1[:, cv2.CC_STAT_AREA]
     keep = area >= MIN_THICK_DISKS * disk
@@ -547,10 +554,10 @@ def _nearest_within(pts: np.ndarray, k: int, radius: float) -> tuple:
 
 def _straight_skinny(
     skinny: np.ndarray, pooled: _Pooled, opts: AnalysisOptions, *, origin: tuple = (0, 0)
-) -> np.ndarray:
+) -> tuple[np.ndarray, np.ndarray]:
     """Of the thick ink narrower than two strokes (``skinny``, uint8, a box of the
-    pooled mask whose first row and column are ``origin``), the straight lines
-    (uint8 over the box): pieces at least ``line_length_mm`` long and at most two
+    pooled mask whose first row and column are ``origin``), the straight lines and
+    a comb's teeth (:func:`_comb_teeth`; uint8 over the box each): lines are pieces at least ``line_length_mm`` long and at most two
     strokes wide along their whole length (a ruler's or a drawn line thick enough
     to survive the opening, where it crosses a print too; a rib follows the outline
     or is wider).
@@ -567,8 +574,8 @@ def _straight_skinny(
     ks = np.flatnonzero(px_to_mm_length(long, pooled.px_mm) >= opts.line_length_mm)
     ks = ks[ks > 0]
     if not len(ks):
-        return out
-    bars = []  # the straight narrow pieces: ((y, x), piece, rectangle)
+        return out, out
+    bars, runs = [], []  # the straight narrow pieces, and lines run through wider ones
     for k in ks:
         x, y, w, h = stats[k, :4]
         r, c = _first_pixel(lab, stats, k)
@@ -581,14 +588,22 @@ def _straight_skinny(
         narrow = px_to_mm_length(min(a, b) + 1, pooled.px_mm) <= 2.0 * opts.stroke_width_mm
         if narrow and px_to_mm_length(max(a, b) + 1, pooled.px_mm) >= opts.line_length_mm:
             bars.append(((y, x), piece, rect))
-        elif not narrow:
-            out[y : y + h, x : x + w] |= _line_run(piece, pooled.px_mm, opts)
+        elif not narrow and (run := _line_run(piece, pooled.px_mm, opts)).any():
+            runs.append(((y, x), run, cv2.minAreaRect(outline_points(run))))
     rects, corners = [r for _, _, r in bars], [c for c, _, _ in bars]
     tread = _bar_field(rects, corners, pooled.px_mm) | _chevron_arms(rects, corners)
-    for ((y, x), piece, _), bar in zip(bars, tread, strict=True):
-        if not bar:
-            out[y : y + piece.shape[0], x : x + piece.shape[1]] |= piece
-    return out
+    tread = np.r_[tread, np.zeros(len(runs), bool)]
+    comb = np.zeros(len(tread), bool)
+    if len(tread) >= BAR_FIELD_MIN:
+        lines = bars + runs
+        rects, corners = [r for _, _, r in lines], [c for c, _, _ in lines]
+        comb = _comb_teeth(rects, corners, _owners(lines, pooled, origin), pooled.px_mm)
+    teeth = np.zeros(skinny.shape, np.uint8)
+    for ((y, x), piece, _), bar, tooth in zip(bars + runs, tread, comb, strict=True):
+        if tooth or not bar:
+            (teeth if tooth else out)[y : y + piece.shape[0], x : x + piece.shape[1]] |= piece
+    teeth[out > 0] = 0
+    return out, teeth
 
 
 def _bar_field(rects: list, corners: list, px_mm: float) -> np.ndarray:
@@ -625,6 +640,55 @@ def _bar_field(rects: list, corners: list, px_mm: float) -> np.ndarray:
     comp = union_labels(n, i, j)
     sizes = np.bincount(comp, minlength=n)
     return sizes[comp] >= BAR_FIELD_MIN
+
+
+def _owners(bars: list, pooled: _Pooled, origin: tuple) -> tuple:
+    """The ink piece of the pooled mask each straight narrow piece belongs to (its
+    label, (k,) int) and each piece's share of that piece's ink ((k,) float):
+    ``bars`` as :func:`_straight_skinny`'s ((row, col) in the box at ``origin``,
+    uint8 crop, rectangle)."""
+    _n, lab, stats, _ = components_with_stats(pooled.mask.view(np.uint8), connectivity=8)
+    own, share = [], []
+    for (y, x), piece, _ in bars:
+        r, c = np.argwhere(piece)[0]
+        k = lab[y + r + origin[0], x + c + origin[1]]
+        own.append(k)
+        share.append(np.count_nonzero(piece) / stats[k, 4])
+    return np.array(own), np.array(share)
+
+
+def _comb_teeth(rects: list, corners: list, owners: tuple, px_mm: float) -> np.ndarray:
+    """Which straight narrow pieces are the teeth of a print's comb, not lines: at
+    least :data:`BAR_FIELD_MIN` of one ink piece with a body (together under half
+    its ink), turned alike within :data:`BAR_ANGLE_DEG` of their median, none longer
+    than :data:`BAR_MAX_MM`, side by side at as many places across them at least two
+    widths apart, no gap between neighbours over :data:`COMB_GAP` times the median gap
+    (a tooth missing doubles one; a car print's
+    shoulder bars 1 mm wide and 7 mm apart reaching out of its rib, held-out set 1
+    file 3 page 2: 15 "ruler lines", width -12.6 %, unflagged; :func:`_bar_field`
+    asks for bars within 4 widths). A ruler across a print leaves two pieces on one
+    line, or four on two; ``rects``, ``corners``: as :func:`_bar_field`'s;
+    ``owners``: :func:`_owners`. (k,) bool."""
+    owner, share = owners
+    out = np.zeros(len(rects), bool)
+    centre, long, wide, u, _ = _bars(rects, corners)
+    angle = np.arctan2(u[:, 1], u[:, 0])
+    for k in np.unique(owner):
+        mine = np.flatnonzero(owner == k)
+        if len(mine) < BAR_FIELD_MIN or share[mine].sum() >= 0.5:
+            continue
+        mid = np.angle(np.median(np.exp(2j * angle[mine]))) / 2  # (the axis, 0-180)
+        turn = np.degrees(np.abs(np.angle(np.exp(2j * (angle[mine] - mid))))) / 2
+        teeth = mine[(turn <= BAR_ANGLE_DEG) & (px_to_mm_length(long[mine], px_mm) <= BAR_MAX_MM)]
+        if len(teeth) < BAR_FIELD_MIN:
+            continue
+        normal = np.array([-np.sin(mid), np.cos(mid)])
+        across = np.sort(centre[teeth] @ normal)
+        gaps = np.diff(across)
+        gaps = gaps[gaps > 2.0 * np.median(wide[teeth])]  # (two pieces of one line: one)
+        if len(gaps) + 1 >= BAR_FIELD_MIN and gaps.max() <= COMB_GAP * np.median(gaps):
+            out[teeth] = True
+    return out
 
 
 def _like_bars(rects: list, corners: list, field: np.ndarray) -> np.ndarray:
@@ -1152,7 +1216,7 @@ class _BoldJudge:
         if not taken.any():
             return els[:0], box, cut, tread
         blobs = [i for i, k in kinds.items() if k == "blob"]
-        if blobs and not (~is_body & ~reach).any():
+        if blobs and not self._blocks_inside(els, ~is_body & ~reach, box, hull):
             # no element like a block inside the body's hull (its tread has none):
             # the blobs chained to a stroke within the distance are letters too
             strokes += self._chained(blobs, els, local, taken)
@@ -1170,7 +1234,11 @@ class _BoldJudge:
         from .pattern import cut_copy, typical_elements
 
         strokes = [i for i, k in kinds.items() if k == "stroke"]
-        refs = typical_elements(self.parts.thick, self.st, els) if strokes else []
+        # (the typical elements of the others: a label's letters below a slick
+        # print's tip, 12 of its 14 elements, were its "tread", each letter a copy
+        # of it: held-out set 1 file 30, width +226 %, unflagged)
+        own = np.setdiff1d(np.arange(len(els)), strokes)
+        refs = typical_elements(self.parts.thick, self.st, els[own]) if strokes else []
         if not refs:
             return kinds
         out = dict(kinds)
@@ -1253,9 +1321,12 @@ class _BoldJudge:
             return out, cut
         idx = np.flatnonzero(straight)
         field = np.zeros(len(rects), bool)
-        field[idx] = _bar_field(
-            [rects[j] for j in idx], [corners[j] for j in idx], self.pooled.px_mm
-        )
+        sel = [rects[j] for j in idx], [corners[j] for j in idx]
+        field[idx] = _bar_field(*sel, self.pooled.px_mm)
+        if not field.any():  # (a comb's teeth lie farther apart: all of this print)
+            share = np.asarray(area, float)[idx] / self.st[els, 4].sum()
+            owners = np.zeros(len(idx), int), share
+            field[idx] = _comb_teeth(*sel, owners, self.pooled.px_mm)
         if not field.any():
             return out, cut
         crops = [_crop(self.parts.thick, self.st, k).view(np.uint8) for k in els[strokes]]
@@ -1436,6 +1507,19 @@ class _BoldJudge:
                 x, y = x + wx, y + wy
             kinds[i] = self.judge(piece, np.array([x - x0, y - y0], float), hull, self.over)
         return kinds, reach
+
+    def _blocks_inside(self, els, near: np.ndarray, box, hull) -> bool:
+        """Whether any of the elements ``near`` ((k,) bool over ``els``: reaching no
+        farther than ``mark_overhang_mm`` out of the body's hull, (m, 2) (x, y) over
+        ``box``) has its centre inside the hull: a tread block. A bold letter
+        touching a slick print's tip lies against the hull, its centre out (held-out
+        set 1 file 30: 'T6 2.4bar 360N' below a tip; its 'a' held the rule off, the
+        label joined the print: width +226 %, unflagged)."""
+        if not near.any():
+            return False
+        st = self.st[els[near]]
+        centre = st[:, :2] + 0.5 * (st[:, 2:4] - 1) - np.array([box[1].start, box[0].start])
+        return bool((_outside_distance(centre.astype(float), hull) < 0).any())
 
     def _chained(self, blobs: list, els, local, taken) -> list:
         """Of the blobs (element indices), those within ``group_distance_mm`` of the

@@ -13,6 +13,7 @@ cannot be measured an error row, nothing silently wrong. Run a whole set with
 
 from collections import Counter
 
+import numpy as np
 import pytest
 
 from inkprint.batch import Options, run_batch
@@ -56,3 +57,57 @@ def test_independent_sheets_every_class_is_measured(outcomes):
     measurable = [o for o in outcomes if o.get("expect") == "measure"]
     passed = [o for o in measurable if o["outcome"] == "pass"]
     assert len(passed) >= 0.9 * len(measurable), Counter(o["outcome"] for o in measurable)
+
+
+def _sheet_of_set(d, seed: int, index: int) -> list:
+    """Sheet ``index`` of the independent set ``seed`` (as ``gen.make_set`` makes
+    it; not a PDF, not a dpi sheet), batched into ``d``: its outcomes."""
+    import csv
+    import json
+    import os
+
+    master = np.random.default_rng(seed)
+    order = []
+    while len(order) <= index:
+        order += list(master.permutation(gen.CLASSES))
+    cls = order[index]
+    assert cls not in ("pdf", "dpi"), cls
+    rng = np.random.default_rng([seed, index])
+    page, prints, info = gen.build_sheet(rng, cls)
+    stem = os.path.join(d, f"s{seed}_{index:03d}_{cls}")
+    path, _ = gen.save_image(rng, stem, page, page.img, page.dpi)
+    fname = os.path.basename(path)
+    rows = {
+        "manifest.csv": [gen.manifest_row(fname, None, info["rolling_axis"], rng)],
+        "truth.csv": gen.truth_rows(fname, 0, cls, prints),
+    }
+    info.update({"file": fname, "page": 0})
+    with open(os.path.join(d, "sheets.json"), "w") as fh:
+        json.dump([info], fh, default=str)
+    for name, table in rows.items():
+        with open(os.path.join(d, name), "w", newline="") as fh:
+            w = csv.DictWriter(fh, fieldnames=list(table[0]))
+            w.writeheader()
+            w.writerows(table)
+    run_batch(
+        None,
+        d / "results.csv",
+        manifest=d / "manifest.csv",
+        options=Options(sensitivity=False),
+        workers=1,
+        progress=False,
+        resume=False,
+    )
+    return score.score(str(d))[0]
+
+
+def test_independent_sheet_bold_label_below_a_tip_is_no_part_of_the_print(tmp_path):
+    # set 1 sheet 30: a marker's 'T6 2.4bar 360N' (6.1 mm, 14 letters) touching a
+    # slick print's tip; 12 of the print's 14 elements were letters, so its
+    # "typical element" was a letter and every letter a copy of it: the label
+    # joined the print, width +226 %, status ok
+    out = _sheet_of_set(tmp_path, 1, 30)
+    assert len(out) == 3
+    assert not [o for o in out if o["outcome"] in SILENT], out
+    first = [o for o in out if abs(float(o["truth"]["length_mm"]) - 65.89) < 0.01]
+    assert first and first[0]["outcome"] in ("pass", "flagged") and first[0].get("within")

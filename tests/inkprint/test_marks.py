@@ -611,3 +611,44 @@ def test_analyze_scan_siped_blocks_cut_at_the_tips_are_tread(dpi, length, shift)
     assert pr.status == "ok", pr.warnings
     assert_allclose([pr.metrics.length, pr.metrics.width], [want_l, want_w], rtol=0.01)
     assert_allclose(pr.metrics.hull_area, want_a, rtol=0.02)
+
+
+def _comb_print(dpi: float, teeth: int, ss: int = 3) -> tuple:
+    """A car-like print 130 mm along x and 110 mm across: a solid body whose
+    shoulder, the outer 16 mm on one side, is ``teeth`` bars 1.2 mm wide and 7 mm apart reaching to the outline (held-out set 1
+    file 3 page 2). :func:`drawn_scan` of it: grey, mm per px, (length along x,
+    width along y, hull area) of the drawn ink."""
+    mm = 25.4 / dpi / ss
+    h, w = int(150 / mm), int(170 / mm)
+    yy, xx = np.mgrid[0:h, 0:w] * mm
+    u, v = xx - 85.0, yy - 75.0
+    inside = (u / 65.0) ** 2 + (v / 55.0) ** 2 <= 1.0
+    centres = 7.0 * (np.arange(teeth) - (teeth - 1) / 2)
+    bars = (np.abs(u[..., None] - centres) <= 0.6).any(axis=-1)
+    ink = (inside & ((v > -39.0) | bars)).astype(np.uint8)
+    return drawn_scan(ink, dpi, ss, 0.6)
+
+
+@pytest.mark.parametrize("dpi", [150.0, 300.0])
+def test_analyze_scan_comb_of_shoulder_bars_is_the_print_s(dpi):
+    # held-out set 1 file 3 page 2: a car print's shoulder bars, 1.2 mm wide and
+    # 7 mm apart (too far apart for a bar field), were 15 "ruler lines": width
+    # -12.6 %, status ok
+    grey, px, (length, width, area) = _comb_print(dpi, 15)
+    res = ip.analyze_scan(ip.Scan(grey, px, "given"), rolling_axis="x", sensitivity=False)
+    (p,) = res.prints
+    assert p.status == "ok", p.warnings
+    m = p.metrics
+    assert_allclose([m.length, m.width, m.hull_area], [length, width, area], rtol=(0.01))
+    assert not any(mk.kind == "line" for mk in res.marks)
+
+
+@pytest.mark.parametrize("teeth", [2, 3])
+def test_analyze_scan_two_or_three_bars_out_of_a_print_are_no_comb(teeth):
+    # the control: two or three straight bars reaching out of a print are lines (a
+    # ruler's edges) as before; the print is measured without them, and flagged
+    grey, px, (_, width, _) = _comb_print(150.0, teeth)
+    res = ip.analyze_scan(ip.Scan(grey, px, "given"), rolling_axis="x", sensitivity=False)
+    (p,) = res.prints
+    assert p.metrics.width < 0.9 * width
+    assert sum(mk.kind == "line" for mk in res.marks) == teeth
