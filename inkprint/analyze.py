@@ -76,6 +76,11 @@ from .results import BAND_KEYS, PrintResult, SheetResult, contact_pressure, mark
 from .stack import join_stacks, stroke_stacks
 
 AXES = ("auto", "x", "y")
+#: the width of a print is good to about this much [px] (its two edges' sub-pixel
+#: positions under blur, JPEG and ink mottle): held-out prints 18-24 px wide at 150
+#: dpi read +0.15..+0.23 px wide (+0.7..+1.24 %); under CORNER_FLAG / EDGE_PX = 25 px
+#: across a print is flagged ``coarse`` (:func:`_coarse_flag`)
+EDGE_PX = 0.25
 #: a print whose outline holds more than this share of a letter's box set aside, and
 #: is shorter or narrower without its letter-sized pieces beside it by more than
 #: ``edge_uncertainty``, is flagged ``mark_on_edge`` (:func:`_letters_pull`)
@@ -916,11 +921,23 @@ def _join_pattern_marks(kept: list, short: list, marks: list, ink: np.ndarray) -
 
 def _coarse_flag(group: Group, metrics, index: int, mm_per_px: float) -> tuple:
     """``('coarse_elements', warning)`` for a print of separate elements too few
-    pixels wide or long (:func:`inkprint.lattice.coarse_elements`), else ``()``."""
+    pixels wide or long (:func:`inkprint.lattice.coarse_elements`); ``('coarse',
+    warning)`` for a print so few pixels wide (or long) that :data:`EDGE_PX` is
+    more than ``CORNER_FLAG`` of that; else ``()``."""
     width_mm, length_mm = metrics.width, metrics.length
     short = coarse_elements(group, width_mm, mm_per_px, length_mm=length_mm)
     if short <= CORNER_FLAG:
-        return ()
+        least = min(width_mm, length_mm)
+        across = mm_to_px_length(least, mm_per_px)
+        if EDGE_PX <= CORNER_FLAG * across:
+            return ()
+        dpi = mm_per_px_to_dpi(CORNER_FLAG * least / EDGE_PX)
+        return (
+            "coarse",
+            f"print #{index} is {across:.0f} px across at this resolution: its edges are "
+            f"good to about {EDGE_PX:g} px between them, {100 * EDGE_PX / across:.1f} % "
+            f"of its size; rescan at {dpi:.0f} dpi or more",
+        )
     # the resolution at which both shortfalls are CORNER_FLAG of the print
     dpi = max(
         mm_per_px_to_dpi(CORNER_FLAG * width_mm / CORNER_SHORT_PX),

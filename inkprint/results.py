@@ -20,7 +20,9 @@ prints?) were joined or kept apart by a gap near the footprint rule's limit:
 ``--group-mm`` decides; ``coarse_elements`` - a tiny print made of separate tread
 elements (a lattice of diamonds, :mod:`inkprint.lattice`) too few pixels wide at
 this resolution: its outline is its elements' corners, which the half-contrast edge
-cuts short by about half a pixel across, more than 1 % of its width); its
+cuts short by about half a pixel across, more than 1 % of its width); ``coarse`` -
+a print under 25 px across (a tiny print at 150 dpi): its edges are good to about a
+quarter pixel between them, more than 1 % of its width; its
 measurements are still in the row, for inspection, but :mod:`contactpatch`'s
 pairing skips it. Advisory flags keep ``status = 'ok'``:
 ``uneven_light`` (flattened before thresholding), ``axis_uncertain`` (``auto``
@@ -48,6 +50,7 @@ UNMEASURABLE = (
     "light_uncertain",
     "grouping_uncertain",
     "coarse_elements",
+    "coarse",
 )
 
 

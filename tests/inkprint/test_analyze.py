@@ -9,7 +9,7 @@ from numpy.testing import assert_allclose
 
 import inkprint as ip
 from inkprint.read import Scan
-from inkprint.synth import render_sheet
+from inkprint.synth import PrintSpec, SheetSpec, render_sheet
 
 from .conftest import one_print_sheet
 
@@ -326,3 +326,16 @@ def test_no_slivers_measured_narrower_than_a_print_become_marks():
     assert "0.10 mm" in marks[0].reason
     same, none = _no_slivers(prints[:1], opts)
     assert same == prints[:1] and none == []
+
+
+@pytest.mark.parametrize("dpi, coarse", [(150.0, True), (300.0, False)])
+def test_analyze_scan_print_under_25_px_across_is_flagged_coarse(dpi, coarse):
+    # independent sets 1 and 8: tiny slick prints 3.1-3.8 mm wide at 150 dpi (18-22
+    # px) read +1.02 % and +1.24 % wide with status ok; at 300 dpi (37 px) a quarter
+    # pixel is 0.7 % of the width
+    spec = SheetSpec((PrintSpec(15.7, 3.1, (20.0, 20.0), angle=90.0),), dpi=dpi, size=(40, 40))
+    img, (t,) = render_sheet(spec)
+    res = ip.analyze_scan(ip.Scan(img, 25.4 / dpi, "given"), rolling_axis="y", sensitivity=False)
+    (p,) = res.prints
+    assert ("coarse" in p.flags) == coarse, p.warnings
+    assert_allclose([p.metrics.length, p.metrics.width], [t.length, t.width], rtol=0.02)
