@@ -103,6 +103,9 @@ BAR_SPACING = 4.0
 #: print, lie 5.2 mm apart along themselves; held-out 11 sheet 21, 150 dpi)
 BAR_ALONG = 0.75
 BAR_MAX_MM = 40.0
+#: a piece taken for a cut copy of a print's tread element is a letter when chained
+#: to at least this many letters (strokes) set aside from the print (``_BoldJudge``)
+LABEL_LETTERS = 3
 #: a comb's teeth (bars reaching out of one print's body) lie side by side with no gap
 #: over this many times their median gap (see ``_comb_teeth``)
 COMB_GAP = 2.5
@@ -1194,7 +1197,7 @@ class _BoldJudge:
             mine = _filled(member[local].view(np.uint8)).view(bool)
             cut, rest = self._rim(local, body, mine, shaved, hull)
         kinds, reach = self._elements(els, is_body, box, hull)
-        kinds = self._cut_blocks(els, kinds)
+        judged, kinds = kinds, self._cut_blocks(els, kinds)
         if field_area:
             kinds = self._field_kinds(els, kinds, field_area)
         sizes = self._block_sizes(els, kinds)
@@ -1220,6 +1223,12 @@ class _BoldJudge:
             # no element like a block inside the body's hull (its tread has none):
             # the blobs chained to a stroke within the distance are letters too
             strokes += self._chained(blobs, els, local, taken)
+        # a label's letter taken for a cut copy of a tread element (an 'l' for a
+        # chevron's arm) is one of the letters chained to it (held-out set 2 file 45:
+        # 'Pirelli 33mm' 3 mm off a chevron print; 'l' and 'i' were the print's)
+        copies = [i for i, k in judged.items() if k == "stroke" and kinds[i] == ""]
+        if copies and len(strokes) >= LABEL_LETTERS:
+            strokes += self._chained(copies, els, local, taken)
         if rest:
             self._feet(rest, taken, box, shaved, hull, cut)
         return els[strokes], box, cut, tread
