@@ -2,9 +2,12 @@
 
 import cv2
 import numpy as np
-from numpy.testing import assert_array_equal
+import pytest
+from numpy.testing import assert_allclose, assert_array_equal
 
+import inkprint as ip
 from inkprint.gridlines import find_gridlines
+from tests.inkprint.drawn import drawn_scan
 
 MM_PER_PX = 0.1  # 254 dpi
 
@@ -104,3 +107,29 @@ def test_find_gridlines_dark_dot_on_a_line_is_not_kept():
     dot[219:224, 400:405] = True  # on the line at rows 220-222
     g = find_gridlines(lines | dot, mm_per_px=MM_PER_PX, grey=_greys(dot, lines))
     assert g.removed[220:223, 400:405].all()
+
+
+def _pored_print(dpi: float, ss: int = 3) -> tuple:
+    """A slick print 101.2 x 18.5 mm with a square lattice of pores (0.4 mm every
+    1.2 mm, square to the sheet) on a scan cropped to 130 x 60 mm around it:
+    :func:`drawn_scan` (grey, mm per px, (width along x, length along y, hull
+    area) of the ink)."""
+    mm = 25.4 / dpi / ss
+    yy, xx = np.mgrid[0 : int(130 / mm), 0 : int(60 / mm)] * mm
+    inside = ((xx - 30) / 9.25) ** 2 + ((yy - 65) / 50.6) ** 2 <= 1
+    pores = np.hypot((xx - 30) % 1.2 - 0.6, yy % 1.2 - 0.6) < 0.2
+    grey, px, truth = drawn_scan((inside & ~pores).astype(np.uint8), dpi, ss, 0.6)
+    return cv2.GaussianBlur(grey, (0, 0), 0.7), px, truth
+
+
+@pytest.mark.parametrize("dpi", [150.0, 300.0])
+def test_analyze_scan_print_s_strips_between_pores_are_no_gridlines(dpi):
+    # the ink between a slick print's rows of pores runs unbroken over 78 % of a
+    # scan cropped to the print: 12 "gridlines" split it in two, width -36 %, status
+    # ok; chart paper's lines are spread over the sheet (GRID_SPREAD)
+    grey, px, (width, length, area) = _pored_print(dpi)
+    res = ip.analyze_scan(ip.Scan(grey, px, "given"), rolling_axis="y", sensitivity=False)
+    (p,) = res.prints
+    assert not any(m.kind == "gridlines" for m in res.marks)
+    assert_allclose([p.metrics.length, p.metrics.width], [length, width], rtol=0.01)
+    assert_allclose(p.metrics.hull_area, area, rtol=0.02)
