@@ -24,8 +24,6 @@ import sys
 from collections.abc import Sequence
 from pathlib import Path
 
-from tiremesh.parallel import DEFAULT_SCHEDULER_TIMEOUT
-
 _NUMBER = re.compile(r"^\s*[-+]?(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?\s*$")
 PRESSURE_FORMS = "4bar, 60psi, 400kPa or 0.4MPa"
 LOAD_FORMS = "400N or 40kg"
@@ -630,8 +628,7 @@ def _cmd_synth(a) -> int:
     return 0
 
 
-def _analyze_parser(sub, common) -> None:
-    p = sub.add_parser("analyze", parents=[common], help="measure the prints on one or more scans")
+def _analyze_parser(p: argparse.ArgumentParser) -> None:
     p.add_argument("scans", nargs="+", help="PNG, JPEG, TIFF or PDF files")
     _scale_options(p)
     p.add_argument("--load", help=f"vertical load with its unit: {LOAD_FORMS}")
@@ -642,12 +639,9 @@ def _analyze_parser(sub, common) -> None:
     p.set_defaults(func=_cmd_analyze)
 
 
-def _batch_parser(sub, common) -> None:
-    p = sub.add_parser(
-        "batch",
-        parents=[common],
-        help="analyse a folder, glob or manifest of scans into one table",
-    )
+def _batch_parser(p: argparse.ArgumentParser) -> None:
+    from tiremesh.parallel import DEFAULT_SCHEDULER_TIMEOUT
+
     p.add_argument(
         "src", nargs="?", help="folder, glob pattern or file (optional with --manifest)"
     )
@@ -691,8 +685,41 @@ def _batch_parser(sub, common) -> None:
     p.set_defaults(func=_cmd_batch)
 
 
-def build_parser() -> argparse.ArgumentParser:
+def _synth_parser(p: argparse.ArgumentParser) -> None:
+    p.add_argument("-o", "--output", required=True, help="folder")
+    p.add_argument("--dpi", type=float, default=150.0, help="sample set resolution")
+    p.add_argument(
+        "--mixed", type=int, metavar="N", help="instead: N files mixing every failure class"
+    )
+    p.add_argument("--seed", type=int, default=0, help="seed of --mixed")
+    p.set_defaults(func=_cmd_synth)
+
+
+#: the commands: (name, the function adding its options, its help)
+COMMANDS = (
+    ("analyze", _analyze_parser, "measure the prints on one or more scans"),
+    ("batch", _batch_parser, "analyse a folder, glob or manifest of scans into one table"),
+    ("synth", _synth_parser, "write synthetic scans with their manifest and truth"),
+)
+
+
+def _command(argv: Sequence[str] | None) -> str | None:
+    """The command a command line names: its first word that is no option (the
+    program's own options, -q, -v, -h and --version, take no value); None if none."""
+    args = sys.argv[1:] if argv is None else argv
+    return next((str(w) for w in args if not str(w).startswith("-")), None)
+
+
+def build_parser(command: str | None = None) -> argparse.ArgumentParser:
     """The ``inkprint`` argument parser (subcommands analyze, batch, synth).
+
+    Parameters
+    ----------
+    command : str, optional
+        Give only this command its options (the others are listed, without theirs):
+        a run builds what it parses, not every command's options and imports (the
+        batch's scheduler module). Default, or a name that is no command: every
+        command.
 
     Returns
     -------
@@ -708,18 +735,11 @@ def build_parser() -> argparse.ArgumentParser:
     )
     parser.add_argument("--version", action="version", version=_version())
     sub = parser.add_subparsers(dest="command", required=True)
-    _analyze_parser(sub, common)
-    _batch_parser(sub, common)
-    p = sub.add_parser(
-        "synth", parents=[common], help="write synthetic scans with their manifest and truth"
-    )
-    p.add_argument("-o", "--output", required=True, help="folder")
-    p.add_argument("--dpi", type=float, default=150.0, help="sample set resolution")
-    p.add_argument(
-        "--mixed", type=int, metavar="N", help="instead: N files mixing every failure class"
-    )
-    p.add_argument("--seed", type=int, default=0, help="seed of --mixed")
-    p.set_defaults(func=_cmd_synth)
+    every = command not in {name for name, _, _ in COMMANDS}
+    for name, fill, text in COMMANDS:
+        p = sub.add_parser(name, parents=[common], help=text)
+        if every or name == command:
+            fill(p)
     return parser
 
 
@@ -754,7 +774,7 @@ def main(argv: Sequence[str] | None = None) -> int:
 
     keep_freed_memory()  # this process analyses sheets: reuse freed image buffers
     _no_collection_at_exit()
-    a = build_parser().parse_args(argv)
+    a = build_parser(_command(argv)).parse_args(argv)
     a.quiet = getattr(a, "quiet", False)  # -q / -v before or after the command
     a.verbose = getattr(a, "verbose", False)
     if a.quiet and a.verbose:

@@ -31,7 +31,6 @@ rolling axis on a print nearly as wide as long: give ``--rolling-axis``).
 
 from __future__ import annotations
 
-import html
 from collections import Counter
 from dataclasses import dataclass, field
 
@@ -132,6 +131,8 @@ class PrintResult:
 
 
 def _html_table(title: str, cells) -> str:
+    import html  # notebooks only: html.entities is a large table
+
     rows = "".join(
         f"<tr><th style='text-align:left'>{html.escape(k)}</th><td>{html.escape(v)}</td></tr>"
         for k, v in cells
@@ -225,6 +226,8 @@ class SheetResult:
         )
 
     def _repr_html_(self) -> str:
+        import html
+
         head = html.escape(repr(self))
         u = self.unit
         cols = ["print", "status", f"length [{u}]", f"width [{u}]", f"hull area [{u}2]", "flags"]

@@ -32,7 +32,6 @@ import json
 import math
 import os
 import re
-import tempfile
 from collections.abc import Iterable, Sequence
 from pathlib import Path
 
@@ -108,6 +107,10 @@ def _temp_beside(target: Path, option: str | None = None) -> Path:
         raise OutputError(
             target, f"cannot create the folder {folder}: {_reason(exc)}", option
         ) from exc
+    # imported here: a process that writes no file (``inkprint analyze``) need not
+    # load tempfile and random
+    import tempfile
+
     try:
         fd, tmp = tempfile.mkstemp(prefix=f".{target.name}.", suffix=target.suffix, dir=folder)
     except OSError as exc:

@@ -4,6 +4,8 @@ a file reached through symlinks."""
 
 import dataclasses
 import socket
+import subprocess
+import sys
 from pathlib import Path
 
 import pytest
@@ -104,6 +106,56 @@ def test_analyze_leaves_the_garbage_collector_as_it_was(one_scan, capsys):
 def test_main_quiet_and_verbose_together_refused(one_scan, capsys):
     assert main(["-q", "analyze", str(one_scan / "a.png"), "-v"]) == 2
     assert "-q and -v" in capsys.readouterr().err
+
+
+# -- what one `inkprint analyze` loads (issue 11 item 7: <= 0.35 s a file) -----------------
+
+
+def _modules_after(code: str) -> set:
+    """The modules a fresh interpreter holds once it has run ``code``."""
+    run = subprocess.run(
+        [sys.executable, "-c", f"{code}\nimport sys\nprint(' '.join(sorted(sys.modules)))"],
+        capture_output=True,
+        text=True,
+        timeout=300,
+    )
+    assert run.returncode == 0, run.stderr
+    return set(run.stdout.splitlines()[-1].split())
+
+
+def test_analyze_command_line_parsed_without_numpy_or_the_batch():
+    # the command line is parsed before numpy loads (one OpenBLAS thread is set
+    # first) and builds the analyze command's options only: no batch scheduler
+    mods = _modules_after(
+        "from inkprint.cli import build_parser\n"
+        "build_parser('analyze').parse_args(['analyze', 'a.png', '--group-mm', '3'])"
+    )
+    assert "inkprint.options" in mods  # the thresholds' defaults, in the help
+    loaded = {"numpy", "cv2", "inkprint.batch", "tiremesh.parallel", "concurrent.futures"} & mods
+    assert not loaded
+
+
+def test_analyze_run_loads_no_module_it_does_not_use(one_scan):
+    # a PNG is decoded without Pillow; no table is written (tempfile), nothing is
+    # drawn, no Sauvola (scikit-image, scipy), no notebook HTML (html.entities)
+    scan = str(one_scan / "a.png")
+    mods = _modules_after(f"from inkprint.cli import main\nmain(['-q', 'analyze', {scan!r}])")
+    assert {"inkprint.analyze", "shapely", "contactpatch"} <= mods
+    unused = {"PIL", "scipy", "skimage", "tempfile", "html.entities", "inkprint.overlay"}
+    assert not unused & mods
+
+
+def test_parser_for_one_command_and_for_all():
+    from inkprint.cli import build_parser
+
+    batch = ["batch", "src", "-o", "r.csv", "--workers", "2"]
+    assert build_parser().parse_args(batch).workers == 2
+    assert build_parser("batch").parse_args(batch).workers == 2
+    assert build_parser("no such command").parse_args(batch).workers == 2
+    with pytest.raises(SystemExit):  # the analyze command's parser has no batch options
+        build_parser("analyze").parse_args(batch)
+    a = build_parser("analyze").parse_args(["-q", "analyze", "a.png", "--band", "0.2"])
+    assert (a.scans, a.sensitivity, a.quiet) == (["a.png"], 0.2, True)
 
 
 # -- batch tables in the format of their extension ------------------------------------------
