@@ -4,8 +4,9 @@ Gridlines are thin, straight, parallel to the sheet's sides, repeated and run
 unbroken over most of the sheet (a print's tread lines stop at its edge). So: rows
 (columns) with an unbroken run of ink over at least ``grid_span`` of the sheet's
 width (height), in bands no thicker than a pen stroke (``stroke_width_mm``), at
-least ``grid_min_lines`` of them (:class:`inkprint.AnalysisOptions`), are gridlines (a row of anti-aliased fringe
-either side). A line's pixel stays a print's ink where the rest of the ink lies
+least ``grid_min_lines`` of them (:class:`inkprint.AnalysisOptions`), spread over half
+the sheet across them or more (:data:`GRID_SPREAD`: a print's thin strips of ink lie
+within its width), are gridlines (a row of anti-aliased fringe either side). A line's pixel stays a print's ink where the rest of the ink lies
 right across the line on both sides (a line crossing a print or a tread block);
 elsewhere it is taken out, so it no longer joins a print, its grooves or a halo
 speck (dots, ``dot_mm``, do not count as ink across). A line's pixel darker than

@@ -1219,7 +1219,7 @@ class _BoldJudge:
         if not taken.any():
             return els[:0], box, cut, tread
         blobs = [i for i, k in kinds.items() if k == "blob"]
-        if blobs and not self._blocks_inside(els, ~is_body & ~reach, box, hull):
+        if blobs and not (~is_body & ~reach).any():
             # no element like a block inside the body's hull (its tread has none):
             # the blobs chained to a stroke within the distance are letters too
             strokes += self._chained(blobs, els, local, taken)
@@ -1264,11 +1264,14 @@ class _BoldJudge:
         than :data:`FIELD_BAR_ASPECT` times longer than wide, is a line's piece, no
         letter (held-out 7 sheet 93: a ruler's 8 x 1.2 mm stub beyond a file print's
         tip, set aside as a letter, flagged the print), left to the lines' rules; so
-        is a lone stroke (a label is two letters or more)."""
-        out = {}
+        is a lone stroke (a label is two letters or more), but not a lone blob more
+        than twice as large: a stub is long, a digit compact (the label sweep: a
+        bold '4' touching a knurl print's side, width +16.6 %, status ok)."""
+        out, grown = {}, set()
         for i, k in kinds.items():
             if k == "blob" and self.st[els[i], 4] > 2 * field_area:
                 k = "stroke"
+                grown.add(i)
             elif k == "stroke" and self.on_line[els[i]]:
                 k = ""
             elif k == "stroke":
@@ -1276,7 +1279,7 @@ class _BoldJudge:
                 k = "" if a > FIELD_BAR_ASPECT * b else k
             out[i] = k
         if sum(k == "stroke" for k in out.values()) < 2:  # a label has letters, a stub none
-            out = {i: ("" if k == "stroke" else k) for i, k in out.items()}
+            out = {i: ("" if k == "stroke" and i not in grown else k) for i, k in out.items()}
         return out
 
     def _block_sizes(self, els, kinds: dict) -> tuple | None:
@@ -1516,19 +1519,6 @@ class _BoldJudge:
                 x, y = x + wx, y + wy
             kinds[i] = self.judge(piece, np.array([x - x0, y - y0], float), hull, self.over)
         return kinds, reach
-
-    def _blocks_inside(self, els, near: np.ndarray, box, hull) -> bool:
-        """Whether any of the elements ``near`` ((k,) bool over ``els``: reaching no
-        farther than ``mark_overhang_mm`` out of the body's hull, (m, 2) (x, y) over
-        ``box``) has its centre inside the hull: a tread block. A bold letter
-        touching a slick print's tip lies against the hull, its centre out (held-out
-        set 1 file 30: 'T6 2.4bar 360N' below a tip; its 'a' held the rule off, the
-        label joined the print: width +226 %, unflagged)."""
-        if not near.any():
-            return False
-        st = self.st[els[near]]
-        centre = st[:, :2] + 0.5 * (st[:, 2:4] - 1) - np.array([box[1].start, box[0].start])
-        return bool((_outside_distance(centre.astype(float), hull) < 0).any())
 
     def _chained(self, blobs: list, els, local, taken) -> list:
         """Of the blobs (element indices), those within ``group_distance_mm`` of the

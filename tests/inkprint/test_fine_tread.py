@@ -21,6 +21,7 @@ from inkprint.marks import _fine_fields
 from inkprint.options import AnalysisOptions
 from inkprint.read import Scan
 from inkprint.synth import PrintSpec, SheetSpec, render_sheet
+from inkprint.synth_effects import Text
 
 OPTS = AnalysisOptions()
 
@@ -264,3 +265,25 @@ def test_element_graph_element_between_the_samples_has_neighbours():
     # every element keeps its own samples otherwise: the blocks' pair is the same
     full = element_graph(labels, 3, px_mm=0.1, step=1)
     assert (0, 2) in set(zip(full.a.tolist(), full.b.tolist(), strict=True))
+
+
+@pytest.mark.parametrize("text", ["4", "7"])
+def test_analyze_scan_lone_bold_digit_on_a_knurl_print_s_side_is_set_aside(text):
+    # the label sweep, case 358: a marker's '4' (3.3 mm, 0.76 mm strokes) touching
+    # a knurl print's side, more than twice a knurl element's area, was "a lone
+    # stroke" (a ruler's stub) and the print's: width +16.6 %, status ok
+    spec = SheetSpec(
+        (PrintSpec(88.7, 16.0, (105.0, 140.0), 0.0, "knurl", ink=0.95),),
+        dpi=300.0,
+        seed=358,
+        specks=5,
+        marks=(Text(text, (90.3, 148.0), 3.3, 0.76, 1.0),),
+        size=(215.9, 279.4),
+    )
+    img, (t,) = render_sheet(spec)
+    res = ip.analyze_scan(ip.Scan(img, 25.4 / 300.0, "given"), rolling_axis="x", sensitivity=False)
+    (p,) = res.prints
+    m = p.metrics
+    within = np.allclose([m.length, m.width], [t.length, t.width], rtol=0.01)
+    assert within or p.status == "flagged", (m.length, t.length, m.width, t.width)
+    assert within
