@@ -180,17 +180,21 @@ def test_analyze_scan_knob_print_tip_knob_cut_thin_a_pattern_gap_out_is_its_own(
 
 @pytest.mark.parametrize("angle", [3.1, -5.3])
 def test_analyze_scan_narrow_knurl_print_tracks_do_not_override_its_outline(angle):
-    # a knurl print three diamonds wide: its lateral profile peaks 5 deg off (its
-    # few tracks), its outline's axis is clear; along the tracks it read +21 to
-    # +40 % wide, flagged only coarse_elements. The tracks are not used: turned
-    # beyond 1 deg, a sparse print's outline alone is not trusted either: flagged
+    # a knurl print three diamonds wide: its lateral profile peaked 5 deg off (its
+    # few tracks), its outline's axis clear; along the tracks it read +21 to +40 %
+    # wide, flagged only coarse_elements. Tracks off the outline are not used:
+    # turned beyond 1 deg, a sparse print's outline alone is not trusted either
+    # (flagged); faint tracks the rectangle or principal axis confirms within a
+    # degree decide (2026-12-07: tracks 3.02 and -5.28 deg, the outline's 3.2 and
+    # -5.2: measured along them, still flagged coarse_elements)
     p = PrintSpec(22, 3.5, (40, 40), angle, "knurl", unevenness=0.0)
     img, _ = render_sheet(SheetSpec((p,), size=(80, 80), specks=0, dpi=150))
     (q,) = ip.analyze_scan(
         ip.Scan(img, 25.4 / 150, "given"), sensitivity=False, rolling_axis="x"
     ).prints
-    assert "axis_misaligned" in q.flags
-    assert q.metrics.orientation == 0.0
+    own = abs(math.degrees(q.metrics.orientation) - angle) <= 0.3
+    assert own or ("axis_misaligned" in q.flags and q.metrics.orientation == 0.0)
+    assert q.status == "flagged"
 
 
 def test_settled_turn_is_none_when_the_estimates_disagree_in_length():

@@ -115,12 +115,13 @@ def test_straight_skinny_in_a_box_equals_the_whole_sheet(pooled):
     m = pooled.mask.view(np.uint8)
     opened = cv2.morphologyEx(m, cv2.MORPH_OPEN, _disk(5.3))
     core = cv2.morphologyEx(opened, cv2.MORPH_OPEN, _disk(10.6))
-    whole = _straight_skinny(opened & ~core, pooled, opts)
+    whole, teeth = _straight_skinny(opened & ~core, pooled, opts)
     assert whole.any()  # the ruler's line
     box = _ink_box(opened, 6)
     origin = (box[0].start, box[1].start)
-    got = _straight_skinny(opened[box] & ~core[box], pooled, opts, origin=origin)
+    got, got_teeth = _straight_skinny(opened[box] & ~core[box], pooled, opts, origin=origin)
     assert_array_equal(got, whole[box])
+    assert_array_equal(got_teeth, teeth[box])
     assert not whole[~np.pad(np.ones_like(got, bool), _pads(box, m.shape))].any()
 
 
