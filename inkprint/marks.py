@@ -601,6 +601,7 @@ def _straight_skinny(
         lines = bars + runs
         rects, corners = [r for _, _, r in lines], [c for c, _, _ in lines]
         comb = _comb_teeth(rects, corners, _owners(lines, pooled, origin), pooled.px_mm)
+        comb &= ~tread  # (a herringbone's bar field is judged as before)
     teeth = np.zeros(skinny.shape, np.uint8)
     for ((y, x), piece, _), bar, tooth in zip(bars + runs, tread, comb, strict=True):
         if tooth or not bar:
