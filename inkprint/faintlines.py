@@ -23,11 +23,24 @@ import numpy as np
 __all__ = ["line_transmission", "without_faint_lines"]
 
 
+def _row_medians(m: np.ndarray) -> np.ndarray:
+    """``np.median(m, axis=1)`` of float grey levels (no NaN), to the last bit: the
+    middle of each sorted row, or the mean of the middle two as numpy takes it
+    (their sum in the array's dtype, halved). A sort of these short rows (a few
+    dozen pixels) is twice as fast as numpy's median, whose selection is slow on
+    rows of equal grey levels and on the strided rows of a margin's columns."""
+    s = np.sort(m, axis=1)
+    k = s.shape[1] // 2
+    if s.shape[1] % 2:
+        return s[:, k]
+    return (s[:, k - 1] + s[:, k]) / s.dtype.type(2)
+
+
 def _running_median(v: np.ndarray, half: int) -> np.ndarray:
     """Median of ``v`` over a window of ``2 half + 1`` (edge values repeated)."""
     from numpy.lib.stride_tricks import sliding_window_view
 
-    return np.median(sliding_window_view(np.pad(v, half, mode="edge"), 2 * half + 1), axis=1)
+    return _row_medians(sliding_window_view(np.pad(v, half, mode="edge"), 2 * half + 1))
 
 
 def line_transmission(before, after, *, line_px: int, darker: float, least: float) -> np.ndarray:
@@ -57,7 +70,7 @@ def line_transmission(before, after, *, line_px: int, darker: float, least: floa
     -------
     (h,) float in (0, 1]
     """
-    sides = [np.median(m, axis=1) for m in (before, after) if m.shape[1] >= line_px]
+    sides = [_row_medians(m) for m in (before, after) if m.shape[1] >= line_px]
     if not sides or len(sides[0]) < 6 * line_px + 1:
         return np.ones(before.shape[0])
     level = np.maximum.reduce(sides)

@@ -372,8 +372,11 @@ def _split(pooled: _Pooled, opts: AnalysisOptions) -> _Parts:
     keep = area >= MIN_THICK_DISKS * disk
     keep[0] = False
     check = np.flatnonzero(keep & (area < SMALL_THICK_DISKS * disk))
-    thin = m.copy()  # the ink less the thick elements (none outside the box)
-    thin[box] &= (l1[box] == 0).view(np.uint8)
+    # the ink less the thick elements (none outside the box; 0 / 1 both, and the
+    # thick elements are the opened ink: read from it, not from their labels, here
+    # and below: there they are the ink that is not thin, ``m ^ thin``)
+    thin = m.copy()
+    thin[box] &= opened[box] ^ 1
     pieces = None  # the thin pieces, once labelled
     if len(check):
         pieces = components_with_stats(thin, connectivity=8)
@@ -383,8 +386,13 @@ def _split(pooled: _Pooled, opts: AnalysisOptions) -> _Parts:
         keep[0] = True
         new = np.cumsum(keep, dtype=np.int32) - 1
         new[~keep] = 0
-        l1[box], n1, s1 = new[l1[box]], int(keep.sum()), s1[keep]  # (0 stays 0)
-        thin[box] = m[box] & (l1[box] == 0).view(np.uint8)
+        # relabelled at the thick pixels only (a few % of the box), and the pixels of
+        # the pieces dropped are thin ink again
+        at = np.flatnonzero(opened.view(bool))  # (l1's pixels: its labels of ``opened``)
+        was = np.take(l1, at)
+        np.put(l1, at, new[was])
+        np.put(thin, at[~keep[was]], 1)
+        n1, s1 = int(keep.sum()), s1[keep]
         pieces = None  # (else the thin ink and its pieces are the same as before)
     n2, l2, s2, c2 = pieces or components_with_stats(thin, connectivity=8)
     # a thin piece joined to thick ink is what the opening shaved off it (a
@@ -393,7 +401,7 @@ def _split(pooled: _Pooled, opts: AnalysisOptions) -> _Parts:
     # beside 40 diamonds of 1.9 mm^2; the shoulder rows set aside, width -23 %)
     whole = None
     if l1[box].size:
-        grown = cv2.dilate(l1[box].astype(bool).view(np.uint8), np.ones((3, 3), np.uint8))
+        grown = cv2.dilate(m[box] ^ thin[box], np.ones((3, 3), np.uint8))
         whole = np.bincount(l2[box][grown > 0], minlength=n2) == 0
     fine = _fine_fields(s2, c2, pooled.px_mm, opts, whole=whole)
     fine_el = None
@@ -411,7 +419,7 @@ def _split(pooled: _Pooled, opts: AnalysisOptions) -> _Parts:
         thin[box] &= (l1[box] == 0).view(np.uint8)
         n2, l2, s2, _ = components_with_stats(thin, connectivity=8)
     cored = np.zeros(l1.shape, bool)
-    cored[box] = core[box].view(bool) & (l1[box] > 0)
+    cored[box] = core[box].view(bool) & ~thin[box].view(bool)  # (the core is ink)
     return _Parts(l1, n1 - 1, l2, n2 - 1, s2, cored, s1, fine_el, box)
 
 
