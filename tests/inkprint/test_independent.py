@@ -109,8 +109,10 @@ def test_independent_sheet_bold_label_below_a_tip_is_no_part_of_the_print(tmp_pa
     out = _sheet_of_set(tmp_path, 1, 30)
     assert len(out) == 3
     assert not [o for o in out if o["outcome"] in SILENT], out
-    first = [o for o in out if abs(float(o["truth"]["length_mm"]) - 65.89) < 0.01]
-    assert first and first[0]["outcome"] in ("pass", "flagged") and first[0].get("within")
+    (first,) = [o for o in out if abs(float(o["truth"]["length_mm"]) - 65.89) < 0.01]
+    # the label is no part of it (its width within the bar); its tip, where a letter
+    # touches, is flagged (with OpenCV 5.0's glyphs the length reads -1.5 %)
+    assert first["outcome"] in ("pass", "flagged") and abs(first["dW"]) <= 1.0, first
 
 
 def test_independent_sheet_diamond_cut_at_a_print_s_side_is_the_print_s(tmp_path):
