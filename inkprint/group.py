@@ -2023,16 +2023,6 @@ def thin_protrusions(
     return _drop_thin(mask, parts, dots=dots)
 
 
-#: a piece thin all through beside a block pattern's side filling this share of its
-#: box or more, and at most SIDE_BLOCK_ASPECT times longer than wide, is a block the
-#: outline cut, not a pen's dot or stroke (:func:`_thin_parts`)
-SIDE_BLOCK_FILL = 0.6
-SIDE_BLOCK_ASPECT = 2.0
-#: ... beside at least this many thick elements alike in area, none smaller than it
-#: (:func:`_element_area`)
-SIDE_BLOCK_ELEMENTS = 8
-
-
 @dataclass(frozen=True)
 class _ThinParts:
     """What :func:`thin_protrusions` drops, for either ``dots`` (computed once)."""
@@ -2096,19 +2086,10 @@ def _thin_parts(
     extent = np.maximum(stats[:, cv2.CC_STAT_WIDTH], stats[:, cv2.CC_STAT_HEIGHT])
     stroke = extent > width_px
     ends = _at_the_ends(hull_pts.reshape(-1, 2).astype(float), cent) & apart
-    # a compact piece beside a block pattern's side is a block the outline cut (a
-    # diamond pattern's, 1.0 x 0.9 mm, held-out set 4 file 0: dropped as a pen's
-    # dot, width -2.8 %, status ok), left to the 7.1.1 rule as a tip's is
-    w, h, area = (stats[:, k] for k in (cv2.CC_STAT_WIDTH, cv2.CC_STAT_HEIGHT, cv2.CC_STAT_AREA))
-    compact = apart & (area >= SIDE_BLOCK_FILL * w * h)
-    compact &= np.maximum(w, h) <= SIDE_BLOCK_ASPECT * np.minimum(w, h)
-    if compact.any():
-        compact &= area <= _element_area(thick)
-        ends |= compact
     if ends.any() and not _block_pattern(
         thick, resolve_options(opts).tip_block_strokes * width_px
     ):
-        ends &= compact
+        ends[:] = False
     if along_px > 0:
         ends |= _along_outline(
             (at, ids),
@@ -2333,21 +2314,6 @@ def _block_pattern(thick: np.ndarray, side_px: float) -> bool:
     n, lab = cv2.connectedComponents(thick, connectivity=8)
     area = np.bincount(lab.ravel()[np.flatnonzero(thick)], minlength=n)  # (ink only)
     return int(np.count_nonzero(area[1:] >= side_px**2)) >= 2
-
-
-def _element_area(thick: np.ndarray) -> float:
-    """The median area [px] of the thick ink's pieces when there are
-    :data:`SIDE_BLOCK_ELEMENTS` or more alike (within a factor 1.5 of the median),
-    a pattern of elements; else 0."""
-    import cv2
-
-    n, lab = cv2.connectedComponents(thick, connectivity=8)
-    area = np.bincount(lab.ravel()[np.flatnonzero(thick)], minlength=n)[1:]
-    if len(area) < SIDE_BLOCK_ELEMENTS:
-        return 0.0
-    mid = float(np.median(area))
-    alike = np.count_nonzero((area <= 1.5 * mid) & (area >= mid / 1.5))
-    return mid if alike >= SIDE_BLOCK_ELEMENTS else 0.0
 
 
 def _at_the_ends(

@@ -114,10 +114,3 @@ def test_independent_sheet_bold_label_below_a_tip_is_no_part_of_the_print(tmp_pa
     # touches, is flagged (with OpenCV 5.0's glyphs the length reads -1.5 %)
     assert first["outcome"] in ("pass", "flagged") and abs(first["dW"]) <= 1.0, first
 
-
-def test_independent_sheet_diamond_cut_at_a_print_s_side_is_the_print_s(tmp_path):
-    # set 4 sheet 0: a diamond of a knurl-like pattern (elements 1.5 mm^2, under the
-    # tip-block size) cut by the outline to 1.0 x 0.9 mm at the print's side, thin
-    # all through, dropped as a pen's dot: width -2.8 %, status ok
-    out = _sheet_of_set(tmp_path, 4, 0)
-    assert [o["outcome"] for o in out] == ["pass"] * 3, out
