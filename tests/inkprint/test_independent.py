@@ -113,4 +113,3 @@ def test_independent_sheet_bold_label_below_a_tip_is_no_part_of_the_print(tmp_pa
     # the label is no part of it (its width within the bar); its tip, where a letter
     # touches, is flagged (with OpenCV 5.0's glyphs the length reads -1.5 %)
     assert first["outcome"] in ("pass", "flagged") and abs(first["dW"]) <= 1.0, first
-
