@@ -113,3 +113,12 @@ def test_independent_sheet_bold_label_below_a_tip_is_no_part_of_the_print(tmp_pa
     # the label is no part of it (its width within the bar); its tip, where a letter
     # touches, is flagged (with OpenCV 5.0's glyphs the length reads -1.5 %)
     assert first["outcome"] in ("pass", "flagged") and abs(first["dW"]) <= 1.0, first
+
+
+def test_independent_sheet_label_beside_a_chevron_print_is_set_aside_whole(tmp_path):
+    # set 2 sheet 45: 'Pirelli 33mm' 3 mm off a chevron print. With the typical
+    # elements taken from the print's own (not the letters), 'l' and 'i' stayed cut
+    # copies of a chevron's arm, the print's, and flagged it; chained to the other
+    # letters they are set aside with them (LABEL_LETTERS)
+    out = _sheet_of_set(tmp_path, 2, 45)
+    assert [o["outcome"] for o in out] == ["pass"], out
