@@ -587,10 +587,12 @@ def _straight_skinny(
     if not len(ks):
         return out, out
     bars, runs = [], []  # the straight narrow pieces, and lines run through wider ones
+    whole_of = ([], [])  # ... the whole ink piece of each (:func:`_piece_key`)
     for k in ks:
         x, y, w, h = stats[k, :4]
         r, c = _first_pixel(lab, stats, k)
-        whole = _piece_at(pooled.mask, (r + origin[0], c + origin[1]))  # (the whole mask's)
+        # (the whole mask's)
+        whole, at = _piece_at(pooled.mask, (r + origin[0], c + origin[1]), corner=True)
         if _tiny_print(whole, pooled.px_mm, opts):
             continue  # the spine of a track tire's file tread print, not a line
         piece = (lab[y : y + h, x : x + w] == k).view(np.uint8)
@@ -599,8 +601,10 @@ def _straight_skinny(
         narrow = px_to_mm_length(min(a, b) + 1, pooled.px_mm) <= 2.0 * opts.stroke_width_mm
         if narrow and px_to_mm_length(max(a, b) + 1, pooled.px_mm) >= opts.line_length_mm:
             bars.append(((y, x), piece, rect))
+            whole_of[0].append(_piece_key(whole, at))
         elif not narrow and (run := _line_run(piece, pooled.px_mm, opts)).any():
             runs.append(((y, x), run, cv2.minAreaRect(outline_points(run))))
+            whole_of[1].append(_piece_key(whole, at))
     rects, corners = [r for _, _, r in bars], [c for c, _, _ in bars]
     tread = _bar_field(rects, corners, pooled.px_mm) | _chevron_arms(rects, corners)
     tread = np.r_[tread, np.zeros(len(runs), bool)]
@@ -608,7 +612,8 @@ def _straight_skinny(
     if len(tread) >= BAR_FIELD_MIN:
         lines = bars + runs
         rects, corners = [r for _, _, r in lines], [c for c, _, _ in lines]
-        comb = _comb_teeth(rects, corners, _owners(lines, pooled, origin), pooled.px_mm)
+        owners = _owners(whole_of[0] + whole_of[1], lines)
+        comb = _comb_teeth(rects, corners, owners, pooled.px_mm)
         comb &= ~tread  # (a herringbone's bar field is judged as before)
     teeth = np.zeros(skinny.shape, np.uint8)
     for ((y, x), piece, _), bar, tooth in zip(bars + runs, tread, comb, strict=True):
@@ -654,19 +659,24 @@ def _bar_field(rects: list, corners: list, px_mm: float) -> np.ndarray:
     return sizes[comp] >= BAR_FIELD_MIN
 
 
-def _owners(bars: list, pooled: _Pooled, origin: tuple) -> tuple:
-    """The ink piece of the pooled mask each straight narrow piece belongs to (its
-    label, (k,) int) and each piece's share of that piece's ink ((k,) float):
-    ``bars`` as :func:`_straight_skinny`'s ((row, col) in the box at ``origin``,
-    uint8 crop, rectangle)."""
-    _n, lab, stats, _ = components_with_stats(pooled.mask.view(np.uint8), connectivity=8)
-    own, share = [], []
-    for (y, x), piece, _ in bars:
-        r, c = np.argwhere(piece)[0]
-        k = lab[y + r + origin[0], x + c + origin[1]]
-        own.append(k)
-        share.append(np.count_nonzero(piece) / stats[k, 4])
-    return np.array(own), np.array(share)
+def _piece_key(whole: np.ndarray, corner: tuple) -> tuple:
+    """An ink piece's name and size: the (row, col) of its first pixel in raster
+    order and its pixel count, from its crop (uint8) whose box starts at ``corner``
+    (:func:`_piece_at`)."""
+    first = int(whole.argmax())  # (the first 1 of the crop, row by row)
+    w = whole.shape[1]
+    return (corner[0] + first // w, corner[1] + first % w), np.count_nonzero(whole)
+
+
+def _owners(wholes: list, bars: list) -> tuple:
+    """The ink piece each straight narrow piece belongs to ((k,) int: alike for
+    pieces of one ink piece) and its share of that piece's ink ((k,) float):
+    ``wholes``, each one's whole piece (:func:`_piece_key`); ``bars`` as
+    :func:`_straight_skinny`'s ((row, col), uint8 crop, rectangle)."""
+    keys = np.array([key for key, _ in wholes]).reshape(-1, 2)
+    _, own = np.unique(keys, axis=0, return_inverse=True)
+    share = [np.count_nonzero(b[1]) / n for (_, n), b in zip(wholes, bars, strict=True)]
+    return own.ravel(), np.array(share)
 
 
 def _comb_teeth(rects: list, corners: list, owners: tuple, px_mm: float) -> np.ndarray:
@@ -775,7 +785,7 @@ def _chevron_arms(rects: list, corners: list) -> np.ndarray:
     return pair.any(axis=1)
 
 
-def _piece_at(mask: np.ndarray, seed: tuple[int, int]) -> np.ndarray:
+def _piece_at(mask: np.ndarray, seed: tuple[int, int], *, corner: bool = False):
     """The 8-connected piece of ``mask`` holding pixel ``seed``, cropped to its box.
 
     The same pixels as the piece of ``components_with_stats(mask)`` holding ``seed``
@@ -789,10 +799,14 @@ def _piece_at(mask: np.ndarray, seed: tuple[int, int]) -> np.ndarray:
     seed : (row, col) int [px]
         An ink pixel.
 
+    corner : bool
+        Return the box's first row and column too.
+
     Returns
     -------
     (bh, bw) uint8
-        1 on the piece, 0 elsewhere, in the piece's bounding box.
+        1 on the piece, 0 elsewhere, in the piece's bounding box; with ``corner``,
+        this and the box's (row, col) [px].
     """
     import cv2
 
@@ -803,7 +817,8 @@ def _piece_at(mask: np.ndarray, seed: tuple[int, int]) -> np.ndarray:
     _, _, _, (x, y, bw, bh) = cv2.floodFill(
         img, fill, (int(seed[1]), int(seed[0])), 1, 0, 0, flags
     )
-    return fill[y + 1 : y + 1 + bh, x + 1 : x + 1 + bw].copy()
+    crop = fill[y + 1 : y + 1 + bh, x + 1 : x + 1 + bw].copy()
+    return (crop, (y, x)) if corner else crop
 
 
 def _tiny_print(piece: np.ndarray, px_mm: float, opts: AnalysisOptions) -> bool:
