@@ -1790,7 +1790,8 @@ def _bar_tread(lab: np.ndarray, st: np.ndarray, ks: np.ndarray, ctx: _Context) -
     px = ctx.scan.mm_per_px
     field = _bar_field(rects, corners, px)
     # (a comb's teeth, :func:`inkprint.marks._comb_teeth`: a car print's shoulder
-    # bars 7 widths apart; all of this print, a share of it no body can be under)
+    # bars 7 widths apart; all pieces of this one print, their body measured apart,
+    # so one owner and no share of its ink to test)
     comb = _comb_teeth(rects, corners, (np.zeros(len(ks), int), np.zeros(len(ks))), px)
     return field | _like_bars(rects, corners, field) | comb
 

@@ -11,6 +11,9 @@ cannot be measured an error row, nothing silently wrong. Run a whole set with
 ``python tests/inkprint/independent/score.py --files 120 --seed N``.
 """
 
+import csv
+import json
+import os
 from collections import Counter
 
 import numpy as np
@@ -29,17 +32,22 @@ SILENT = {"out_of_bar", "oob_alt", "missing", "spurious", "error_absent"}
 def outcomes(tmp_path_factory):
     d = tmp_path_factory.mktemp("independent")
     gen.make_set(str(d), len(gen.CLASSES), 2027)  # one sheet of each class
+    return _batch_outcomes(d, workers=2)
+
+
+def _batch_outcomes(d, *, workers: int) -> list:
+    """``run_batch`` over the set in ``d`` (its manifest; no threshold band), scored:
+    its outcomes (:func:`score.score`)."""
     run_batch(
         None,
         d / "results.csv",
         manifest=d / "manifest.csv",
         options=Options(sensitivity=False),
-        workers=2,
+        workers=workers,
         progress=False,
         resume=False,
     )
-    out, _ = score.score(str(d))
-    return out
+    return score.score(str(d))[0]
 
 
 def test_independent_sheets_have_no_silent_wrong_number(outcomes):
@@ -62,10 +70,6 @@ def test_independent_sheets_every_class_is_measured(outcomes):
 def _sheet_of_set(d, seed: int, index: int) -> list:
     """Sheet ``index`` of the independent set ``seed`` (as ``gen.make_set`` makes
     it; not a PDF, not a dpi sheet), batched into ``d``: its outcomes."""
-    import csv
-    import json
-    import os
-
     master = np.random.default_rng(seed)
     order = []
     while len(order) <= index:
@@ -89,16 +93,7 @@ def _sheet_of_set(d, seed: int, index: int) -> list:
             w = csv.DictWriter(fh, fieldnames=list(table[0]))
             w.writeheader()
             w.writerows(table)
-    run_batch(
-        None,
-        d / "results.csv",
-        manifest=d / "manifest.csv",
-        options=Options(sensitivity=False),
-        workers=1,
-        progress=False,
-        resume=False,
-    )
-    return score.score(str(d))[0]
+    return _batch_outcomes(d, workers=1)
 
 
 def test_independent_sheet_bold_label_below_a_tip_is_no_part_of_the_print(tmp_path):
