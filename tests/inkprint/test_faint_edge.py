@@ -116,11 +116,14 @@ def test_measure_print_fine_diamonds_beside_a_slick_centre_flag_faint_edge():
     # each diamond under the edge-spot size: all left out as edge spots, the print
     # is its centre rib alone, a quarter of its width (held-out 8, 10, 12: -65 to
     # -77 % wide, unflagged). Its edge spots more than double it: out of the
-    # section 7.1.1 rule's domain, flagged faint_edge with the spread
+    # section 7.1.1 rule's domain, flagged faint_edge with the spread. Since the
+    # smallest dot-row floor (0.05 mm^2) keeps the row along the rib, the rest of the
+    # field is left out, 23 spots making it 66 % wider: a field of spots flags from
+    # SPOTS_FIELD_SPREAD
     grey, mm_per_px, (_, width, _) = _rib_and_dots()
     r = ip.analyze_scan(ip.Scan(grey, mm_per_px, "given"), rolling_axis="x", sensitivity=False)
     (p,) = r.prints
-    assert p.metrics.width < 0.3 * width and p.n_edge_spots > 20
+    assert p.metrics.width < 0.6 * width and p.n_edge_spots > 20
     assert "faint_edge" in p.flags
     (pct,) = [w for w in p.warnings if "edge spots, left out" in w]
     spread = p.metrics_all.width / p.metrics.width - 1
