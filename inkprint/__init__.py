@@ -8,7 +8,8 @@ with the batch options to every worker); there is no global setting.
 
 Public API
 ----------
-Reading   : read_scan, iter_scans (every PDF page), Scan
+Reading   : read_scan, iter_scans (every PDF page), Scan; rectify_page, paper_size
+            (a photo taken at a tilt, its scale from its paper: ``paper=``)
 Analysis  : analyze_scan, SheetResult, PrintResult, contact_pressure
 Options   : AnalysisOptions
 Steps     : prepare_page (light, photo page), binarize, sort_ink (marks that are not
@@ -65,8 +66,10 @@ __all__ = [
     "edge_spots",
     "group_blobs",
     "iter_scans",
+    "paper_size",
     "prepare_page",
     "read_scan",
+    "rectify_page",
     "run_batch",
     "sort_ink",
 ]
@@ -89,8 +92,10 @@ _LAZY = {
     "edge_spots": ".group",
     "group_blobs": ".group",
     "iter_scans": ".read",
+    "paper_size": ".paper",
     "prepare_page": ".light",
     "read_scan": ".read",
+    "rectify_page": ".paper",
     "run_batch": ".batch",
     "sort_ink": ".marks",
 }

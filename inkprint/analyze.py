@@ -66,6 +66,7 @@ from .group import (
     join_shoulders,
     outline_points,
     reading_order,
+    text_line,
     word_in_a_line,
 )
 from .lattice import CORNER_FLAG, CORNER_SHORT_PX, TIP_SHORT_PX, coarse_elements, lattice_prints
@@ -1036,8 +1037,14 @@ def _without_words(kept: list, marks: list, mm_per_px: float) -> list:
     """The candidate prints less the words of a line of writing set aside beside
     them (:func:`inkprint.group.word_in_a_line`), which are set aside as writing
     (in ``marks``); a word set aside is writing beside the next ('40' after 'Bite'
-    of '... Bite 40')."""
-    out = kept
+    of '... Bite 40'). A line of bold writing alone (:func:`inkprint.group.text_line`)
+    is set aside first."""
+    lines = [text_line(g, mm_per_px=mm_per_px) for g in kept]
+    why = "a line of writing: letters of unlike sizes in one row, no print's pattern"
+    marks.extend(
+        _group_mark(g, "writing", why, mm_per_px) for g, t in zip(kept, lines, strict=True) if t
+    )
+    out = [g for g, t in zip(kept, lines, strict=True) if not t]
     while True:
         writing = np.array([m.bbox for m in marks if m.kind in ("writing", "text")])
         words = [word_in_a_line(g, writing, mm_per_px=mm_per_px) for g in out]

@@ -78,6 +78,10 @@ class Options:
         Measure scans without a scale in pixels instead of an error row.
     trust_dpi : bool
         Accept 72 / 96 dpi metadata (camera and screen defaults, refused otherwise).
+    paper : str, optional
+        Paper of every sheet, photographed at a tilt: each page is rectified from its
+        corners, its scale from the paper (:func:`inkprint.paper.rectify_page`; a
+        manifest ``paper`` wins for its file).
     method : {'otsu', 'fixed', 'sauvola'}
         Threshold method.
     threshold : float, optional
@@ -102,6 +106,7 @@ class Options:
     mm_per_px: float | None = None
     allow_pixels: bool = False
     trust_dpi: bool = False
+    paper: str | None = None
     method: str = "otsu"
     threshold: float | None = None
     sensitivity: bool = True
@@ -240,12 +245,14 @@ def _error_row(job: Job, exc, *, digest: str = "", key: str = "", page="") -> di
 
 
 def _file_options(job: Job, options: Options, page: int | None = None):
-    """The scale, rolling axis and analysis options of one file, or of one of its
-    pages (batch settings, else the manifest's ``dpi`` / ``mm_per_px``,
-    ``rolling_axis``, ``group_mm``: of the page's own row where it has one)."""
+    """The scale, paper, rolling axis and analysis options of one file, or of one of
+    its pages (batch settings, else the manifest's ``dpi`` / ``mm_per_px`` /
+    ``paper``, ``rolling_axis``, ``group_mm``: of the page's own row where it has
+    one)."""
     meta = job.file_meta() if page is None else job.page_meta(page)
     dpi, mmpp = options.dpi, options.mm_per_px
-    if dpi is None and mmpp is None:
+    paper = str(meta.get("paper") or "").strip() or options.paper
+    if dpi is None and mmpp is None and not paper:
         dpi, mmpp = cell_number(meta.get("dpi")), cell_number(meta.get("mm_per_px"))
         if dpi is not None and mmpp is not None:
             raise InvalidInput("dpi/mm_per_px", (dpi, mmpp), "one of the two in the manifest")
@@ -256,7 +263,7 @@ def _file_options(job: Job, options: Options, page: int | None = None):
     group = cell_number(meta.get("group_mm"))
     if group is not None:
         analysis = analysis.replace(group_mm=group)
-    return dpi, mmpp, axis, analysis
+    return dpi, mmpp, paper or None, axis, analysis
 
 
 def _load_case(meta: dict) -> tuple:
@@ -345,7 +352,7 @@ def _analyze_pages(
     from .errors import NoInk
     from .read import iter_scans
 
-    dpi, mmpp, axis, analysis = file_opts
+    dpi, mmpp, paper, axis, analysis = file_opts
     axis_source = "manifest" if axis else ("auto" if options.rolling_axis == "auto" else "given")
     axis = axis or options.rolling_axis
     scans = iter_scans(
@@ -357,6 +364,7 @@ def _analyze_pages(
         pages=pages,
         options=analysis,
         data=data,
+        paper=paper,
     )
     rows = []
     for scan in scans:

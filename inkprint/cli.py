@@ -65,6 +65,12 @@ def _scale_options(p: argparse.ArgumentParser) -> None:
     m.add_argument("--dpi", type=float, help="scan resolution [dots per inch]")
     m.add_argument("--mm-per-px", type=float, help="scan scale [mm per pixel]")
     m.add_argument("--pixels", action="store_true", help="no scale: measure in pixels")
+    m.add_argument(
+        "--paper",
+        metavar="SIZE",
+        help="a photo of the whole sheet on a darker surface: rectify the page from its "
+        "corners, the scale from its paper (A4, A3, A5, letter, legal or WxH in mm)",
+    )
     g.add_argument(
         "--trust-dpi",
         action="store_true",
@@ -252,6 +258,7 @@ def _options(a):
         mm_per_px=a.mm_per_px,
         allow_pixels=a.pixels,
         trust_dpi=a.trust_dpi,
+        paper=a.paper,
         method=a.method,
         threshold=a.threshold,
         sensitivity=not a.no_band,

@@ -13,7 +13,9 @@
 Manifest: CSV with a ``file`` column and any others, one row per print or per file;
 recognised: ``page`` and ``print`` (0-based; absent = every page / print),
 ``pressure_bar``, ``load_N``, ``surface``, ``dpi`` / ``mm_per_px`` (the file's
-scale), ``rolling_axis`` (x | y | auto), ``group_mm`` (footprint grouping distance).
+scale), ``paper`` (a photo's paper: rectified from the page's corners, the scale
+from the paper), ``rolling_axis`` (x | y | auto), ``group_mm`` (footprint grouping
+distance).
 """
 
 from __future__ import annotations

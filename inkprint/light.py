@@ -698,7 +698,8 @@ def _frame_warnings(frame: _Frame | None, opts: AnalysisOptions) -> tuple[tuple,
         return ("perspective",), (
             "a page on a darker surround was found but its outline is not a clean "
             "quadrilateral: perspective not checked, the scale may change across the "
-            "page; photograph it square-on with its four corners in view, or scan it",
+            "page; give its paper (--paper A4, letter or WxH mm) to rectify it from its "
+            "corners, photograph it square-on with its four corners in view, or scan it",
         )
     worst = max((abs(a - 90.0) for a in frame.angles), default=0.0)
     tilted = frame.keystone is not None and frame.keystone > opts.perspective_keystone
@@ -711,8 +712,9 @@ def _frame_warnings(frame: _Frame | None, opts: AnalysisOptions) -> tuple[tuple,
         )
         return ("perspective",), (
             f"the page is not flat-on to the camera (corner angles {lo:.1f}-{hi:.1f} deg"
-            f"{sides}): no single scale, lengths would be off; photograph it square-on or "
-            f"scan it",
+            f"{sides}): no single scale, lengths would be off; give its paper (--paper "
+            f"A4, letter or WxH mm) to rectify it from its corners, or photograph it "
+            f"square-on, or scan it",
         )
     return (), ()
 

@@ -48,7 +48,8 @@ class Scan:
     mm_per_px : float [mm / px]
         Scale (1.0 with ``scale_source == 'pixels'``: units are pixels).
     scale_source : str
-        'given', 'metadata', 'pdf' or 'pixels'.
+        'given', 'metadata', 'pdf', 'paper' (a photo rectified onto its paper) or
+        'pixels'.
     path : str
         File the scan was read from ('' when made in memory).
     page : int
@@ -271,6 +272,7 @@ def read_scan(
     page: int = 0,
     options: AnalysisOptions | None = None,
     data: bytes | None = None,
+    paper=None,
 ) -> Scan:
     """Read a scan (one page) and its scale.
 
@@ -294,6 +296,11 @@ def read_scan(
     data : bytes, optional
         The file's content, already read (:func:`read_file_bytes`); ``path`` then
         only names it.
+    paper : str or (2,) float, optional
+        The sheet's paper ('A4', 'letter', 'WxH' in mm: :func:`inkprint.paper.paper_size`)
+        in a photo taken at a tilt: the page is rectified from its four corners and
+        its scale comes from the paper (:func:`inkprint.paper.rectify_page`); not with
+        ``dpi`` or ``mm_per_px``.
 
     Returns
     -------
@@ -313,6 +320,7 @@ def read_scan(
             pages=[page],
             options=options,
             data=data,
+            paper=paper,
         )
     )
 
@@ -327,13 +335,14 @@ def iter_scans(
     pages=None,
     options: AnalysisOptions | None = None,
     data: bytes | None = None,
+    paper=None,
 ):
     """Every page of a file as a :class:`Scan` (a raster image has one).
 
     Parameters
     ----------
     path : str or PathLike
-    dpi, mm_per_px, allow_pixels, trust_dpi, options, data
+    dpi, mm_per_px, allow_pixels, trust_dpi, options, data, paper
         As for :func:`read_scan`.
     pages : sequence of int, optional
         Pages to read (0-based); default all. Only page 0 exists in a raster image.
@@ -350,6 +359,9 @@ def iter_scans(
     opts = resolve_options(options)
     p = Path(path)
     given = _check_scale(dpi, mm_per_px, opts)
+    if paper is not None:
+        yield from _rectified(path, paper, given, pages=pages, options=opts, data=data)
+        return
     buf = data if data is not None else read_file_bytes(p)
     if buf.startswith(b"%PDF"):
         yield from _read_pdf(p, buf, given, pages=pages, trust_dpi=trust_dpi, opts=opts)
@@ -357,6 +369,20 @@ def iter_scans(
     if pages is not None and any(int(k) != 0 for k in pages):
         raise InvalidInput("page", list(pages), "0 (a raster image has one page)")
     yield _read_raster(p, buf, given, allow_pixels=allow_pixels, trust_dpi=trust_dpi, opts=opts)
+
+
+def _rectified(path, paper, given, *, pages, options: AnalysisOptions, data):
+    """The pages of a photo rectified onto their paper (their scale from it: the
+    file's own, or a camera's default DPI, is not used)."""
+    from .paper import paper_size, rectify_page
+
+    paper_size(paper)  # (a bad name refused before the file is read)
+    if given is not None:
+        raise InvalidInput("paper", paper, "no scale given with it (--dpi, --mm-per-px)")
+    for scan in iter_scans(
+        path, allow_pixels=True, trust_dpi=True, pages=pages, options=options, data=data
+    ):
+        yield rectify_page(scan, paper)
 
 
 def _open_header(p: Path, buf: bytes, opts: AnalysisOptions):

@@ -166,7 +166,8 @@ class SheetResult:
         Page of a PDF (0-based).
     mm_per_px : float [mm / px]
     scale_source : str
-        'given', 'metadata', 'pdf' or 'pixels'.
+        'given', 'metadata', 'pdf', 'paper' (a photo rectified onto its paper) or
+        'pixels'.
     unit : str
         'mm', or 'px' without a scale.
     method : str
