@@ -368,3 +368,85 @@ def test_sort_ink_first_letter_off_a_tip_is_no_tip_block(tread, text, height, st
     # no convex sliver and has its word about it: set aside, the print exact
     pr, errors = _axis_x(_first_letter_off_tip(tread, text, height, stroke, gap, dpi))
     assert max(abs(e) for e in errors) < 0.005, (errors, pr.flags)
+
+
+# -- a marker's word beside a siped block print ------------------------------------
+
+
+def _siped_print_and_word(dpi: float, below: float) -> tuple:
+    """Held-out 6 seed 1 sheet 60's siped print along x (a superellipse 61 x 48.8
+    mm, exponent 2.646; blocks 8.9 x 5.21 mm, gaps 3.13 and 2.16 mm, columns
+    staggered by half a pitch, one 0.79 mm sipe across each block open at one end:
+    'n's and 'u's) and its label 'run 18' (FONT_HERSHEY_DUPLEX, bold, 6.6 mm for
+    its text height, turned 1.9 degrees) centred 43.06 mm left of the print's centre
+    and ``below`` [mm] under it: its box 1.9 mm off the outline beside the tip (at
+    ``below`` 12.49 as on the sheet). The grey, mm per px, the print's own drawn
+    truth (tests.inkprint.drawn) and the label's box (row0, col0, row1, col1) [px]."""
+    import cv2
+
+    from tests.inkprint.drawn import drawn_scan
+
+    ss, length, width, n = 4, 61.0, 48.8, 2.646
+    (bx, by), (gx, gy), sipe, phase = (8.9, 5.21), (3.13, 2.16), 0.79, 4.0
+    mm = 25.4 / dpi / ss
+    left = -length / 2 - 30.0  # the sheet's left edge from the print's centre [mm]
+    h, w = round((width + 12.0) / mm), round((length + 36.0) / mm)
+    y = (h * mm / 2 - (np.arange(h) + 0.5) * mm)[:, None]  # up
+    x = (left + (np.arange(w) + 0.5) * mm)[None, :]
+    inside = np.abs(x / (length / 2)) ** n + np.abs(y / (width / 2)) ** n <= 1.0
+    px, py = bx + gx, by + gy
+    x0, y0 = -length / 2 - px + phase, -width / 2 - py  # a block's centre
+    i = np.floor((x - x0) / px + 0.5)  # its column
+    u = x - x0 - i * px
+    off = np.where(np.mod(i, 2) == 1, py / 2, 0.0)
+    j = np.floor((y - y0 - off) / py + 0.5)  # its row in the column
+    v = y - y0 - off - j * py
+    block = (np.abs(u) <= bx / 2) & (np.abs(v) <= by / 2)
+    open_end = np.where(np.mod(j, 2) == 1, v <= 0.25 * by, v >= -0.25 * by)
+    ink = (inside & block & ~((np.abs(u) <= sipe / 2) & open_end)).astype(np.uint8)
+    _, _, truth = drawn_scan(ink, dpi, ss, 0.8)
+    text, font = "run 18", cv2.FONT_HERSHEY_DUPLEX
+    (_, th1), _ = cv2.getTextSize(text, font, 1.0, 1)
+    thick, scale = round(0.58 / mm), 6.6 / mm / th1
+    (tw, th), base = cv2.getTextSize(text, font, scale, thick)
+    pad = thick + 4
+    can = np.zeros((th + base + 2 * pad, tw + 2 * pad), np.uint8)
+    cv2.putText(can, text, (pad, pad + th), font, scale, 1, thick, cv2.LINE_8)
+    a = np.radians(1.88)
+    turn = np.array([[np.cos(a), np.sin(a)], [-np.sin(a), np.cos(a)]])
+    centre = np.array([(-43.06 - left) / mm, h / 2 + below / mm])
+    shift = centre - turn @ (np.array(can.shape[::-1]) / 2)
+    label = cv2.warpAffine(can, np.column_stack([turn, shift]), (w, h), flags=cv2.INTER_NEAREST)
+    grey, mm_px, _ = drawn_scan(ink | label, dpi, ss, 0.8)
+    rows, cols = np.flatnonzero(label.any(axis=1)), np.flatnonzero(label.any(axis=0))
+    return grey, mm_px, truth, (rows[0] // ss, cols[0] // ss, rows[-1] // ss, cols[-1] // ss)
+
+
+@pytest.mark.parametrize(("dpi", "below"), [(300.0, 12.49), (300.0, 6.0), (300.0, 0.0)])
+def test_sort_ink_marker_word_beside_a_siped_print_is_set_aside(dpi, below):
+    # held-out 6 seed 1 sheet 60: 'run 18' beside a siped print's tip, its 'r', 'u'
+    # and 'n' taken for the print's blocks the outline cut (each a block with its
+    # sipe) and the bold '18' kept with them: length +39.8 %, status ok (then +16.7
+    # %, 'run' set aside, '18' kept). Copies of blocks closer together than the
+    # lattice's gap are a word's letters (_BoldJudge._word), the next blobs on their
+    # line its next letters (_on_the_line). Here before: length +39.7 %, status ok
+    # (+15.9 % without _on_the_line); now ok within 0.2 % (OpenCV 5.0's glyphs; at
+    # 240 dpi the word was flagged before). Glyphs differ between OpenCV versions:
+    # a flagged print passes, a silently wrong one does not
+    grey, px, truth, box = _siped_print_and_word(dpi, below)
+    r = ip.analyze_scan(ip.Scan(grey, px, "given"), rolling_axis="x", sensitivity=False)
+    (pr,) = r.prints
+    m = pr.metrics
+    errors = [m.length / truth[0] - 1, m.width / truth[1] - 1, m.hull_area / truth[2] - 1]
+    if pr.status != "ok":
+        assert pr.status == "flagged", pr.warnings
+        return
+    assert max(abs(e) for e in errors[:2]) <= 0.01 and abs(errors[2]) <= 0.02, errors
+    letters = [
+        k
+        for k in r.marks
+        if k.reason == BOLD_REASON
+        and box[0] <= (k.bbox[0] + k.bbox[2]) / 2 <= box[2]
+        and box[1] <= (k.bbox[1] + k.bbox[3]) / 2 <= box[3]
+    ]
+    assert len(letters) >= 4, r.marks  # r, u, n, 1, 8 (their pieces)
