@@ -339,3 +339,57 @@ def test_analyze_scan_print_under_25_px_across_is_flagged_coarse(dpi, coarse):
     (p,) = res.prints
     assert ("coarse" in p.flags) == coarse, p.warnings
     assert_allclose([p.metrics.length, p.metrics.width], [t.length, t.width], rtol=0.02)
+
+
+def _ribbed_and_small_slick(dpi: float, beyond: float, beside: float) -> tuple:
+    """A 110 x 27 mm superellipse (n = 4) slick print with three 1.8 mm grooves
+    along x, a 17 x 4 mm elliptical slick print ``beyond`` mm past its right end and
+    the same ellipse ``beside`` mm below its lower side (2.5 % of its ink each); the
+    grey, mm per px and the drawn truths of the large print and of an ellipse
+    (tests.inkprint.drawn)."""
+    import cv2
+
+    from tests.inkprint.drawn import drawn_scan
+
+    ss = 4
+    px = 25.4 / dpi / ss
+    big = np.zeros((round(100.0 / px), round((145.0 + beyond + 25.0) / px)), np.uint8)
+    t = np.linspace(0, 2 * np.pi, 720, endpoint=False)
+    c, s = np.cos(t), np.sin(t)
+    xy = np.column_stack(
+        [80.0 + 55.0 * np.sign(c) * np.abs(c) ** 0.5, 40.0 + 13.5 * np.sign(s) * np.abs(s) ** 0.5]
+    )
+    cv2.fillPoly(big, [np.round(xy / px).astype(np.int32)], 1)
+    for y in (33.0, 40.0, 47.0):
+        big[round((y - 0.9) / px) : round((y + 0.9) / px)] = 0
+    ink = big.copy()
+    axes = (round(8.5 / px), round(2.0 / px))
+    for cx, cy in ((135.0 + beyond + 8.5, 40.0), (80.0, 53.5 + beside + 2.0)):
+        cv2.ellipse(ink, (round(cx / px), round(cy / px)), axes, 0, 0, 360, 1, -1)
+    small = np.zeros((2 * axes[1] + 9, 2 * axes[0] + 9), np.uint8)
+    cv2.ellipse(small, (axes[0] + 4, axes[1] + 4), axes, 0, 0, 360, 1, -1)
+    grey, mm, _ = drawn_scan(ink, dpi, ss, 0.8)
+    return grey, mm, drawn_scan(big, dpi, ss, 0.8)[2], drawn_scan(small, dpi, ss, 0.8)[2]
+
+
+@pytest.mark.parametrize("beyond", [30.0, 55.0])
+def test_find_prints_small_print_far_from_a_large_one_is_a_print(beyond):
+    # held-out 6 seed 1 sheet 108: a 17 x 4 mm slick print 25-60 mm from a 110 mm
+    # rib print, 2.5 % of its ink (under min_patch_fraction), was set aside as a
+    # fragment: missing. Farther than FRAGMENT_REACH_MM (15 mm) from every larger
+    # print it is a print; the same blob 10 mm beside the large print's side is
+    # still a fragment of it (nearer, 3-5 mm, the footprint rule joins it to the
+    # print: not checked here)
+    grey, mm, big, small = _ribbed_and_small_slick(200.0, beyond, 10.0)
+    res = ip.analyze_scan(Scan(grey, mm, "given"), rolling_axis="x", sensitivity=False)
+    assert len(res.prints) == 2
+    large, far = sorted(res.prints, key=lambda p: -p.metrics.hull_area)
+    for p, t in ((large, big), (far, small)):
+        assert_allclose([p.metrics.length, p.metrics.width], t[:2], rtol=0.01)
+        assert_allclose(p.metrics.hull_area, t[2], rtol=0.02)
+        assert p.status == "ok" and not p.flags
+    assert far.bbox[1] > large.bbox[3]  # the one past the right end
+    (frag,) = [m for m in res.marks if m.kind == "fragment"]
+    assert "2.5 % of the largest" in frag.reason
+    r0, c0, r1, c1 = frag.bbox  # the ellipse below the large print's side
+    assert_allclose([(r0 + r1) / 2 * mm, (c0 + c1) / 2 * mm], [65.5, 80.0], atol=0.5)

@@ -287,3 +287,67 @@ def test_analyze_scan_lone_bold_digit_on_a_knurl_print_s_side_is_set_aside(text)
     within = np.allclose([m.length, m.width], [t.length, t.width], rtol=0.01)
     assert within or p.status == "flagged", (m.length, t.length, m.width, t.width)
     assert within
+
+
+def _tiny_file_print(dpi: float) -> tuple:
+    """A 17 x 5.2 mm superellipse (n = 3.5) file print: a slick centre 2.6 mm wide
+    and on each side diamonds between two families of 0.35 mm grooves 0.9 mm apart
+    at +-60 degrees to x (held-out generator 6's file tread), cut at the centre's
+    edge (the inner ones join it) and by the outline (the outer row: 11 dots of
+    0.055-0.117 mm^2 a side); pieces under 0.05 mm^2 left out. The grey, mm per px
+    and the drawn truth (tests.inkprint.drawn)."""
+    import math
+
+    import shapely
+
+    from tests.inkprint.drawn import drawn_scan
+
+    ss, length, width, centre, n, margin = 4, 17.0, 5.2, 1.3, 3.5, 5.0
+    pitch, groove, turn = 0.9, 0.35, math.radians(60.0)
+    px = 25.4 / dpi / ss
+    t = np.linspace(0, 2 * np.pi, 1440, endpoint=False)
+    c, s = np.cos(t), np.sin(t)
+    outline = shapely.Polygon(
+        np.column_stack(
+            [
+                length / 2 * np.sign(c) * np.abs(c) ** (2 / n),
+                width / 2 * np.sign(s) * np.abs(s) ** (2 / n),
+            ]
+        )
+    )
+    # a cell between grooves k and m of the two families (normals n1, n2)
+    to_xy = np.linalg.inv([[-math.sin(turn), math.cos(turn)], [math.sin(turn), math.cos(turn)]])
+    k, m = np.meshgrid(np.arange(-16, 16), np.arange(-16, 16))
+    lo1, hi1 = k.ravel() * pitch + groove / 2, (k.ravel() + 1) * pitch - groove / 2
+    lo2, hi2 = m.ravel() * pitch + groove / 2, (m.ravel() + 1) * pitch - groove / 2
+    quads = np.stack([np.c_[lo1, lo2], np.c_[hi1, lo2], np.c_[hi1, hi2], np.c_[lo1, hi2]], 1)
+    sides = shapely.union(
+        shapely.box(-length, -width, length, -centre), shapely.box(-length, centre, length, width)
+    )
+    cells = shapely.intersection(
+        shapely.intersection(shapely.polygons(quads @ to_xy.T), sides), outline
+    )
+    band = shapely.intersection(outline, shapely.box(-length, -centre, length, centre))
+    ink = shapely.union_all([band, *cells[~shapely.is_empty(cells)]])
+    img = np.zeros((round((width + 2 * margin) / px), round((length + 2 * margin) / px)), np.uint8)
+    offset = np.array([length / 2 + margin, width / 2 + margin])
+    for q in getattr(ink, "geoms", [ink]):
+        if q.area >= 0.05:
+            xy = np.array(q.exterior.coords) + offset
+            cv2.fillPoly(img, [np.round(xy / px).astype(np.int32)], 1)
+    return drawn_scan(img, dpi, ss, 0.8)
+
+
+def test_analyze_scan_tiny_file_print_keeps_its_outer_row_of_small_dots():
+    # held-out 6 seed 1 sheet 108 (360 dpi): a 17 x 5.2 mm file print whose outer
+    # row of diamonds the outline cut to twelve dots of 0.08-0.13 mm^2 beside its
+    # slick centre, each under DOT_LEAST_MM2's floors then (0.3, 0.2): dropped as
+    # thin dots, width -10 % with status ok. A row of DOT_ROWS (10) or more dots of
+    # 0.05 mm^2 or more is left to the section 7.1.1 rule. Here before: the 22 dots
+    # dropped, width -15 %, hull area -18 % (flagged mark_on_edge). (The hull area
+    # is not checked: the tips' corner pieces, left out of the load-bearing ink,
+    # cost it 0.9-4.3 % with the lattice's phase and the pixel grid, status ok)
+    grey, mm, truth = _tiny_file_print(360.0)
+    res = ip.analyze_scan(ip.Scan(grey, mm, "given"), rolling_axis="x", sensitivity=False)
+    (p,) = res.prints
+    assert_allclose([p.metrics.length, p.metrics.width], truth[:2], rtol=0.01)
