@@ -2500,13 +2500,14 @@ def _edge_spots(
     if parts is None:
         return _spots(group, darkness, mm_per_px, opts, gap=tread_gap, pieces=pieces)
     if rule_on:  # a row of dark dots along the outline: the 7.1.1 rule judges them
-        # (the larger dots alone first: alike in size)
+        # (the larger dots alone first: alike in size; then the smaller ones left,
+        # a row of its own: a file print's whole diamonds in one row, the outline's
+        # cut dots in the next)
         for floor, least in zip(DOT_LEAST_MM2, DOT_ROWS, strict=True):
             size = (width, area_mm2_to_px(floor, mm_per_px))
             row = _dot_row(parts, darkness, group.mask, size, opts, least=least)
             if row.any():
                 parts = replace(parts, ends=parts.ends | row)
-                break
     gone = parts.dropped(dots=rule_on)  # of the thin pixels; with dots=False a subset
     kept = cleared(group.mask, parts.at[gone])
     dots = parts.at[gone & ~parts.dropped(dots=False)]
