@@ -807,6 +807,11 @@ DOT_LEAST_MM2 = (0.3, 0.2, 0.05)
 #: dots, held-out 6 seed 1 sheet 108: width -10 % with status ok; at the smallest
 #: floor a row must be longer than a few halo specks)
 DOT_ROWS = (DOT_ROW, DOT_ROW, 10)
+#: ... each within this many strokes (``stroke_width_mm``) of the print's other ink
+#: for each floor (at the smallest, a pen label's broken strokes touching a print's
+#: edge, 'A3 400N', were a row: width +6.6 % with status ok, own set seed 6012 file
+#: 6; a tiny file print's outer dots lie a groove, 0.25-0.35 mm, off its diamonds)
+DOT_NEAR_STROKES = (np.inf, np.inf, 1.0)
 DOT_SPAN = 0.2
 DOT_SIZES = 2.0
 #: with ``group_mm`` given, a join of the side-by-side rule near its limit that
@@ -2331,7 +2336,14 @@ def _along_outline(thin: tuple, lab, stats, hull, *, skip, opts: AnalysisOptions
 
 
 def _dot_row(
-    parts: _ThinParts, darkness, mask: np.ndarray, size: tuple, opts, *, least: int = DOT_ROW
+    parts: _ThinParts,
+    darkness,
+    mask: np.ndarray,
+    size: tuple,
+    opts,
+    *,
+    least: int = DOT_ROW,
+    near: float = np.inf,
 ) -> np.ndarray:
     """Per piece: a dot apart from the print (thin all through, its box's longer
     side at most :data:`DOT_STROKES` x a stroke's width, at least
@@ -2353,6 +2365,15 @@ def _dot_row(
     dot = ~parts.foot & ~parts.ends & (parts.extent <= DOT_STROKES * width_px)
     dot &= ink >= least_px
     dot[0] = False
+    if np.isfinite(near) and dot.any():  # each within ``near`` strokes of the other ink
+        import cv2
+
+        body = mask.copy()
+        body.ravel()[parts.at] = False
+        away = cv2.distanceTransform((~body).view(np.uint8), cv2.DIST_L2, 3).ravel()
+        gap = np.full(n, np.inf)
+        np.minimum.at(gap, parts.ids, away[parts.at])
+        dot &= gap <= near * width_px
     if np.count_nonzero(dot) < least:
         return none
     dark = np.asarray(darkness, float).ravel()
@@ -2503,9 +2524,10 @@ def _edge_spots(
         # (the larger dots alone first: alike in size; then the smaller ones left,
         # a row of its own: a file print's whole diamonds in one row, the outline's
         # cut dots in the next)
-        for floor, least in zip(DOT_LEAST_MM2, DOT_ROWS, strict=True):
+        rows = zip(DOT_LEAST_MM2, DOT_ROWS, DOT_NEAR_STROKES, strict=True)
+        for floor, least, near in rows:
             size = (width, area_mm2_to_px(floor, mm_per_px))
-            row = _dot_row(parts, darkness, group.mask, size, opts, least=least)
+            row = _dot_row(parts, darkness, group.mask, size, opts, least=least, near=near)
             if row.any():
                 parts = replace(parts, ends=parts.ends | row)
     gone = parts.dropped(dots=rule_on)  # of the thin pixels; with dots=False a subset

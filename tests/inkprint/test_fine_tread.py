@@ -350,7 +350,7 @@ def test_analyze_scan_tiny_file_print_keeps_its_outer_row_of_small_dots(pitch, g
     # cost it 0.9-4.3 % with the lattice's phase and the pixel grid, status ok).
     # At 50 degrees the row next to the outer one is whole diamonds of 0.25 mm^2, a
     # row at the 0.2 mm^2 floor: the outer dots were no longer looked at (a sweep of
-    # 240 such drawings: 34 silent, -1 to -10 % wide; 25 now, each floor's row kept)
+    # 240 such drawings: 34 silent, -1 to -10 % wide; 29 now, each floor's row kept)
     grey, mm, truth = _tiny_file_print(360.0, pitch, groove, turn)
     res = ip.analyze_scan(ip.Scan(grey, mm, "given"), rolling_axis="x", sensitivity=False)
     (p,) = res.prints
