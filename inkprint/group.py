@@ -1218,10 +1218,10 @@ def text_line(group: Group, *, mm_per_px: float) -> bool:
     """
     import cv2
 
-    pts = cv2.findNonZero(group.mask.view(np.uint8))
+    pts = outline_points(group.mask)  # (the hull's, not every pixel: a large print's)
     if pts is None:
         return False
-    (_, _), (a, b), _ = cv2.minAreaRect(pts)
+    (_, _), (a, b), turn = cv2.minAreaRect(pts)
     long, across = max(a, b) + 1.0, min(a, b) + 1.0
     if (
         px_to_mm_length(across, mm_per_px) > TEXT_LINE_HEIGHT_MM
@@ -1233,7 +1233,8 @@ def text_line(group: Group, *, mm_per_px: float) -> bool:
     keep = np.flatnonzero(ink >= TEXT_LINE_PIECE * ink.sum()) + 1
     if len(keep) < TEXT_LINE_MIN:
         return False
-    _, axis = _major_axis(pts.reshape(-1, 2).astype(float))
+    t = np.radians(turn if a >= b else turn + 90.0)  # along the line: the box's long side
+    axis = np.array([np.cos(t), np.sin(t)])
     ys, xs = np.nonzero(np.isin(lab, keep))
     t, ids = xs * axis[0] + ys * axis[1], lab[ys, xs]
     lo, hi = piece_range(ids, t, n)
