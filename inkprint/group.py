@@ -2366,7 +2366,15 @@ def _dot_row(
     dot = ~parts.foot & ~parts.ends & (parts.extent <= DOT_STROKES * width_px)
     dot &= ink >= least_px
     dot[0] = False
-    if np.isfinite(near) and dot.any():  # each within ``near`` strokes of the other ink
+    if np.count_nonzero(dot) < least:
+        return none
+    dark = np.asarray(darkness, float).ravel()
+    peak = np.zeros(n)
+    reduce_at(np.maximum, peak, parts.ids, values=dark[parts.at])
+    row = dot & (peak >= opts.edge_spot_faintness * float(np.median(dark[mask.ravel()])))
+    if np.isfinite(near) and np.count_nonzero(row) >= least:
+        # each within ``near`` strokes of the other ink (measured only for a row's
+        # worth of dots: the distance transform is most of this rule's cost)
         import cv2
 
         body = mask.copy()
@@ -2374,13 +2382,7 @@ def _dot_row(
         away = cv2.distanceTransform((~body).view(np.uint8), cv2.DIST_L2, 3).ravel()
         gap = np.full(n, np.inf)
         np.minimum.at(gap, parts.ids, away[parts.at])
-        dot &= gap <= near * width_px
-    if np.count_nonzero(dot) < least:
-        return none
-    dark = np.asarray(darkness, float).ravel()
-    peak = np.zeros(n)
-    reduce_at(np.maximum, peak, parts.ids, values=dark[parts.at])
-    row = dot & (peak >= opts.edge_spot_faintness * float(np.median(dark[mask.ravel()])))
+        row &= gap <= near * width_px
     if np.count_nonzero(row) < least:
         return none
     # along the print's major axis: the dots' span against the ink's
