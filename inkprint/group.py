@@ -231,6 +231,9 @@ class Group:
         Whether it holds a stack of pen-thin strokes found regular
         (:func:`inkprint.stack.stroke_stacks`): they are its tread, not a ruler's
         edge reaching beyond its body.
+    ribs : bool
+        Whether that stack is of lines along the print (its ribs, each
+        ``STACK_LINE_MM`` long or more): the outline cuts their ends to long wedges.
     """
 
     rows: slice
@@ -243,6 +246,7 @@ class Group:
     doubt_joined: bool = False
     fine_area_mm2: float = 0.0
     stacked: bool = False
+    ribs: bool = False
 
     @property
     def n_pixels(self) -> int:

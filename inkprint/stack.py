@@ -215,11 +215,9 @@ def stroke_stacks(ink, taken: list, *, marks: list, mm_per_px: float) -> list:
         mask, line = found
         area = area_px_to_mm2(st[line, 4].astype(float), mm_per_px)
         rows, cols = slice(r0 + y0, r0 + y0 + h), slice(c0 + x0, c0 + x0 + w)
-        out.append(
-            Group(
-                rows, cols, mask, fine_area_mm2=STACK_PART * float(np.median(area)), stacked=True
-            )
-        )
+        ribs = bool((ext[line] >= STACK_LINE_MM).all())
+        fine = STACK_PART * float(np.median(area))
+        out.append(Group(rows, cols, mask, fine_area_mm2=fine, stacked=True, ribs=ribs))
     return out
 
 
@@ -350,4 +348,6 @@ def _union(g: Group, other: Group, *, fine_area_mm2: float) -> Group:
     """``g`` with ``other``'s ink added (:func:`inkprint.group.union`), a stack's."""
     import dataclasses
 
-    return dataclasses.replace(union(g, other), fine_area_mm2=fine_area_mm2, stacked=True)
+    return dataclasses.replace(
+        union(g, other), fine_area_mm2=fine_area_mm2, stacked=True, ribs=g.ribs or other.ribs
+    )
