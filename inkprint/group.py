@@ -1208,8 +1208,9 @@ def text_line(group: Group, *, mm_per_px: float) -> bool:
     along it (consecutive pieces overlapping along it by at most
     :data:`TEXT_LINE_OVERLAP` of the shorter) and differ in size as letters do (their
     80th percentile of ink over their 20th more than :data:`TEXT_LINE_SIZES`; a
-    hyphen, an 'i' and a 'G'). A narrow print's row of bars across it (a ladder
-    tread) is alike bar to bar.
+    hyphen, an 'i' and a 'G') or :data:`TEXT_LINE_BOWLS` of them have a bowl (an
+    enclosed hole: 'O', 'e', '6'). A narrow print's row of bars across it (a ladder
+    tread) is alike bar to bar, and no bar has a hole.
 
     Parameters
     ----------
@@ -1260,12 +1261,11 @@ def text_line(group: Group, *, mm_per_px: float) -> bool:
     inner = (x0 > 0) & (y0 > 0) & (x1 < w) & (y1 < h)
     inner &= hst[:, cv2.CC_STAT_AREA] >= TEXT_LINE_BOWL * np.median(ink[keep - 1])
     inner[0] = False
-    around = set()
-    for k in np.flatnonzero(inner):  # the piece round each bowl: left of its first pixel
-        r, c = divmod(int(np.argmax((holes == k).ravel())), w)
-        if c > 0 and lab[r, c - 1] > 0:
-            around.add(int(lab[r, c - 1]))
-    return len(around & set(keep.tolist())) >= TEXT_LINE_BOWLS
+    # the piece round each bowl: left of the bowl's first pixel (raster order)
+    _, first = np.unique(holes.ravel(), return_index=True)
+    r, c = np.divmod(first[np.flatnonzero(inner)], w)
+    around = lab[r, c - 1][c > 0]
+    return len(np.intersect1d(around[around > 0], keep)) >= TEXT_LINE_BOWLS
 
 
 def word_in_a_line(group: Group, writing: np.ndarray, *, mm_per_px: float) -> bool:
@@ -2580,7 +2580,6 @@ def _spots(
     n_blobs = len(blobs.areas)
     if n_blobs <= 1:
         return EdgeSpots(group.mask, n_blobs, 0, 0)
-    width_px = mm_to_px_length(opts.stroke_width_mm, mm_per_px)
     large = blobs.areas >= opts.edge_spot_area_mm2
     if group.fine_area_mm2 > 0:  # a fine tread's elements are its core too
         large |= blobs.areas >= group.fine_area_mm2
@@ -2630,7 +2629,8 @@ def _spots(
         else:
             row = outside & small  # (a row's dots: some larger than dust)
             speck = dust & (blobs.areas < DUST_SPECK_MM2)
-            spot |= speck & _alone(blobs.centroids, speck, row, DUST_ROW_STROKES * width_px)
+            reach = DUST_ROW_STROKES * mm_to_px_length(opts.stroke_width_mm, mm_per_px)
+            spot |= speck & _alone(blobs.centroids, speck, row, reach)
     if not spot.any():
         return EdgeSpots(group.mask.copy(), n_blobs, 0, 0, pattern)
     is_spot = np.concatenate([[False], spot])[blobs.labels]

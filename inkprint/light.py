@@ -175,6 +175,14 @@ def _corner_angles(quad: np.ndarray) -> tuple:
     return tuple(out)
 
 
+def _border_strips(small: np.ndarray) -> tuple[int, tuple]:
+    """The strips along the four sides of an image where its surround shows (the
+    table of a photo, a scanner's bed): their width [px], 2 % of the shorter side
+    and 2 px at least, and the strips (top, bottom, left, right)."""
+    b = max(2, int(0.02 * min(small.shape)))
+    return b, (small[:b], small[-b:], small[:, :b], small[:, -b:])
+
+
 def find_page(small: np.ndarray, paper: float) -> _Frame | None:
     """The page of a photo on a darker table, or of a scan whose dark bed shows
     along one or more sides (:func:`_bed_strips`), on the small image (None: the
@@ -194,8 +202,7 @@ def find_page(small: np.ndarray, paper: float) -> _Frame | None:
     import cv2
 
     h, w = small.shape
-    b = max(2, int(0.02 * min(h, w)))
-    sides = (small[:b], small[-b:], small[:, :b], small[:, -b:])
+    b, sides = _border_strips(small)
     # no table all round: a scanner's bed along a side, or a page running off a photo?
     bed = max(float(np.median(v)) for v in sides) > 0.6 * paper
     if bed:

@@ -2050,14 +2050,12 @@ def _lone_tip_pieces(
     far = mm_to_px_length(2.0 * opts.group_distance_mm, prints[2])
     others = np.flatnonzero(~own & (t.extent > opts.dot_mm))
     others = others[others > 0]
-    x0, y0 = st[others, 0], st[others, 1]
-    x1, y1 = x0 + st[others, 2], y0 + st[others, 3]
     row = out & cut & rows
-    for k in np.flatnonzero(out):
-        dx = np.maximum(0, np.maximum(x0 - (st[k, 0] + st[k, 2]), st[k, 0] - x1))
-        dy = np.maximum(0, np.maximum(y0 - (st[k, 1] + st[k, 3]), st[k, 1] - y1))
+    ks = np.flatnonzero(out)
+    gaps = _box_gaps(st[np.r_[ks, others], :4])[: len(ks), len(ks) :]  # (k, others)
+    for k, gap in zip(ks, gaps, strict=True):
         mate = row[others] & (t.target[others] == t.target[k]) if row[k] else False
-        out[k] = not ((np.hypot(dx, dy) <= far) & (others != k) & ~mate).any()
+        out[k] = not ((gap <= far) & (others != k) & ~mate).any()
     return out
 
 

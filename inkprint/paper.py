@@ -117,10 +117,9 @@ def _lit_page(small: np.ndarray) -> np.ndarray:
     then cuts it off the outline."""
     import cv2
 
-    b = max(2, int(0.02 * min(small.shape)))
-    border = np.concatenate(
-        [small[:b].ravel(), small[-b:].ravel(), small[:, :b].ravel(), small[:, -b:].ravel()]
-    )
+    from .light import _border_strips
+
+    border = np.concatenate([v.ravel() for v in _border_strips(small)[1]])
     table, paper = float(np.median(border)), float(np.percentile(small, 95))
     bright = (small > table + PAGE_LEVEL * (paper - table)).astype(np.uint8)
     n, lab, stats, _ = cv2.connectedComponentsWithStats(bright, connectivity=4)

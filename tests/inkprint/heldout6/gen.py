@@ -1282,24 +1282,7 @@ def make_file(d, i, seed, kind):
         ch = 3 if rng.random() < 0.8 else 1
     base = f"scan_{i:03d}"
     truth, mani, infos = [], [], []
-    blank = {
-        k: ""
-        for k in (
-            "length_mm",
-            "width_mm",
-            "hull_area_mm2",
-            "centroid_x_mm",
-            "centroid_y_mm",
-            "family",
-            "outline",
-            "tread",
-            "angle_deg",
-            "alt_kind",
-            "length_alt_mm",
-            "width_alt_mm",
-            "ink_dark",
-        )
-    }
+    blank = {k: "" for k in TRUTH_COLS[5:-1]}  # (the measured columns)
     if pdf:
         fn = base + ".pdf"
         enc = "dct" if rng.random() < 0.45 else "flate"
