@@ -120,6 +120,10 @@ class Options:
         resolve_threads(self.threads)  # None stays None: the cores, resolved per sheet
         if self.rolling_axis not in AXES:
             raise InvalidInput("rolling_axis", self.rolling_axis, " | ".join(AXES))
+        if self.paper is not None:  # (refused before any file is read)
+            from .paper import paper_size
+
+            paper_size(self.paper)
         if self.pages is not None:
             pages = tuple(int(p) for p in self.pages)
             if not pages or min(pages) < 0:

@@ -118,3 +118,17 @@ def test_cli_paper_and_manifest_column(tmp_path, capsys):
     assert [r["scale_source"] for r in rows] == ["paper", "paper"]
     got = sorted(sorted((float(r["length_mm"]), float(r["width_mm"]))) for r in rows)
     assert_allclose(got, _extents(truth), rtol=5e-3)
+
+
+def test_batch_options_bad_paper_refused_before_any_file(tmp_path, capsys):
+    from inkprint.batch import Options
+    from inkprint.cli import main
+
+    with pytest.raises(ip.InvalidInput, match="paper = 'B9'"):
+        Options(paper="B9")
+    # a batch-wide --paper is checked before a file is read: no table, exit 2 (a
+    # manifest's bad paper is an error row of its file)
+    out = tmp_path / "rows.csv"
+    assert main(["batch", str(tmp_path), "-o", str(out), "--paper", "B9", "-q"]) == 2
+    assert "paper = 'B9' is invalid" in capsys.readouterr().err
+    assert not out.exists()
