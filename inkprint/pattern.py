@@ -39,6 +39,7 @@ from .components import components_with_stats
 from .group import Group, union
 
 __all__ = [
+    "copies_of_one",
     "cut_copy",
     "frame_copies",
     "join_pattern_pieces",
@@ -186,9 +187,8 @@ def _best_shifts(piece: np.ndarray, hull: np.ndarray, refs: list):
 
 def whole_copies(labels: np.ndarray, stats: np.ndarray, ids: np.ndarray) -> int:
     """How many of a group's pieces are whole copies of one of its typical elements
-    (:func:`typical_elements`; the element the most are copies of): laid over it at
-    the best shift, the two inks' intersection at least :data:`WHOLE_IOU` of their
-    union. A tread repeats one element; writing repeats a letter a few times.
+    (:func:`copies_of_one`). A tread repeats one element; writing repeats a letter
+    a few times.
 
     Parameters
     ----------
@@ -203,23 +203,49 @@ def whole_copies(labels: np.ndarray, stats: np.ndarray, ids: np.ndarray) -> int:
     -------
     int
     """
+    return int(copies_of_one(labels, stats, ids).sum())
+
+
+def copies_of_one(labels: np.ndarray, stats: np.ndarray, ids: np.ndarray) -> np.ndarray:
+    """Which of a group's pieces are whole copies of one of its typical elements
+    (:func:`typical_elements`; the element the most are copies of): laid over it at
+    the best shift, the two inks' intersection at least :data:`WHOLE_IOU` of their
+    union.
+
+    Parameters
+    ----------
+    labels : (H, W) int
+        Labelled pieces.
+    stats : (n + 1, 5) int
+        (x, y, w, h, area) [px] per label (row 0: the background).
+    ids : (k,) int
+        The pieces' labels.
+
+    Returns
+    -------
+    (k,) bool
+    """
     import cv2
 
     refs = typical_elements(labels, stats, ids)
+    best = np.zeros(len(ids), bool)
+    if not refs:
+        return best
     crops = []
     for k in ids:
         x, y, w, h = stats[k, :4]
         crops.append((labels[y : y + h, x : x + w] == k).astype(np.float32))
     sums = [float(p.sum()) for p in crops]
-    most = 0
     for e in refs:
-        n_e, count = float(e.sum()), 0
-        for p, n_p in zip(crops, sums, strict=True):
+        n_e = float(e.sum())
+        hit = np.zeros(len(ids), bool)
+        for j, (p, n_p) in enumerate(zip(crops, sums, strict=True)):
             pad = ((p.shape[0], p.shape[0]), (p.shape[1], p.shape[1]))
             both = float(cv2.matchTemplate(np.pad(e, pad), p, cv2.TM_CCORR).max())
-            count += both >= WHOLE_IOU * (n_e + n_p - both)
-        most = max(most, count)
-    return most
+            hit[j] = both >= WHOLE_IOU * (n_e + n_p - both)
+        if hit.sum() > best.sum():
+            best = hit
+    return best
 
 
 def frame_copies(
