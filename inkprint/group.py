@@ -1761,9 +1761,9 @@ def _rows_of_letters(mask: np.ndarray, pts: np.ndarray, mm_per_px: float, opts) 
     # element, more of them than a label repeats a letter (held-out seed 3 sheet 9
     # page 2: a 78 x 18 mm print of siped blocks in two rows, the outer row cut to
     # 'E's, set aside as "lines of writing": missing; drawn labels: 4 at most)
-    from .pattern import MIN_ELEMENTS, whole_copies
+    from .pattern import MIN_ELEMENTS, copies_of_one
 
-    if whole_copies(lab, st, 1 + np.flatnonzero(big)) >= MIN_ELEMENTS:
+    if copies_of_one(lab, st, 1 + np.flatnonzero(big)).sum() >= MIN_ELEMENTS:
         return False
     # letters are curved or crossed strokes; a tread's bars are straight
     bars = []

@@ -214,6 +214,9 @@ FIELD_SHARE = 0.75
 #: thick elements make a fine field up to this many ``fine_element_mm`` apart (dots
 #: of 2.4 mm, 3.5 mm apart, survive the stroke-wide opening whole)
 FIELD_THICK_SPACING = 2.0
+#: a tiny print's elements inside its field's hull, at least this many, judge how
+#: alike their areas are (:func:`_fine_fields` with ``inner``)
+INNER_ELEMENTS = 5
 #: a fine tread's element is at least this long [mm] (pixel noise is smaller)
 FINE_ELEMENT_MIN_MM = 0.3
 #: ... fills at least this share of its box (a dot 0.79, a diamond 0.5; a letter's
@@ -494,7 +497,13 @@ def _ink_box(mask: np.ndarray, margin: int) -> tuple[slice, slice]:
 
 
 def _fine_fields(
-    stats: np.ndarray, centroids: np.ndarray, px_mm: float, opts, *, whole=None
+    stats: np.ndarray,
+    centroids: np.ndarray,
+    px_mm: float,
+    opts,
+    *,
+    whole=None,
+    inner: bool = False,
 ) -> np.ndarray:
     """Which pieces (``stats``, ``centroids``: :func:`components_with_stats`'s, label 0
     the background) are the elements of a fine tread: a dense regular field of small
@@ -510,7 +519,9 @@ def _fine_fields(
     alike), two-dimensional (``fine_neighbours``) and dense (``fine_ink_share``).
     Text is sparse strokes in lines, dust isolated specks, pixel noise irregular.
     ``whole`` ((n,) bool): the pieces that are a whole piece of ink, the only
-    elements (default: all)."""
+    elements (default: all). ``inner``: the areas' regularity judged on the elements
+    inside the field's hull (at least :data:`INNER_ELEMENTS`; a tiny print's outline
+    cuts most of its outer ones smaller)."""
     out = np.zeros(len(stats), bool)
     if opts.fine_element_mm <= 0 or len(stats) <= opts.fine_min_elements:
         return out
@@ -538,7 +549,9 @@ def _fine_fields(
     sizes = np.bincount(comp, minlength=n_comp)
     for c in np.flatnonzero(sizes >= opts.fine_min_elements):
         on = comp == c
-        sp, ar = np.percentile(nn[on], [20, 50, 80]), np.percentile(area[idx[on]], [20, 80])
+        at = _inner(pts[on], np.median(nn[on])) if inner else on[on]
+        sp = np.percentile(nn[on], [20, 50, 80])
+        ar = np.percentile(area[idx[on]][at], [20, 80])
         ink = area_px_to_mm2(area[idx[on]].sum(), px_mm) / (on.sum() * sp[1] ** 2)
         ok = (
             sp[2] <= opts.fine_regularity * sp[0]
@@ -548,6 +561,20 @@ def _fine_fields(
         )
         out[idx[on]] = ok
     return out
+
+
+def _inner(pts: np.ndarray, spacing: float) -> np.ndarray:
+    """Which of points ``pts`` ((k, 2) [mm]) lie inside their convex hull by more
+    than a quarter ``spacing`` [mm], when at least :data:`INNER_ELEMENTS` do (else
+    all). (k,) bool."""
+    import cv2
+
+    hull = cv2.convexHull(pts.astype(np.float32))
+    inside = (
+        np.array([cv2.pointPolygonTest(hull, (float(x), float(y)), True) for x, y in pts])
+        > 0.25 * spacing
+    )
+    return inside if inside.sum() >= INNER_ELEMENTS else np.ones(len(pts), bool)
 
 
 def _nearest_within(pts: np.ndarray, k: int, radius: float) -> tuple:
@@ -2155,7 +2182,7 @@ def _corner_points(labels: np.ndarray, stats: np.ndarray, ks: np.ndarray) -> np.
     for k in ks:
         x, y, w, h = stats[k, :4]
         pts = cv2.findNonZero((labels[y : y + h, x : x + w] == k).view(np.uint8))
-        hull = cv2.convexHull(pts).reshape(-1, 2).astype(float) + (x, y)
+        hull = cv2.convexHull(pts).reshape(-1, 2).astype(float) + np.array([x, y], float)
         # (each pixel's four corners: a pixel's span is one wide)
         hulls.append((hull[:, None, :] + [[0, 0], [1, 0], [0, 1], [1, 1]]).reshape(-1, 2))
     m = max(len(h) for h in hulls)

@@ -26,7 +26,7 @@ The same comparison serves elsewhere: the pieces of the letters and lines set
 aside before grouping are offered too (:func:`mark_pieces`), and a piece cut far
 off its element's middle is in step when it lies within an element laid at a
 step (:func:`placed_copy`); rows of siped blocks whose many whole copies of one
-element no label repeats are a tread, not writing (:func:`whole_copies`); and a
+element no label repeats are a tread, not writing (:func:`copies_of_one`); and a
 block's thin frame at a tip, inside a copy of an element, is no stroke's foot
 (:func:`frame_copies`).
 """
@@ -45,7 +45,6 @@ __all__ = [
     "join_pattern_pieces",
     "mark_pieces",
     "typical_elements",
-    "whole_copies",
 ]
 
 #: fewest typical elements of a print whose pattern is continued
@@ -185,32 +184,11 @@ def _best_shifts(piece: np.ndarray, hull: np.ndarray, refs: list):
         yield e, r, c, float(miss[r, c])
 
 
-def whole_copies(labels: np.ndarray, stats: np.ndarray, ids: np.ndarray) -> int:
-    """How many of a group's pieces are whole copies of one of its typical elements
-    (:func:`copies_of_one`). A tread repeats one element; writing repeats a letter
-    a few times.
-
-    Parameters
-    ----------
-    labels : (H, W) int
-        Labelled pieces.
-    stats : (n + 1, 5) int
-        (x, y, w, h, area) [px] per label (row 0: the background).
-    ids : (k,) int
-        The pieces' labels.
-
-    Returns
-    -------
-    int
-    """
-    return int(copies_of_one(labels, stats, ids).sum())
-
-
 def copies_of_one(labels: np.ndarray, stats: np.ndarray, ids: np.ndarray) -> np.ndarray:
     """Which of a group's pieces are whole copies of one of its typical elements
     (:func:`typical_elements`; the element the most are copies of): laid over it at
     the best shift, the two inks' intersection at least :data:`WHOLE_IOU` of their
-    union.
+    union. A tread repeats one element; writing repeats a letter a few times.
 
     Parameters
     ----------

@@ -1,0 +1,304 @@
+"""A ruler's scale on the sheet: its ticks and numbers, where they cross a print.
+
+A ruler laid on or beside the prints for scale leaves a row of ticks: thin,
+straight, parallel bars a millimetre apart whose one end lies on the ruler's edge,
+with numbers beyond the longest. Off the prints each tick is set aside as a mark
+(too thin and short for a print); over a print the ticks and numbers that touch its
+ink join it, and where the scale crosses the print's outline they stick out of it
+(held-out 6 seed 2 sheet 103: a ruler across a 44 mm wide print, its '8' and ticks
+beyond the print's edge, width +6.9 %, status ok). Under the scale the print's
+edge cannot be told from the ruler's ink.
+
+:func:`find_scales` finds the scales among the marks set aside: at least
+:data:`MIN_TICKS` ticks (elongated, thin) parallel within :data:`TICK_TURN_DEG`,
+one end of each on one line (within :data:`BASE_TOL_MM`), spaced along it at a
+regular pitch (:data:`PITCH_MM`). A label's strokes ('l', '1') are parallel too,
+but few and not at a pitch. :func:`scale_band` is the strip the scale covers: from
+just behind the edge to its numbers, along the ticks found (and a pitch beyond
+them), as a polygon; a print whose length, width or half its hull area shrinks by
+more than ``edge_uncertainty`` without its ink in that strip is flagged
+``mark_on_edge`` (:func:`inkprint.analyze.measure_print`): the ink measured is an
+upper bound of the print there, the ink outside the strip a lower one.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from .coords import mm_to_px_length, px_to_mm_length
+
+__all__ = ["RulerScale", "find_scales", "scale_band", "scale_error"]
+
+#: fewest ticks of a scale (a label has few parallel strokes on one base line)
+MIN_TICKS = 10
+#: a tick is a bar at least this many times longer than thick ...
+TICK_ELONGATION = 4.0
+#: ... no thicker than this [mm] and within this range of lengths [mm]
+TICK_WIDTH_MM = 0.6
+TICK_LENGTH_MM = (0.8, 9.0)
+#: ... the longest of a scale's at least this many times its median tick (a ruler
+#: marks halves and whole centimetres longer)
+TICK_LONGER = 1.4
+#: ticks of one scale are parallel within this [deg] ...
+TICK_TURN_DEG = 4.0
+#: ... one end of each on one line, within this [mm] ...
+BASE_TOL_MM = 0.35
+#: ... a line searched within this [deg] of the ticks' normal
+BASE_SEARCH_DEG = 3.0
+#: ... and most of the steps between neighbours along it (at least
+#: :data:`PITCH_SHARE` of them) within :data:`PITCH_TOL` of a whole number of pitches
+#: between these [mm] (a millimetre scale; an inch scale's sixteenths are 1.6 mm)
+PITCH_MM = (0.5, 2.6)
+PITCH_TOL = 0.2
+PITCH_SHARE = 0.7
+#: the strip a scale covers reaches this many of its longest ticks beyond its edge
+#: (the ticks, then the numbers beyond the longest, as tall) and this [mm] behind it
+#: (the ruler's edge line)
+BAND_TICKS = 2.2
+BAND_BEHIND_MM = 1.0
+#: rulers' pitches [mm]: millimetres, sixteenths and tenths of an inch (not half
+#: millimetres: a millimetre scale at twice the file's dpi would read as one)
+RULER_PITCHES_MM = (1.0, 25.4 / 16, 2.54)
+#: an end of a scale's ticks within this of a print [mm] runs on across it
+BAND_REACH_MM = 2.0
+#: marks that may be a scale's ticks
+TICK_KINDS = ("text", "dust", "writing", "sliver")
+
+
+@dataclass(frozen=True)
+class RulerScale:
+    """A ruler's scale found on the sheet.
+
+    Attributes
+    ----------
+    base : (2,) float [px]
+        A point of the ruler's edge, the ticks' common end: (col, row).
+    along : (2,) float
+        Unit vector along the edge (col, row).
+    out : (2,) float
+        Unit vector along the ticks, from the edge to their tips (col, row).
+    span : (2,) float [px]
+        The ticks' extent along ``along`` from ``base`` (first, last).
+    tick_px : float [px]
+        The longest tick.
+    ticks : int
+        How many ticks were found.
+    pitch_mm : float [mm]
+        The step between neighbouring ticks.
+    """
+
+    base: np.ndarray
+    along: np.ndarray
+    out: np.ndarray
+    span: tuple
+    tick_px: float
+    ticks: int
+    pitch_mm: float
+
+
+def _ticks(ink: np.ndarray, marks: list, mm_per_px: float) -> np.ndarray:
+    """The marks that are tick-like bars: (k, 5) float rows of centre (col, row)
+    [px], direction angle [rad in [0, pi)], length [px] and the mark's index."""
+    lo = mm_to_px_length(TICK_LENGTH_MM[0], mm_per_px)
+    hi = mm_to_px_length(TICK_LENGTH_MM[1], mm_per_px)
+    thick = mm_to_px_length(TICK_WIDTH_MM, mm_per_px)
+    out = []
+    for i, mk in enumerate(marks):
+        if mk.kind not in TICK_KINDS:
+            continue
+        r0, c0, r1, c1 = mk.bbox
+        if not lo <= np.hypot(r1 - r0, c1 - c0) <= hi * 1.5:
+            continue
+        rows, cols = np.nonzero(ink[r0:r1, c0:c1])
+        if len(rows) < 3:
+            continue
+        xy = np.column_stack([cols, rows]).astype(float)
+        c = xy.mean(axis=0)
+        d = xy - c
+        cov = d.T @ d / len(d)
+        _, v = np.linalg.eigh(cov)
+        u = v[:, 1]  # the major axis
+        s = d @ u
+        length = float(np.ptp(s)) + 1.0
+        width = len(rows) / length
+        if not (lo <= length <= hi and width <= thick and length >= TICK_ELONGATION * width):
+            continue
+        ang = float(np.arctan2(u[1], u[0]) % np.pi)
+        out.append((c[0] + c0, c[1] + r0, ang, length, i))
+    return np.asarray(out, float).reshape(-1, 5)
+
+
+def _mean_axis(ang: np.ndarray) -> float:
+    """The mean of axis directions ``ang`` [rad, modulo pi] (doubled angles)."""
+    return float(0.5 * np.arctan2(np.sin(2 * ang).mean(), np.cos(2 * ang).mean()))
+
+
+def _angle_groups(ang: np.ndarray) -> list[np.ndarray]:
+    """Indices of ticks parallel within :data:`TICK_TURN_DEG` of each one, largest
+    sets first (one per direction)."""
+    tol = np.radians(TICK_TURN_DEG)
+    diff = np.abs((ang[:, None] - ang[None, :] + np.pi / 2) % np.pi - np.pi / 2)
+    near = diff <= tol
+    order = np.argsort(-near.sum(axis=1), kind="stable")
+    used = np.zeros(len(ang), bool)
+    out = []
+    for i in order:
+        if used[i]:
+            continue
+        members = np.flatnonzero(near[i] & ~used)
+        if len(members) < MIN_TICKS:
+            break
+        used[members] = True
+        out.append(members)
+    return out
+
+
+def _on_a_pitch(t: np.ndarray, mm_per_px: float) -> float | None:
+    """The pitch [mm] of positions ``t`` [px] along a line, or None when their steps
+    are not mostly whole numbers of one pitch within :data:`PITCH_MM`."""
+    steps = px_to_mm_length(np.diff(np.sort(t)), mm_per_px)
+    steps = steps[steps > 0.25 * PITCH_MM[0]]
+    if len(steps) < MIN_TICKS - 1:
+        return None
+    pitch = float(np.percentile(steps, 25))  # (the ticks hidden under a print: longer steps)
+    if not PITCH_MM[0] <= pitch <= PITCH_MM[1]:
+        return None
+    q = steps / pitch
+    whole = np.abs(q - np.round(q)) <= PITCH_TOL
+    if whole.mean() < PITCH_SHARE:
+        return None
+    # the pitch fitted: each tick's number of pitches from the first, a line through
+    # the positions (the percentile is a step's, a few % off; the fit is the scale's)
+    # (counted step by step: a step is a few pitches, rounded right while the first
+    # guess is within a few %; counted from the first tick it drifted over 100)
+    x = px_to_mm_length(np.sort(t), mm_per_px)
+    keep = np.r_[True, np.diff(x) > 0.25 * PITCH_MM[0]]
+    x = x[keep]
+    n = np.r_[0.0, np.cumsum(np.round(np.diff(x) / pitch))]
+    return float(np.polyfit(n, x, 1)[0])
+
+
+def scale_error(scale: RulerScale) -> float:
+    """How far the scale's pitch reads from the nearest ruler's pitch
+    (:data:`RULER_PITCHES_MM`), relative [-]: a sheet's scale off by that much (a
+    file's dpi wrong) reads every length off by as much."""
+    return min(abs(scale.pitch_mm / p - 1.0) for p in RULER_PITCHES_MM)
+
+
+def find_scales(ink: np.ndarray, marks: list, *, mm_per_px: float) -> list[RulerScale]:
+    """Rulers' scales among the marks set aside (see the module's notes).
+
+    Parameters
+    ----------
+    ink : (rows, cols) bool
+        The sheet's ink.
+    marks : list of inkprint.marks.Mark
+        The ink set aside.
+    mm_per_px : float [mm / px]
+
+    Returns
+    -------
+    list of RulerScale
+    """
+    ticks = _ticks(ink, marks, mm_per_px)
+    if len(ticks) < MIN_TICKS:
+        return []
+    tol = mm_to_px_length(BASE_TOL_MM, mm_per_px)
+    out = []
+    for members in _angle_groups(ticks[:, 2]):
+        tk = ticks[members]
+        a0 = _mean_axis(tk[:, 2])
+        # the end points of the ticks (each along its own axis)
+        d = np.column_stack([np.cos(tk[:, 2]), np.sin(tk[:, 2])]) * (tk[:, 3:4] / 2)
+        pts = np.concatenate([tk[:, :2] - d, tk[:, :2] + d])  # (2k, 2)
+        # the base line: the line across the ticks most of their ends lie on, its
+        # direction searched near the ticks' normal (their mean direction is a degree
+        # off on short ticks; over a ruler's length that misses the line)
+        turns = a0 + np.radians(np.linspace(-BASE_SEARCH_DEG, BASE_SEARCH_DEG, 4 * 15 + 1))
+        best_n, a, base_s = 0, a0, 0.0
+        for t in turns:
+            srt = np.sort(pts @ np.array([np.cos(t), np.sin(t)]))
+            count = np.searchsorted(srt, srt + 2 * tol, side="right") - np.arange(len(srt))
+            i = int(np.argmax(count))
+            if count[i] > best_n:
+                best_n, a, base_s = int(count[i]), t, float(np.median(srt[i : i + count[i]]))
+        if best_n < MIN_TICKS:
+            continue
+        u = np.array([np.cos(a), np.sin(a)])  # along the ticks
+        n = np.array([-u[1], u[0]])  # along the edge
+        s = tk[:, :2] @ u
+        lo_end = np.abs(s - tk[:, 3] / 2 - base_s) <= tol
+        hi_end = np.abs(s + tk[:, 3] / 2 - base_s) <= tol
+        on = lo_end | hi_end
+        if on.sum() < MIN_TICKS:
+            continue
+        # a ruler's ticks are of two lengths or more (millimetres, halves, centimetres);
+        # a hatching's or a comb's strokes are alike
+        lengths = tk[on, 3]
+        if lengths.max() < TICK_LONGER * np.median(lengths):
+            continue
+        t = tk[on, :2] @ n
+        pitch = _on_a_pitch(t, mm_per_px)
+        if pitch is None:
+            continue
+        sign = 1.0 if lo_end[on].sum() >= hi_end[on].sum() else -1.0
+        t0 = float(np.median(tk[on, :2] @ n))
+        base = base_s * u + t0 * n
+        out.append(
+            RulerScale(
+                base=base,
+                along=n,
+                out=sign * u,
+                span=(float(t.min() - t0), float(t.max() - t0)),
+                tick_px=float(tk[on, 3].max()),
+                ticks=int(on.sum()),
+                pitch_mm=pitch,
+            )
+        )
+    return out
+
+
+def scale_band(
+    scale: RulerScale, *, mm_per_px: float, ink: np.ndarray | None = None
+) -> np.ndarray:
+    """The strip a scale covers: (4, 2) float (col, row) [px] corners, from
+    :data:`BAND_BEHIND_MM` behind its edge to :data:`BAND_TICKS` of its longest tick
+    beyond it, along its ticks and a pitch beyond the first and last. With ``ink``
+    (a print's outline points, (k, 2) (col, row) [px]): an end of the ticks whose
+    next tick would lie within :data:`BAND_REACH_MM` of that ink runs on across it
+    (the ticks under a print are hidden in its ink: a ruler ending over a print left
+    its tick beside the edge out of the strip; a ruler ending short of a print, its
+    last tick farther from the ink, does not cross it).
+
+    Parameters
+    ----------
+    scale : RulerScale
+    mm_per_px : float [mm / px]
+    ink : (k, 2) float [px], optional
+
+    Returns
+    -------
+    (4, 2) float [px]
+    """
+    pitch = mm_to_px_length(scale.pitch_mm, mm_per_px)
+    behind = mm_to_px_length(BAND_BEHIND_MM, mm_per_px)
+    t0, t1 = scale.span[0] - pitch, scale.span[1] + pitch
+    s0, s1 = -behind, BAND_TICKS * scale.tick_px
+    if ink is not None and len(ink):
+        rel = np.asarray(ink, float) - scale.base
+        t, s = rel @ scale.along, rel @ scale.out
+        reach = mm_to_px_length(BAND_REACH_MM, mm_per_px)
+        # the distance from each end's next tick (the base line to the longest
+        # tick's length) to the ink
+        across = np.maximum(0.0, np.maximum(-s, s - scale.tick_px))
+        for end in (t0, t1):
+            if np.min(np.hypot(t - end, across)) <= reach:
+                t0, t1 = min(t0, t.min()), max(t1, t.max())
+    return np.array(
+        [
+            scale.base + t * scale.along + s * scale.out
+            for t, s in ((t0, s0), (t1, s0), (t1, s1), (t0, s1))
+        ]
+    )
