@@ -23,7 +23,7 @@ this resolution: its outline is its elements' corners, which the half-contrast e
 cuts short by about half a pixel across, more than 1 % of its width); ``coarse`` -
 a print under 25 px across (a tiny print at 150 dpi): its edges are good to about a
 quarter pixel between them, more than 1 % of its width; ``scale_mismatch`` - a
-ruler on the sheet reads its ticks' pitch more than 1 % off every ruler's (1 mm,
+ruler on the sheet reads its ticks' pitch more than 2 % off every ruler's (1 mm,
 1/16 or 1/10 inch): the file's dpi (or the one given) is wrong, and so is every
 length (:mod:`inkprint.ruler`); its
 measurements are still in the row, for inspection, but :mod:`contactpatch`'s
