@@ -3431,6 +3431,7 @@ def analyze_scan(
         warnings=page.warnings + checked[1:],
         light_range=page.light_range,
         n_pages=scan.n_pages,
+        scales=found.scales,
     )
 
 

@@ -19,6 +19,7 @@ ELLIPSE = (220, 40, 40)
 AXES = (30, 90, 230)
 TEXT = (0, 90, 0)
 MARK = (235, 140, 0)
+SCALE = (140, 60, 200)
 #: dust specks are boxed only when at least this large [mm^2] (a page has hundreds)
 DUST_BOX_MM2 = 0.5
 
@@ -83,6 +84,19 @@ def _draw_marks(canvas: _Canvas, result: SheetResult) -> None:
         canvas.label(text, canvas.rgb.shape[0] / canvas.f - 4, 4, MARK, 0.4)
 
 
+def _draw_scales(canvas: _Canvas, result: SheetResult) -> None:
+    """Each ruler's scale found: the strip of its ticks and numbers, outlined in
+    violet, labelled with its pitch (a print it crosses is judged for the ink there:
+    ``mark_on_edge``; a pitch off a ruler's: ``scale_mismatch``)."""
+    from .ruler import scale_band
+
+    for sc in result.scales:
+        band = scale_band(sc, mm_per_px=result.mm_per_px)  # (col, row) [px]
+        canvas.line_px(band[:, 1], band[:, 0], SCALE, closed=True)
+        r, c = band[:, 1].min(), band[np.argmin(band[:, 1]), 0]
+        canvas.label(f"ruler {sc.pitch_mm:.3f} mm pitch", r, c, SCALE, 0.4)
+
+
 def _draw_print(canvas: _Canvas, p: PrintResult, unit: str) -> None:
     color = FLAGGED if p.status == "flagged" else HULL
     canvas.line_px(p.hull_px[:, 0], p.hull_px[:, 1], color, closed=True)
@@ -117,7 +131,7 @@ def draw_overlay(
     the length / width axes blue; each print is labelled with its number, size and
     flags. Every mark set aside (line, gridlines, text, noise; dust of at least
     :data:`DUST_BOX_MM2`) is boxed in orange with its kind, and the bottom line
-    counts them.
+    counts them; a ruler's scale is outlined in violet with its pitch.
 
     Parameters
     ----------
@@ -137,6 +151,7 @@ def draw_overlay(
     """
     canvas = _Canvas(scan, max_side)
     _draw_marks(canvas, result)
+    _draw_scales(canvas, result)
     for p in result.prints:
         _draw_print(canvas, p, result.unit)
     if path is not None:

@@ -194,6 +194,8 @@ class SheetResult:
         The paper's brightness, darkest over brightest (1 = even).
     n_pages : int
         Pages of the file.
+    scales : tuple of inkprint.ruler.RulerScale
+        Rulers' scales found among the marks (:func:`inkprint.ruler.find_scales`).
     """
 
     path: str
@@ -212,6 +214,7 @@ class SheetResult:
     warnings: tuple = ()
     light_range: tuple = (1.0, 1.0)
     n_pages: int = 1
+    scales: tuple = field(default=(), repr=False)
 
     @property
     def rejected(self) -> list[str]:
