@@ -301,3 +301,26 @@ def test_analyze_scan_ruler_reading_off_the_files_scale_is_flagged(true_dpi, fil
         assert "scale_mismatch" in row["flags"] and row["status"] == "flagged", row
         (why,) = [w for w in res.warnings if "ruler on the sheet" in w]
         assert f"a millimetre ruler: --dpi {true_dpi:.0f}" in why, why
+
+
+def test_draw_overlay_outlines_the_ruler_scale():
+    """The QA overlay outlines each ruler's scale found (violet) with its pitch, so a
+    print flagged for the scale's ink shows why; a sheet without one has none."""
+    from inkprint.overlay import SCALE, draw_overlay
+
+    shape, px = _canvas(200.0, 150.0, 110.0)
+    ink = _ellipse(shape, px, (75.0, 35.0), 90.0, 26.0)
+    ruler = _ruler(shape, px, (15.0, 70.0), 0.0, 110.0)
+    for with_ruler in (True, False):
+        grey, mm, _ = _sheet(200.0, ink, ruler if with_ruler else None)
+        scan = ip.Scan(grey, mm, "given")
+        res = ip.analyze_scan(scan, rolling_axis="x", sensitivity=False)
+        assert len(res.scales) == int(with_ruler)
+        rgb = draw_overlay(scan, res)
+        # (anti-aliased: near the colour; the scan is grey, the marks orange)
+        violet = np.all(np.abs(rgb.astype(int) - SCALE) <= 40, axis=2)
+        if with_ruler:
+            rows = np.nonzero(violet.any(axis=1))[0] * mm  # (the canvas is the scan's size)
+            assert violet.sum() > 100 and rows.min() < 72.0 < rows.max(), rows
+        else:
+            assert not violet.any()
