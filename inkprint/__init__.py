@@ -13,7 +13,8 @@ Reading   : read_scan, iter_scans (every PDF page), Scan; rectify_page, paper_si
 Analysis  : analyze_scan, SheetResult, PrintResult, contact_pressure
 Options   : AnalysisOptions
 Steps     : prepare_page (light, photo page), binarize, sort_ink (marks that are not
-            prints), group_blobs (whole footprints), edge_spots (section 7.1.1)
+            prints), group_blobs (whole footprints), edge_spots (section 7.1.1),
+            find_scales (a ruler's scale among the marks: its strip and pitch)
 Batch     : run_batch, BatchResult, BatchOptions (= inkprint.batch.Options)
 Overlay   : draw_overlay
 Pixels/mm : inkprint.coords
@@ -64,6 +65,7 @@ __all__ = [
     "contact_pressure",
     "draw_overlay",
     "edge_spots",
+    "find_scales",
     "group_blobs",
     "iter_scans",
     "paper_size",
@@ -90,6 +92,7 @@ _LAZY = {
     "contact_pressure": ".results",
     "draw_overlay": ".overlay",
     "edge_spots": ".group",
+    "find_scales": ".ruler",
     "group_blobs": ".group",
     "iter_scans": ".read",
     "paper_size": ".paper",

@@ -2361,7 +2361,8 @@ def _scale_check(scan: Scan, scales: tuple) -> tuple:
     ticks' pitch is fitted over the whole scale, good to 0.05 % on the held-out rulers."""
     if scan.scale_source == "pixels" or not scales:
         return ()
-    from .ruler import RULER_PITCHES_MM, scale_error
+    from .coords import RULER_PITCHES_MM
+    from .ruler import scale_error
 
     worst = max(scales, key=scale_error)
     err = scale_error(worst)

@@ -15,6 +15,10 @@ from tiremesh.units import MM_PER_IN
 
 PT_PER_IN = 72.0  # PDF points per inch
 MM_PER_CM = 10.0
+#: rulers' tick pitches [mm]: millimetres, sixteenths and tenths of an inch (not half
+#: millimetres: a millimetre scale read at twice the file's dpi would pass for one;
+#: :mod:`inkprint.ruler`)
+RULER_PITCHES_MM = (1.0, MM_PER_IN / 16, MM_PER_IN / 10)
 
 
 def dpi_to_mm_per_px(dpi):
@@ -194,6 +198,7 @@ def area_mm2_to_px(area_mm2, mm_per_px: float) -> int:
 
 
 __all__ = [
+    "RULER_PITCHES_MM",
     "area_mm2_to_px",
     "area_px_to_mm2",
     "binned_mm_per_px",

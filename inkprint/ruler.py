@@ -27,7 +27,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .coords import mm_to_px_length, px_to_mm_length
+from .coords import RULER_PITCHES_MM, mm_to_px_length, px_to_mm_length
 
 __all__ = ["RulerScale", "find_scales", "scale_band", "scale_error"]
 
@@ -63,9 +63,6 @@ BAND_BEHIND_MM = 1.0
 OFF_PITCH = 0.3
 #: a scale's pitch is off a ruler's only by what lies beyond this many standard errors
 SURE = 3.0
-#: rulers' pitches [mm]: millimetres, sixteenths and tenths of an inch (not half
-#: millimetres: a millimetre scale at twice the file's dpi would read as one)
-RULER_PITCHES_MM = (1.0, 25.4 / 16, 2.54)
 #: an end of a scale's ticks within this of a print [mm] runs on across it
 BAND_REACH_MM = 2.0
 #: marks that may be a scale's ticks
@@ -209,9 +206,19 @@ def _on_a_pitch(t: np.ndarray, mm_per_px: float) -> tuple | None:
 
 def scale_error(scale: RulerScale) -> float:
     """How far the scale's pitch reads from the nearest ruler's pitch
-    (:data:`RULER_PITCHES_MM`), relative [-], less :data:`SURE` of its standard
-    error (0 when within it): a sheet's scale off by that much (a file's dpi wrong)
-    reads every length off by as much."""
+    (:data:`inkprint.coords.RULER_PITCHES_MM`), less :data:`SURE` of its standard error (0 when
+    within it): a sheet's scale off by that much (a file's dpi wrong) reads every
+    length off by as much.
+
+    Parameters
+    ----------
+    scale : RulerScale
+
+    Returns
+    -------
+    float [-]
+        A relative error.
+    """
     off = min(abs(scale.pitch_mm / p - 1.0) for p in RULER_PITCHES_MM)
     return max(0.0, off - SURE * scale.pitch_error_mm / scale.pitch_mm)
 
