@@ -12,13 +12,19 @@ edge cannot be told from the ruler's ink.
 :func:`find_scales` finds the scales among the marks set aside: at least
 :data:`MIN_TICKS` ticks (elongated, thin) parallel within :data:`TICK_TURN_DEG`,
 one end of each on one line (within :data:`BASE_TOL_MM`), spaced along it at a
-regular pitch (:data:`PITCH_MM`). A label's strokes ('l', '1') are parallel too,
-but few and not at a pitch. :func:`scale_band` is the strip the scale covers: from
-just behind the edge to its numbers, along the ticks found (and a pitch beyond
-them), as a polygon; a print whose length, width or half its hull area shrinks by
-more than ``edge_uncertainty`` without its ink in that strip is flagged
-``mark_on_edge`` (:func:`inkprint.analyze.measure_print`): the ink measured is an
-upper bound of the print there, the ink outside the strip a lower one.
+regular pitch (:data:`PITCH_MM`), of two lengths or more (:data:`TICK_LONGER`). A
+label's strokes ('l', '1') are parallel too, but few, alike and not at a pitch.
+:func:`scale_band` is the strip the scale covers: from just behind the edge to its
+numbers, along the ticks found (and a pitch beyond them; across a print whose ink
+the next tick would meet), as a polygon; a print whose length, width or half its
+hull area shrinks by more than ``edge_uncertainty`` without the pen-thin ink in that
+strip is flagged ``mark_on_edge`` (:func:`inkprint.analyze._ruler_pull`): the ink
+measured is an upper bound of the print there, the rest a lower one.
+
+The ticks' pitch, fitted over the whole scale, is a check of the sheet's scale:
+:func:`scale_error` is how far it reads from every ruler's pitch
+(:data:`inkprint.coords.RULER_PITCHES_MM`); far off, the file's dpi is wrong and the
+sheet is flagged ``scale_mismatch``.
 """
 
 from __future__ import annotations
@@ -114,7 +120,8 @@ def _ticks(ink: np.ndarray, marks: list, mm_per_px: float) -> np.ndarray:
         if mk.kind not in TICK_KINDS:
             continue
         r0, c0, r1, c1 = mk.bbox
-        if not lo <= np.hypot(r1 - r0, c1 - c0) <= hi * 1.5:
+        # (a bar's box's diagonal is its length, up to its width more)
+        if not lo <= np.hypot(r1 - r0, c1 - c0) <= hi + thick:
             continue
         rows, cols = np.nonzero(ink[r0:r1, c0:c1])
         if len(rows) < 3:
