@@ -126,19 +126,14 @@ def _ticks(ink: np.ndarray, marks: list, mm_per_px: float) -> np.ndarray:
         rows, cols = np.nonzero(ink[r0:r1, c0:c1])
         if len(rows) < 3:
             continue
-        xy = np.column_stack([cols, rows]).astype(float)
-        c = xy.mean(axis=0)
-        d = xy - c
-        cov = d.T @ d / len(d)
-        _, v = np.linalg.eigh(cov)
-        u = v[:, 1]  # the major axis
-        s = d @ u
-        length = float(np.ptp(s)) + 1.0
+        x, y = cols - cols.mean(), rows - rows.mean()
+        # the major axis from the second moments
+        ang = 0.5 * np.arctan2(2.0 * np.dot(x, y), np.dot(x, x) - np.dot(y, y))
+        length = float(np.ptp(x * np.cos(ang) + y * np.sin(ang))) + 1.0
         width = len(rows) / length
         if not (lo <= length <= hi and width <= thick and length >= TICK_ELONGATION * width):
             continue
-        ang = float(np.arctan2(u[1], u[0]) % np.pi)
-        out.append((c[0] + c0, c[1] + r0, ang, length, i))
+        out.append((cols.mean() + c0, rows.mean() + r0, float(ang % np.pi), length, i))
     return np.asarray(out, float).reshape(-1, 5)
 
 
