@@ -1494,6 +1494,18 @@ def _faint_flag(
     return ()
 
 
+def _hull_excess(less: np.ndarray, more: np.ndarray, angle: float) -> float:
+    """How much longer or wider (along ``angle`` [rad] and across) the points ``more``
+    span than the points ``less`` ((k, 2) (col, row) [px] each), or half how much
+    larger their convex hull's area is."""
+    import cv2
+
+    flip = np.array([1.0, -1.0])  # (rows down, the sheet's y up)
+    ext = _extents(more * flip, angle) / _extents(less * flip, angle)
+    area = [cv2.contourArea(cv2.convexHull(p.astype(np.float32))) for p in (less, more)]
+    return float(max(np.max(ext) - 1.0, 0.5 * (area[1] / area[0] - 1.0)))
+
+
 def _with_excess(kept: np.ndarray, more: np.ndarray, angle: float) -> float:
     """How much longer or wider (along ``angle`` [rad] and across), or half how much
     larger in hull area, the ink ``kept`` is with the ink ``more`` (both over one box)."""
@@ -1986,11 +1998,8 @@ def _hidden_excess(ctx: _Context, g: Group, hull_px: np.ndarray, hidden, angle: 
         extra += band
     if not extra:
         return 0.0
-    flip = np.array([1.0, -1.0])
-    pts = [h[:, ::-1], np.concatenate([h, np.array(extra)])[:, ::-1]]  # (x = col, y = row)
-    ext = _extents(pts[1] * flip, angle) / _extents(pts[0] * flip, angle)
-    area = [cv2.contourArea(cv2.convexHull(p.astype(np.float32))) for p in pts]
-    return float(max(np.max(ext) - 1.0, 0.5 * (area[1] / area[0] - 1.0)))
+    # (x = col, y = row)
+    return _hull_excess(h[:, ::-1], np.concatenate([h, np.array(extra)])[:, ::-1], angle)
 
 
 #: two hull edges are in line when the sine of the angle between them is under this
@@ -2839,11 +2848,8 @@ def _edge_uncertainty(ctx: _Context, g: Group, kept: np.ndarray, angle: float) -
         return 0.0
     own_pts = outline_points(own)
     band = _tangent_bound(own_pts, band, t)
-    pts = [p.reshape(-1, 2).astype(float) for p in (own_pts, outline_points(own | band))]
-    flip = np.array([1.0, -1.0])
-    ext = _extents(pts[1] * flip, angle) / _extents(pts[0] * flip, angle)
-    area = [cv2.contourArea(cv2.convexHull(p.astype(np.float32))) for p in pts]
-    return float(max(np.max(ext) - 1.0, 0.5 * (area[1] / area[0] - 1.0)))
+    less, more = (p.reshape(-1, 2).astype(float) for p in (own_pts, outline_points(own | band)))
+    return _hull_excess(less, more, angle)
 
 
 def _tangent_bound(own_pts: np.ndarray, band: np.ndarray, t: int) -> np.ndarray:

@@ -44,10 +44,6 @@ LATTICE_MIN = 8
 LATTICE_NEIGHBOURS = 2.0
 #: ... in two rows or more: the field's narrow side at least this many spacings
 LATTICE_ROWS = 0.7
-#: (a tiny print's outline cuts most of its outer elements smaller: their areas'
-#: regularity is judged on the inner ones, ``_fine_fields(inner=True)``: held-out 6
-#: seed 2 sheet 108, a 14 x 4 mm print of 25 dots at 200 dpi, 20th to 80th
-#: percentile of all their areas 3.7 x apart, set aside as 25 specks: missing)
 #: the widest and longest lattice print [mm]: a wider or longer field of separate
 #: elements is a fine tread's and is found with its print's body (or is no print).
 #: 20 mm wide (6 before): tiny knurl, file and dot prints 7-12 mm wide (held-out 4th
@@ -222,6 +218,10 @@ def lattice_prints(ink, taken: list, *, marks: list, mm_per_px: float, options) 
         return []
     neighbours = min(options.fine_neighbours, LATTICE_NEIGHBOURS)
     opts = dataclasses.replace(options, fine_min_elements=LATTICE_MIN, fine_neighbours=neighbours)
+    # (the outline cuts most of a tiny print's outer elements smaller: their areas'
+    # regularity is judged on the inner ones; held-out 6 seed 2 sheet 108, a 14 x 4
+    # mm print of 25 dots at 200 dpi, the 20th and 80th percentiles of all their
+    # areas 3.7 x apart, was 25 specks: missing)
     fine = _fine_fields(st, cen, mm_per_px, opts, inner=True)
     if fine.sum() < LATTICE_MIN:
         return []

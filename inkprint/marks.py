@@ -549,7 +549,7 @@ def _fine_fields(
     sizes = np.bincount(comp, minlength=n_comp)
     for c in np.flatnonzero(sizes >= opts.fine_min_elements):
         on = comp == c
-        at = _inner(pts[on], np.median(nn[on])) if inner else on[on]
+        at = _inner(pts[on], np.median(nn[on])) if inner else slice(None)
         sp = np.percentile(nn[on], [20, 50, 80])
         ar = np.percentile(area[idx[on]][at], [20, 80])
         ink = area_px_to_mm2(area[idx[on]].sum(), px_mm) / (on.sum() * sp[1] ** 2)
@@ -569,11 +569,17 @@ def _inner(pts: np.ndarray, spacing: float) -> np.ndarray:
     all). (k,) bool."""
     import cv2
 
-    hull = cv2.convexHull(pts.astype(np.float32))
-    inside = (
-        np.array([cv2.pointPolygonTest(hull, (float(x), float(y)), True) for x, y in pts])
-        > 0.25 * spacing
-    )
+    hull = cv2.convexHull(pts.astype(np.float32)).reshape(-1, 2).astype(float)
+    edge = np.roll(hull, -1, axis=0) - hull
+    length = np.hypot(edge[:, 0], edge[:, 1])
+    if len(hull) < 3 or not (length > 0).all():
+        return np.ones(len(pts), bool)
+    # inside a convex polygon the distance to its outline is the least over its
+    # edges' lines (normals turned to the inside: the hull's centre is inside)
+    normal = np.column_stack([-edge[:, 1], edge[:, 0]]) / length[:, None]
+    normal *= np.sign(np.sum(normal * (hull.mean(axis=0) - hull), axis=1))[:, None]
+    depth = np.einsum("kmc,mc->km", pts[:, None, :] - hull[None], normal).min(axis=1)
+    inside = depth > 0.25 * spacing
     return inside if inside.sum() >= INNER_ELEMENTS else np.ones(len(pts), bool)
 
 

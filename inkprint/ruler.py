@@ -177,17 +177,16 @@ def _on_a_pitch(t: np.ndarray, mm_per_px: float) -> tuple | None:
     whole = np.abs(q - np.round(q)) <= PITCH_TOL
     if whole.mean() < PITCH_SHARE:
         return None
-    # the pitch fitted: each tick's number of pitches from the first, a line through
-    # the positions (the percentile is a step's, a few % off; the fit is the scale's)
-    # (counted step by step: a step is a few pitches, rounded right while the first
-    # guess is within a few %; counted from the first tick it drifted over 100)
+    # the pitch fitted over the scale (the percentile is one step's, a few % off): each
+    # tick's number of pitches from the first, counted step by step (counted from the
+    # first tick with a guess a few % off it drifted over 100), the short steps' pitch
+    # first (a few pitches each: rounded right whatever the guess), then a line
+    # through the positions, counted again with its pitch and fitted again (a gap of
+    # 30 pitches under a print, counted with a guess 3 % off, was one too many: 1.2 %
+    # off on a 150 dpi page)
     x = px_to_mm_length(np.sort(t), mm_per_px)
     x = x[np.r_[True, np.diff(x) > 0.25 * PITCH_MM[0]]]
     step = np.diff(x)
-    # the short steps first (a few pitches: rounded right whatever the guess), then
-    # every step counted with their pitch, the line fitted, and counted again (a gap
-    # of 30 pitches under a print, counted with a guess 3 % off, was one too many:
-    # 1.2 % off on a 150 dpi page)
     k = np.round(step / pitch)
     short = (k >= 1) & (k <= 3)
     if short.any():
@@ -195,7 +194,7 @@ def _on_a_pitch(t: np.ndarray, mm_per_px: float) -> tuple | None:
     n = np.r_[0.0, np.cumsum(np.round(step / pitch))]
     on = np.ones(len(x), bool)
     for _ in range(3):
-        (pitch, b), res = np.polyfit(n[on], x[on], 1), None
+        pitch, b = np.polyfit(n[on], x[on], 1)
         n = np.r_[0.0, np.cumsum(np.round(step / pitch))]
         res = x - (pitch * n + b)
         on = np.abs(res) <= OFF_PITCH * pitch  # (a tick's centroid off its place)
@@ -283,7 +282,7 @@ def find_scales(ink: np.ndarray, marks: list, *, mm_per_px: float) -> list[Ruler
             continue
         pitch, pitch_error = fitted
         sign = 1.0 if lo_end[on].sum() >= hi_end[on].sum() else -1.0
-        t0 = float(np.median(tk[on, :2] @ n))
+        t0 = float(np.median(t))
         base = base_s * u + t0 * n
         out.append(
             RulerScale(
