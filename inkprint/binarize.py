@@ -18,7 +18,7 @@ import numpy as np
 
 from .components import cleared
 from .coords import mm_to_px_length
-from .errors import AllInk, InvalidInput, NoInk
+from .errors import AllInk, InvalidInput, NoInk, check_mm_per_px
 from .light import to_uint8
 from .options import AnalysisOptions, resolve_options
 
@@ -274,6 +274,7 @@ def binarize(
     ------
     NoInk, AllInk, InvalidInput
     """
+    mm_per_px = check_mm_per_px(mm_per_px)
     opts = resolve_options(options)
     if not (np.isfinite(window_mm) and window_mm > 0):
         raise InvalidInput("window_mm", window_mm, "> 0 mm (the Sauvola window)")

@@ -6,6 +6,7 @@ file and the batch goes on.
 
 from __future__ import annotations
 
+import math
 from typing import Any
 
 
@@ -49,3 +50,30 @@ class AllInk(InkPrintError):
 
 class OutputLocked(InkPrintError):
     """Another batch is writing the same output table (its lock file is held)."""
+
+
+def check_mm_per_px(mm_per_px) -> float:
+    """The scale given to a public step (``binarize``, ``sort_ink``, ``edge_spots``,
+    ``find_scales``, ``tread_turn``), checked.
+
+    Parameters
+    ----------
+    mm_per_px : float [mm / px]
+        A positive finite scale (1 without one: pixels).
+
+    Returns
+    -------
+    float [mm / px]
+
+    Raises
+    ------
+    InvalidInput
+        Naming ``mm_per_px`` when it is not a positive finite number.
+    """
+    try:
+        value = float(mm_per_px)
+    except (TypeError, ValueError):
+        raise InvalidInput("mm_per_px", mm_per_px, "> 0 [mm / px], finite") from None
+    if not (value > 0 and math.isfinite(value)):
+        raise InvalidInput("mm_per_px", mm_per_px, "> 0 [mm / px], finite")
+    return value

@@ -68,6 +68,7 @@ from .coords import (
     mm_to_px_length,
     px_to_mm_length,
 )
+from .errors import check_mm_per_px
 from .options import AnalysisOptions, resolve_options
 
 #: a neighbour counts for the tread pattern's gap when no farther than this many
@@ -2501,6 +2502,7 @@ def edge_spots(
     -------
     EdgeSpots
     """
+    mm_per_px = check_mm_per_px(mm_per_px)
     kw = dict(mm_per_px=mm_per_px, options=options, tread_gap=tread_gap)
     return _edge_spots(group, darkness, _pieces(group.mask), **kw)
 

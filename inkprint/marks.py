@@ -72,6 +72,7 @@ import numpy as np
 
 from .components import components_with_stats, components_with_stats_in
 from .coords import area_px_to_mm2, binned_mm_per_px, mm_to_px_length, px_to_mm_length
+from .errors import check_mm_per_px
 from .group import (
     SMALL_PRINT_FILL,
     SMALL_PRINT_MM2,
@@ -2514,6 +2515,7 @@ def sort_ink(mask, *, mm_per_px: float, options: AnalysisOptions | None = None) 
     -------
     SortedInk
     """
+    mm_per_px = check_mm_per_px(mm_per_px)
     opts = resolve_options(options)
     mask = np.asarray(mask, bool)
     pooled = _pool(mask, mm_per_px, opts)

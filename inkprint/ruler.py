@@ -34,6 +34,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .coords import RULER_PITCHES_MM, mm_to_px_length, px_to_mm_length
+from .errors import InvalidInput, check_mm_per_px
 
 __all__ = ["RulerScale", "find_scales", "scale_band", "scale_error"]
 
@@ -238,7 +239,16 @@ def find_scales(ink: np.ndarray, marks: list, *, mm_per_px: float) -> list[Ruler
     Returns
     -------
     list of RulerScale
+
+    Raises
+    ------
+    InvalidInput
+        ``mm_per_px`` not positive and finite, ``ink`` not 2-D.
     """
+    mm_per_px = check_mm_per_px(mm_per_px)
+    ink = np.asarray(ink, bool)
+    if ink.ndim != 2:
+        raise InvalidInput("ink", ink.shape, "a (rows, cols) mask")
     ticks = _ticks(ink, marks, mm_per_px)
     if len(ticks) < MIN_TICKS:
         return []

@@ -24,7 +24,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .coords import mm_to_px_length
-from .errors import InvalidInput
+from .errors import InvalidInput, check_mm_per_px
 
 #: the profile's bins across the rolling direction [mm] (at least one pixel): fine
 #: enough for a 0.6 mm groove between knurl diamonds
@@ -171,8 +171,7 @@ def tread_turn(mask: np.ndarray, axis: str, *, mm_per_px: float, limit_deg: floa
         raise InvalidInput("axis", axis, "x | y")
     if not 0 < limit_deg < 45:
         raise InvalidInput("limit_deg", limit_deg, "0 < limit_deg < 45 [deg]")
-    if not mm_per_px > 0:
-        raise InvalidInput("mm_per_px", mm_per_px, "> 0 [mm / px]")
+    mm_per_px = check_mm_per_px(mm_per_px)
     pts, ink = _cells(np.asarray(mask, bool), axis, mm_per_px)
     if len(ink) < 2:
         return TreadTurn(0.0, 1.0)

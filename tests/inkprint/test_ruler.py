@@ -324,3 +324,33 @@ def test_draw_overlay_outlines_the_ruler_scale():
             assert violet.sum() > 100 and rows.min() < 72.0 < rows.max(), rows
         else:
             assert not violet.any()
+
+
+@pytest.mark.parametrize("bad", [0.0, -0.1, float("nan"), float("inf"), "x"])
+@pytest.mark.parametrize(
+    "step", ["binarize", "sort_ink", "group_blobs", "edge_spots", "find_scales"]
+)
+def test_public_steps_refuse_a_bad_scale_naming_it(step, bad):
+    """Each public step taking a scale refuses one that is not a positive finite
+    number of mm per pixel with InvalidInput naming ``mm_per_px`` (a zero divided
+    by it before: ZeroDivisionError, a traceback)."""
+    from inkprint.group import Group
+
+    mask = np.zeros((20, 20), bool)
+    mask[5:10, 5:10] = True
+    call = {
+        "binarize": lambda: ip.binarize(np.full((20, 20), 0.9, np.float32), mm_per_px=bad),
+        "sort_ink": lambda: ip.sort_ink(mask, mm_per_px=bad),
+        "group_blobs": lambda: ip.group_blobs(mask, mm_per_px=bad),
+        "edge_spots": lambda: ip.edge_spots(
+            Group(slice(0, 20), slice(0, 20), mask), np.zeros((20, 20)), mm_per_px=bad
+        ),
+        "find_scales": lambda: ip.find_scales(mask, [], mm_per_px=bad),
+    }[step]
+    with pytest.raises(ip.InvalidInput, match=r"^mm_per_px = .*> 0 \[mm / px\], finite"):
+        call()
+
+
+def test_find_scales_refuses_an_ink_not_2d():
+    with pytest.raises(ip.InvalidInput, match=r"^ink = \(5,\)"):
+        ip.find_scales(np.zeros(5, bool), [], mm_per_px=0.1)
