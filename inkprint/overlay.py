@@ -97,8 +97,10 @@ def _draw_scales(canvas: _Canvas, result: SheetResult) -> None:
         canvas.label(f"ruler {sc.pitch_mm:.3f} mm pitch", r, c, SCALE, 0.4)
 
 
-def _draw_print(canvas: _Canvas, p: PrintResult, unit: str) -> None:
-    color = FLAGGED if p.status == "flagged" else HULL
+def _draw_print(canvas: _Canvas, p: PrintResult, unit: str, flags: tuple, status: str) -> None:
+    """One print's hull, ellipse, axes and label (``flags``, ``status``: with the
+    sheet's, :meth:`SheetResult.print_flags`)."""
+    color = FLAGGED if status == "flagged" else HULL
     canvas.line_px(p.hull_px[:, 0], p.hull_px[:, 1], color, closed=True)
     e = p.metrics.ellipse_direct
     if e:
@@ -113,12 +115,12 @@ def _draw_print(canvas: _Canvas, p: PrintResult, unit: str) -> None:
         )
     r0, c0, _, _ = p.bbox
     u = unit
-    flags = f"  [{','.join(p.flags)}]" if p.flags else ""
+    flags = f"  [{','.join(flags)}]" if flags else ""
     canvas.label(
         f"#{p.index}  L {m.length:.1f}  W {m.width:.2f} {u}  A {m.hull_area:.0f} {u}2{flags}",
         r0,
         c0,
-        FLAGGED if p.status == "flagged" else TEXT,
+        FLAGGED if status == "flagged" else TEXT,
     )
 
 
@@ -152,8 +154,8 @@ def draw_overlay(
     canvas = _Canvas(scan, max_side)
     _draw_marks(canvas, result)
     _draw_scales(canvas, result)
-    for p in result.prints:
-        _draw_print(canvas, p, result.unit)
+    for i, p in enumerate(result.prints):
+        _draw_print(canvas, p, result.unit, result.print_flags(i), result.print_status(i))
     if path is not None:
         from PIL import Image
 

@@ -233,6 +233,37 @@ class SheetResult:
             f"{', set aside ' + aside if aside else ''}{flags})"
         )
 
+    def print_flags(self, index: int) -> tuple:
+        """The flags of print ``index`` with the sheet's (``perspective``,
+        ``scale_mismatch``, ``uneven_light``: on every print of the sheet), first the
+        sheet's.
+
+        Parameters
+        ----------
+        index : int
+            0-based, top to bottom.
+
+        Returns
+        -------
+        tuple of str
+        """
+        return tuple(dict.fromkeys((*self.flags, *self.prints[index].flags)))
+
+    def print_status(self, index: int) -> str:
+        """'flagged' when print ``index`` or its sheet has a flag of
+        :data:`UNMEASURABLE`, else 'ok' (:meth:`print_flags`).
+
+        Parameters
+        ----------
+        index : int
+            0-based, top to bottom.
+
+        Returns
+        -------
+        str
+        """
+        return "flagged" if any(f in UNMEASURABLE for f in self.print_flags(index)) else "ok"
+
     def _repr_html_(self) -> str:
         import html
 
@@ -245,15 +276,15 @@ class SheetResult:
                 f"<td>{html.escape(v)}</td>"
                 for v in (
                     str(p.index),
-                    p.status,
+                    self.print_status(i),
                     f"{p.metrics.length:.2f}",
                     f"{p.metrics.width:.2f}",
                     f"{p.metrics.hull_area:.1f}",
-                    ", ".join(p.flags) or "-",
+                    ", ".join(self.print_flags(i)) or "-",
                 )
             )
             + "</tr>"
-            for p in self.prints
+            for i, p in enumerate(self.prints)
         )
         th = "".join(f"<th>{html.escape(c)}</th>" for c in cols)
         return f"<div><p>{head}</p><table><tr>{th}</tr>{body}</table></div>"
@@ -306,13 +337,13 @@ class SheetResult:
         """
         p = self.prints[index]
         u = self.unit
-        flags = tuple(dict.fromkeys((*self.flags, *p.flags)))
+        flags = self.print_flags(index)
         row = {
             "file": self.path,
             "page": self.page,
             "print": p.index,
             "n_prints": len(self.prints),
-            "status": "flagged" if any(f in UNMEASURABLE for f in flags) else "ok",
+            "status": self.print_status(index),
             "flags": ";".join(flags),
             "warnings": "; ".join(dict.fromkeys((*self.warnings, *p.warnings))),
             "error": "",

@@ -354,3 +354,27 @@ def test_public_steps_refuse_a_bad_scale_naming_it(step, bad):
 def test_find_scales_refuses_an_ink_not_2d():
     with pytest.raises(ip.InvalidInput, match=r"^ink = \(5,\)"):
         ip.find_scales(np.zeros(5, bool), [], mm_per_px=0.1)
+
+
+def test_draw_overlay_shows_a_sheet_flag_on_its_prints():
+    """A sheet flag (``scale_mismatch``) is on every print of the sheet: the overlay
+    draws them flagged (magenta, the flag in the label) and the notebook table says
+    so, as the rows do (the overlay drew them green, ok, from the print's own flags)."""
+    from inkprint.overlay import FLAGGED, HULL, draw_overlay
+
+    shape, px = _canvas(300.0, 150.0, 110.0)
+    ink = _ellipse(shape, px, (75.0, 35.0), 90.0, 26.0)
+    ruler = _ruler(shape, px, (15.0, 70.0), 0.0, 110.0)
+    grey, _, _ = _sheet(300.0, ink, ruler)
+    scan = ip.Scan(grey, 25.4 / 400.0, "given")
+    res = ip.analyze_scan(scan, rolling_axis="x", sensitivity=False)
+    assert "scale_mismatch" in res.flags and "scale_mismatch" not in res.prints[0].flags
+    assert res.print_status(0) == "flagged" == res.rows()[0]["status"]
+    assert "scale_mismatch" in res.print_flags(0)
+    rgb = draw_overlay(scan, res).astype(int)
+
+    def near(colour):
+        return int(np.all(np.abs(rgb - colour) <= 30, axis=2).sum())
+
+    assert near(FLAGGED) > 100 and near(HULL) == 0, (near(FLAGGED), near(HULL))
+    assert "flagged" in res._repr_html_()
