@@ -16,10 +16,15 @@ regular pitch (:data:`PITCH_MM`), of two lengths or more (:data:`TICK_LONGER`). 
 label's strokes ('l', '1') are parallel too, but few, alike and not at a pitch.
 :func:`scale_band` is the strip the scale covers: from just behind the edge to its
 numbers, along the ticks found (and a pitch beyond them; across a print whose ink
-the next tick would meet), as a polygon; a print whose length, width or half its
-hull area shrinks by more than ``edge_uncertainty`` without the pen-thin ink in that
-strip is flagged ``mark_on_edge`` (:func:`inkprint.analyze._ruler_pull`): the ink
-measured is an upper bound of the print there, the rest a lower one.
+the next tick would meet), as a polygon. :func:`on_scale` tells the scale's own
+places in it: its ticks' (hidden in a print's ink too, placed from the ticks found
+beside it), its edge line's and its numbers'. The pen-thin ink on those places that
+sticks out of the rest of a print's hull is taken off the print
+(:func:`inkprint.analyze._without_scale`), unless pen-thin ink off them sticks out
+too. Then a print whose length, width or half its hull area shrinks by more than
+``edge_uncertainty`` without the pen-thin ink left in that strip is flagged
+``mark_on_edge`` (:func:`inkprint.analyze._ruler_pull`): the ink measured is an
+upper bound of the print there, the rest a lower one.
 
 The ticks' pitch, fitted over the whole scale, is a check of the sheet's scale:
 :func:`scale_error` is how far it reads from every ruler's pitch
@@ -36,7 +41,7 @@ import numpy as np
 from .coords import RULER_PITCHES_MM, mm_to_px_length, px_to_mm_length
 from .errors import InvalidInput, check_mm_per_px
 
-__all__ = ["RulerScale", "find_scales", "scale_band", "scale_error"]
+__all__ = ["RulerScale", "find_scales", "on_scale", "scale_band", "scale_error"]
 
 #: fewest ticks of a scale (a label has few parallel strokes on one base line)
 MIN_TICKS = 10
@@ -74,6 +79,12 @@ SURE = 3.0
 BAND_REACH_MM = 2.0
 #: marks that may be a scale's ticks
 TICK_KINDS = ("text", "dust", "writing", "sliver")
+#: a scale's longest ticks: within this share of the longest (a centimetre's, whose
+#: number stands beyond it; a half's is 0.7 of it)
+MAJOR_SHARE = 0.85
+#: a scale's number reaches this far either side of its tick [mm] (two digits of a
+#: ruler's 2-3 mm tall numbers, and a stroke)
+NUMBER_HALF_WIDTH_MM = 2.5
 
 
 @dataclass(frozen=True)
@@ -98,6 +109,13 @@ class RulerScale:
         The step between neighbouring ticks (fitted over the scale).
     pitch_error_mm : float [mm]
         Its standard error (the ticks' scatter about their places).
+    positions : (k,) float [px]
+        The ticks found, along ``along`` from ``base`` (sorted).
+    majors : (j,) float [px]
+        Those of the longest ticks (within :data:`MAJOR_SHARE` of ``tick_px``): the
+        numbers stand beyond them.
+    tick_width_px : float [px]
+        The ticks' median width.
     """
 
     base: np.ndarray
@@ -108,11 +126,15 @@ class RulerScale:
     ticks: int
     pitch_mm: float
     pitch_error_mm: float = 0.0
+    positions: tuple = ()
+    majors: tuple = ()
+    tick_width_px: float = 0.0
 
 
 def _ticks(ink: np.ndarray, marks: list, mm_per_px: float) -> np.ndarray:
-    """The marks that are tick-like bars: (k, 5) float rows of centre (col, row)
-    [px], direction angle [rad in [0, pi)], length [px] and the mark's index."""
+    """The marks that are tick-like bars: (k, 6) float rows of centre (col, row)
+    [px], direction angle [rad in [0, pi)], length [px], the mark's index and its
+    width [px]."""
     lo = mm_to_px_length(TICK_LENGTH_MM[0], mm_per_px)
     hi = mm_to_px_length(TICK_LENGTH_MM[1], mm_per_px)
     thick = mm_to_px_length(TICK_WIDTH_MM, mm_per_px)
@@ -134,8 +156,8 @@ def _ticks(ink: np.ndarray, marks: list, mm_per_px: float) -> np.ndarray:
         width = len(rows) / length
         if not (lo <= length <= hi and width <= thick and length >= TICK_ELONGATION * width):
             continue
-        out.append((cols.mean() + c0, rows.mean() + r0, float(ang % np.pi), length, i))
-    return np.asarray(out, float).reshape(-1, 5)
+        out.append((cols.mean() + c0, rows.mean() + r0, float(ang % np.pi), length, i, width))
+    return np.asarray(out, float).reshape(-1, 6)
 
 
 def _mean_axis(ang: np.ndarray) -> float:
@@ -206,6 +228,76 @@ def _on_a_pitch(t: np.ndarray, mm_per_px: float) -> tuple | None:
     return float(pitch), error
 
 
+def _nearest_place(t: np.ndarray, found: np.ndarray, step: float) -> np.ndarray:
+    """Each of ``t``'s nearest place on the lattice of step ``step`` through its
+    nearest position in ``found`` (sorted): the scale's local phase, which a pitch
+    fitted over the whole ruler would drift from over centimetres."""
+    if len(found) == 1:
+        near = found[0]
+    else:
+        i = np.clip(np.searchsorted(found, t), 1, len(found) - 1)
+        left, right = found[i - 1], found[i]
+        near = np.where(t - left <= right - t, left, right)
+    return near + np.round((t - near) / step) * step
+
+
+def on_scale(scale: RulerScale, points: np.ndarray, *, mm_per_px: float) -> np.ndarray:
+    """Whether each of ``points`` lies on the scale's own ink: on a tick (within half
+    the ticks' width and a pixel of a tick's place on the scale's pitch, between its
+    edge line and its longest tick's tip), on its edge line (within
+    :data:`BAND_BEHIND_MM` behind the ticks' base), or on a number (beyond the
+    ticks, within :data:`BAND_TICKS` of the longest tick from the edge and
+    :data:`NUMBER_HALF_WIDTH_MM` of a longest tick's place, their step the spacing
+    of the longest ticks found).
+
+    A tick's place is found from the tick found nearest along the scale, so the
+    ticks hidden in a print's ink are placed where the scale puts them.
+
+    Parameters
+    ----------
+    scale : RulerScale
+    points : (k, 2) float [px]
+        (col, row) on the sheet.
+    mm_per_px : float [mm / px]
+
+    Returns
+    -------
+    (k,) bool
+    """
+    pts = np.asarray(points, float).reshape(-1, 2)
+    if not len(scale.positions) or not len(pts):
+        return np.zeros(len(pts), bool)
+    rel = pts - scale.base
+    t, s = rel @ scale.along, rel @ scale.out
+    pitch = mm_to_px_length(scale.pitch_mm, mm_per_px)
+    behind = mm_to_px_length(BAND_BEHIND_MM, mm_per_px)
+    half = 0.5 * scale.tick_width_px + 1.0
+    found = np.asarray(scale.positions, float)
+    tick = (
+        (np.abs(t - _nearest_place(t, found, pitch)) <= half)
+        & (s >= -1.0)
+        & (s <= scale.tick_px + 1.0)
+    )
+    edge = (s >= -behind) & (s <= 1.0)
+    number = np.zeros(len(pts), bool)
+    majors = np.asarray(scale.majors, float)
+    if len(majors):
+        # (their step: the least spacing of the longest ticks found, in whole pitches;
+        # one found: only beside it)
+        steps = np.round(np.diff(majors) / pitch) * pitch
+        steps = steps[steps > 0]
+        step = float(steps.min()) if len(steps) else np.inf
+        place = majors[np.argmin(np.abs(t[:, None] - majors[None, :]), axis=1)]
+        if np.isfinite(step):
+            place = _nearest_place(t, majors, step)
+        number = (
+            (s > scale.tick_px)
+            & (s <= BAND_TICKS * scale.tick_px)
+            & (np.abs(t - place) <= mm_to_px_length(NUMBER_HALF_WIDTH_MM, mm_per_px))
+        )
+    return tick | edge | number
+
+
 def scale_error(scale: RulerScale) -> float:
     """How far the scale's pitch reads from the nearest ruler's pitch
     (:data:`inkprint.coords.RULER_PITCHES_MM`), less :data:`SURE` of its standard error (0 when
@@ -223,6 +315,68 @@ def scale_error(scale: RulerScale) -> float:
     """
     off = min(abs(scale.pitch_mm / p - 1.0) for p in RULER_PITCHES_MM)
     return max(0.0, off - SURE * scale.pitch_error_mm / scale.pitch_mm)
+
+
+def _one_scale(tk: np.ndarray, tol: float, mm_per_px: float) -> tuple | None:
+    """The scale among ticks ``tk`` (rows of :func:`_ticks`, one direction): the
+    base line most of their ends lie on (within ``tol`` [px]), its ticks of two
+    lengths or more at a pitch; ``(RulerScale, on)`` with ``on`` (k,) bool its
+    ticks, or None."""
+    a0 = _mean_axis(tk[:, 2])
+    # the end points of the ticks (each along its own axis)
+    d = np.column_stack([np.cos(tk[:, 2]), np.sin(tk[:, 2])]) * (tk[:, 3:4] / 2)
+    pts = np.concatenate([tk[:, :2] - d, tk[:, :2] + d])  # (2k, 2)
+    # the base line: the line across the ticks most of their ends lie on, its
+    # direction searched near the ticks' normal (their mean direction is a degree
+    # off on short ticks; over a ruler's length that misses the line)
+    turns = a0 + np.radians(np.linspace(-BASE_SEARCH_DEG, BASE_SEARCH_DEG, 4 * 15 + 1))
+    best_n, a, base_s = 0, a0, 0.0
+    for t in turns:
+        srt = np.sort(pts @ np.array([np.cos(t), np.sin(t)]))
+        count = np.searchsorted(srt, srt + 2 * tol, side="right") - np.arange(len(srt))
+        i = int(np.argmax(count))
+        if count[i] > best_n:
+            best_n, a, base_s = int(count[i]), t, float(np.median(srt[i : i + count[i]]))
+    if best_n < MIN_TICKS:
+        return None
+    u = np.array([np.cos(a), np.sin(a)])  # along the ticks
+    n = np.array([-u[1], u[0]])  # along the edge
+    s = tk[:, :2] @ u
+    lo_end = np.abs(s - tk[:, 3] / 2 - base_s) <= tol
+    hi_end = np.abs(s + tk[:, 3] / 2 - base_s) <= tol
+    on = lo_end | hi_end
+    if on.sum() < MIN_TICKS:
+        return None
+    # a ruler's ticks are of two lengths or more (millimetres, halves, centimetres);
+    # a hatching's or a comb's strokes are alike
+    lengths = tk[on, 3]
+    if lengths.max() < TICK_LONGER * np.median(lengths):
+        return None
+    t = tk[on, :2] @ n
+    fitted = _on_a_pitch(t, mm_per_px)
+    if fitted is None:
+        return None
+    pitch, pitch_error = fitted
+    sign = 1.0 if lo_end[on].sum() >= hi_end[on].sum() else -1.0
+    t0 = float(np.median(t))
+    base = base_s * u + t0 * n
+    longest = float(tk[on, 3].max())
+    return (
+        RulerScale(
+            base=base,
+            along=n,
+            out=sign * u,
+            span=(float(t.min() - t0), float(t.max() - t0)),
+            tick_px=longest,
+            ticks=int(on.sum()),
+            pitch_mm=pitch,
+            pitch_error_mm=pitch_error,
+            positions=tuple(np.sort(t - t0).tolist()),
+            majors=tuple(np.sort(t[tk[on, 3] >= MAJOR_SHARE * longest] - t0).tolist()),
+            tick_width_px=float(np.median(tk[on, 5])),
+        ),
+        on,
+    )
 
 
 def find_scales(ink: np.ndarray, marks: list, *, mm_per_px: float) -> list[RulerScale]:
@@ -255,57 +409,14 @@ def find_scales(ink: np.ndarray, marks: list, *, mm_per_px: float) -> list[Ruler
     tol = mm_to_px_length(BASE_TOL_MM, mm_per_px)
     out = []
     for members in _angle_groups(ticks[:, 2]):
-        tk = ticks[members]
-        a0 = _mean_axis(tk[:, 2])
-        # the end points of the ticks (each along its own axis)
-        d = np.column_stack([np.cos(tk[:, 2]), np.sin(tk[:, 2])]) * (tk[:, 3:4] / 2)
-        pts = np.concatenate([tk[:, :2] - d, tk[:, :2] + d])  # (2k, 2)
-        # the base line: the line across the ticks most of their ends lie on, its
-        # direction searched near the ticks' normal (their mean direction is a degree
-        # off on short ticks; over a ruler's length that misses the line)
-        turns = a0 + np.radians(np.linspace(-BASE_SEARCH_DEG, BASE_SEARCH_DEG, 4 * 15 + 1))
-        best_n, a, base_s = 0, a0, 0.0
-        for t in turns:
-            srt = np.sort(pts @ np.array([np.cos(t), np.sin(t)]))
-            count = np.searchsorted(srt, srt + 2 * tol, side="right") - np.arange(len(srt))
-            i = int(np.argmax(count))
-            if count[i] > best_n:
-                best_n, a, base_s = int(count[i]), t, float(np.median(srt[i : i + count[i]]))
-        if best_n < MIN_TICKS:
-            continue
-        u = np.array([np.cos(a), np.sin(a)])  # along the ticks
-        n = np.array([-u[1], u[0]])  # along the edge
-        s = tk[:, :2] @ u
-        lo_end = np.abs(s - tk[:, 3] / 2 - base_s) <= tol
-        hi_end = np.abs(s + tk[:, 3] / 2 - base_s) <= tol
-        on = lo_end | hi_end
-        if on.sum() < MIN_TICKS:
-            continue
-        # a ruler's ticks are of two lengths or more (millimetres, halves, centimetres);
-        # a hatching's or a comb's strokes are alike
-        lengths = tk[on, 3]
-        if lengths.max() < TICK_LONGER * np.median(lengths):
-            continue
-        t = tk[on, :2] @ n
-        fitted = _on_a_pitch(t, mm_per_px)
-        if fitted is None:
-            continue
-        pitch, pitch_error = fitted
-        sign = 1.0 if lo_end[on].sum() >= hi_end[on].sum() else -1.0
-        t0 = float(np.median(t))
-        base = base_s * u + t0 * n
-        out.append(
-            RulerScale(
-                base=base,
-                along=n,
-                out=sign * u,
-                span=(float(t.min() - t0), float(t.max() - t0)),
-                tick_px=float(tk[on, 3].max()),
-                ticks=int(on.sum()),
-                pitch_mm=pitch,
-                pitch_error_mm=pitch_error,
-            )
-        )
+        # (one group may hold two rulers' ticks a few degrees apart, chained: the
+        # scale found is taken out and the rest searched again)
+        while len(members) >= MIN_TICKS:
+            found = _one_scale(ticks[members], tol, mm_per_px)
+            if found is None:
+                break
+            out.append(found[0])
+            members = members[~found[1]]
     return out
 
 
