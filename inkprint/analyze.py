@@ -1243,9 +1243,7 @@ def _band_at(ctx: _Context, win: _BandWindow, factor: float, *, grey, local: lis
     )
     if not _outlined(spots.load_bearing):
         return {}  # (no ink, or a line of pixels: no outline at this threshold)
-    kept, _ = _without_scale(
-        ctx, Group(win.rows, win.cols, spots.load_bearing), spots.load_bearing
-    )
+    kept = _without_scale(ctx, Group(win.rows, win.cols, spots.load_bearing), spots.load_bearing)
     if not local:
         local.append(_local_range(grey, s, opts))
     fld = edge_field(grey, kept, mm_per_px=s, options=opts, local=local[0])
@@ -1371,7 +1369,7 @@ def measure_print(ctx: _Context, group: Group, *, index: int = 0, sensitivity: b
     spots = edge_spots(g, _darkness(grey, g.mask), mm_per_px=s, options=opts)
     g, kept, hidden, no_core = _load_bearing(ctx, group, g, spots)
     # (a ruler's ink sticking out where its scale crosses the outline: set apart)
-    kept, _ = _without_scale(ctx, g, kept)
+    kept = _without_scale(ctx, g, kept)
     kw = dict(
         n_rows=n_rows,
         mm_per_px=s,
@@ -2170,7 +2168,7 @@ def _faint_excess(ctx: _Context, g: Group, spots, m, *, grey, local, aside, kept
         return 0.0
     s, opts = ctx.scan.mm_per_px, ctx.opts
     # (a ruler's ticks beside the edge are no faint blocks of the print)
-    ink, _ = _without_scale(ctx, g, kept | spots.faint_blocks)
+    ink = _without_scale(ctx, g, kept | spots.faint_blocks)
     fld = edge_field(grey, ink, mm_per_px=s, options=opts, local=local)
     fld = _paper_where_set_apart(fld, (g.mask & ~ink) | aside, ink)
     return _excess_with(ctx, ink, (g.rows.start, g.cols.start), fld, m)
@@ -2436,29 +2434,29 @@ def _scale_thin(ctx: _Context, g: Group, kept: np.ndarray) -> tuple:
     return under, (kept & ~under) | (body & under)
 
 
-def _without_scale(ctx: _Context, g: Group, kept: np.ndarray) -> tuple:
-    """``(kept, scale_ink)``: a print's ink without a ruler's ticks, edge line and
-    numbers that stick out of it where the ruler's scale crosses its outline, and
-    that ink (None when there is none, or when not all that sticks out is the
-    scale's own).
+def _without_scale(ctx: _Context, g: Group, kept: np.ndarray) -> np.ndarray:
+    """A print's ink ``kept`` without a ruler's ticks, edge line and numbers that
+    stick out of it where the ruler's scale crosses its outline (``kept`` itself
+    when there are none, or when not all that sticks out is the scale's own).
 
-    Under the scale's strip (:func:`_scale_thin`) the ink on the scale's own places
-    (:func:`inkprint.ruler.on_scale`: its ticks' places, hidden in the print's ink
-    too, from the ticks found beside it; its edge line; its numbers) beyond the hull
-    of the rest of the ink is the ruler's, also where a tick beside the edge blurred
-    into it: it is taken off (ruler ink inside the outline moves nothing and stays).
-    When pen-thin ink off the scale's places sticks out of that hull too (a tread's
-    sliver cut thin by the outline, a scale drawn off its found places) nothing is
-    taken off and :func:`_ruler_pull` judges and flags as before. A ruler across a
-    car print, its ticks beside the tread's side: width +1.6 %, flagged; a siped
-    print's tip and side under a ruler, +6.2 % and +7.0 %, flagged (held-out 6 seed
-    3 sheets 30 and 61): measured +0.0 %, +0.1 % and +0.4 % without the ruler's ink
-    that sticks out."""
+    Under the scale's strip (:func:`_scale_thin`) the pen-thin ink on the scale's
+    own places (:func:`inkprint.ruler.on_scale`: its ticks' places, hidden in the
+    print's ink too, from the ticks found beside it; its edge line; its numbers)
+    beyond the hull of the rest of the ink is the ruler's: it is taken off (ruler
+    ink inside the outline moves nothing and stays; a tick the blur joined to the
+    edge is the print's body to the opening and stays too). When pen-thin ink off
+    the scale's places sticks out of the body's hull (a tread's sliver cut thin by
+    the outline, a scale drawn off its found places) nothing is taken off and
+    :func:`_ruler_pull` judges and flags as before. A ruler across a car print, its
+    ticks beside the tread's side: width +1.6 %, flagged; a siped print's tip and
+    side under a ruler, +6.2 % and +7.0 %, flagged (held-out 6 seed 3 sheets 30 and
+    61): measured +0.0 %, +0.1 % and +0.4 % without the ruler's ink that sticks
+    out."""
     if not ctx.found.scales:
-        return kept, None
+        return kept
     under, less = _scale_thin(ctx, g, kept)
     if under is None:
-        return kept, None
+        return kept
     rows, cols = np.nonzero(kept & under & ~less)
     pts = np.column_stack([cols + g.cols.start, rows + g.rows.start]).astype(float)
     own = np.zeros(len(pts), bool)
@@ -2468,12 +2466,12 @@ def _without_scale(ctx: _Context, g: Group, kept: np.ndarray) -> tuple:
     scale[rows[own], cols[own]] = True
     rest = kept & ~scale
     if not _outlined(rest):
-        return kept, None
+        return kept
     out = scale & ~_hull_rim(rest)
     # (pen-thin ink off the scale's places beyond the body's hull: not the ruler's?)
     if not out.any() or (less.any() and (kept & ~less & ~scale & ~_hull_rim(less)).any()):
-        return kept, None
-    return kept & ~out, out
+        return kept
+    return kept & ~out
 
 
 def _hull_rim(ink: np.ndarray) -> np.ndarray:

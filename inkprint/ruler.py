@@ -231,13 +231,16 @@ def _on_a_pitch(t: np.ndarray, mm_per_px: float) -> tuple | None:
 def _nearest_place(t: np.ndarray, found: np.ndarray, step: float) -> np.ndarray:
     """Each of ``t``'s nearest place on the lattice of step ``step`` through its
     nearest position in ``found`` (sorted): the scale's local phase, which a pitch
-    fitted over the whole ruler would drift from over centimetres."""
+    fitted over the whole ruler would drift from over centimetres. With ``step``
+    infinite: the nearest position itself."""
     if len(found) == 1:
         near = found[0]
     else:
         i = np.clip(np.searchsorted(found, t), 1, len(found) - 1)
         left, right = found[i - 1], found[i]
         near = np.where(t - left <= right - t, left, right)
+    if not np.isfinite(step):
+        return np.broadcast_to(near, t.shape).astype(float)
     return near + np.round((t - near) / step) * step
 
 
@@ -287,9 +290,7 @@ def on_scale(scale: RulerScale, points: np.ndarray, *, mm_per_px: float) -> np.n
         steps = np.round(np.diff(majors) / pitch) * pitch
         steps = steps[steps > 0]
         step = float(steps.min()) if len(steps) else np.inf
-        place = majors[np.argmin(np.abs(t[:, None] - majors[None, :]), axis=1)]
-        if np.isfinite(step):
-            place = _nearest_place(t, majors, step)
+        place = _nearest_place(t, majors, step)
         number = (
             (s > scale.tick_px)
             & (s <= BAND_TICKS * scale.tick_px)
