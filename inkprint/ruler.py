@@ -266,8 +266,16 @@ def on_scale(scale: RulerScale, points: np.ndarray, *, mm_per_px: float) -> np.n
     Returns
     -------
     (k,) bool
+
+    Raises
+    ------
+    InvalidInput
+        ``mm_per_px`` not positive and finite, ``points`` not (k, 2).
     """
-    pts = np.asarray(points, float).reshape(-1, 2)
+    mm_per_px = check_mm_per_px(mm_per_px)
+    pts = np.asarray(points, float)
+    if pts.ndim != 2 or pts.shape[1] != 2:
+        raise InvalidInput("points", pts.shape, "(k, 2) (col, row) pixels")
     if not len(scale.positions) or not len(pts):
         return np.zeros(len(pts), bool)
     rel = pts - scale.base

@@ -429,6 +429,18 @@ def test_public_steps_refuse_a_bad_scale_naming_it(step, bad):
         call()
 
 
+def test_on_scale_refuses_bad_points_and_scale():
+    from inkprint.ruler import RulerScale, on_scale
+
+    sc = RulerScale(
+        np.zeros(2), np.array([1.0, 0.0]), np.array([0.0, 1.0]), (0.0, 10.0), 5.0, 10, 1.0
+    )
+    with pytest.raises(ip.InvalidInput, match=r"^points = \(3,\)"):
+        on_scale(sc, np.zeros(3), mm_per_px=0.1)
+    with pytest.raises(ip.InvalidInput, match=r"^mm_per_px = "):
+        on_scale(sc, np.zeros((3, 2)), mm_per_px=0.0)
+
+
 def test_find_scales_refuses_an_ink_not_2d():
     with pytest.raises(ip.InvalidInput, match=r"^ink = \(5,\)"):
         ip.find_scales(np.zeros(5, bool), [], mm_per_px=0.1)
