@@ -70,6 +70,7 @@ from .coords import (
 )
 from .errors import check_mm_per_px
 from .options import AnalysisOptions, resolve_options
+from .sites import fit_lattice, nearest_site
 
 #: a neighbour counts for the tread pattern's gap when no farther than this many
 #: times the narrower element's width (2 before: knobby blocks 3 mm wide, 6-8 mm
@@ -194,6 +195,12 @@ TEXT_SHAPE_ALIKE = 0.6
 #: were dropped as strokes' feet; width -2.9 % -> -2.5 %, -8.9 % -> -8.2 %, the rest
 #: being the outer row's dots); a label touches one side.
 TEETH_SPAN = 0.4
+#: ... each reaching at most this many strokes' widths out of the thick ink's hull
+#: (one, before: a tiny file print's inner row of diamonds, joined to its slick
+#: centre, stands out farther where the grooves run at 40-65 degrees; dropped as
+#: strokes' feet, a fifth of the ink: in a sweep of 60 drawn prints two silent,
+#: hull area -2.4 and -2.7 %, and four flagged, -2.4 to -8.3 %, now in the bar)
+TEETH_DEPTH = 2.0
 
 
 @dataclass(frozen=True)
@@ -308,8 +315,14 @@ def element_graph(
     dist, nearest = cv2.distanceTransformWithLabels(
         (~ink).astype(np.uint8), cv2.DIST_L2, 3, labelType=cv2.DIST_LABEL_PIXEL
     )
-    a, b, g = _voronoi_pairs(lab, ink, dist, nearest)
+    a, b, g = _least_per_pair(*_voronoi_pairs(lab, ink, dist, nearest), n)
     g = px_to_mm_length(g, binned_mm_per_px(px_mm, step))
+    return ElementGraph(widths, a - 1, b - 1, g)
+
+
+def _least_per_pair(a: np.ndarray, b: np.ndarray, g: np.ndarray, n: int) -> tuple:
+    """Each pair of labels (1..n) once, the lower first, with its least gap:
+    ``(a, b, gap)`` from :func:`_voronoi_pairs`'s repeated pairs."""
     lo, hi = np.minimum(a, b), np.maximum(a, b)
     key = lo * (n + 1) + hi
     order = np.argsort(key, kind="stable")
@@ -317,7 +330,7 @@ def element_graph(
     first = np.flatnonzero(np.r_[True, key[1:] != key[:-1]]) if len(key) else np.zeros(0, int)
     gmin = np.minimum.reduceat(g, first) if len(first) else np.zeros(0)
     uk = key[first]
-    return ElementGraph(widths, uk // (n + 1) - 1, uk % (n + 1) - 1, gmin)
+    return uk // (n + 1), uk % (n + 1), gmin
 
 
 def _sampled(labels: np.ndarray, n: int, step: int, box: tuple | None) -> np.ndarray:
@@ -748,6 +761,11 @@ FIELD_ELEMENTS = 12
 #: a speck beside a fine tread smaller than its elements (``Group.fine_area_mm2``)
 #: and farther than this many of its pattern gaps from its core is an edge spot
 SPECK_GAPS = 1.5
+#: ... or one off every site of its lattice (:func:`_off_sites`), fitted to the
+#: core's elements within this factor of their median area (whole ones)
+SITE_SIZES = 1.5
+#: ... the lattice fitted to the nearest this many of them
+SITE_ELEMENTS = 16
 #: a dot outside a print's core shorter than ``stroke_width_mm`` and under this
 #: share of the core's median blob's area is a dust speck (:func:`_spots`; not
 #: beside a fine tread, whose dots the outline cuts to crescents as small)
@@ -818,6 +836,11 @@ DOT_ROWS = (DOT_ROW, DOT_ROW, 10)
 #: 6; a tiny file print's outer dots lie a groove, 0.25-0.35 mm, off its diamonds)
 DOT_NEAR_STROKES = (np.inf, np.inf, 1.0)
 DOT_SPAN = 0.2
+#: a found row's neighbours (:func:`_row_neighbours`): dots within this many times
+#: the tread's groove of the print's ink or its rows (a tiny file print's corner
+#: pieces, 0.06-0.19 mm^2 beside rows of 0.25 mm^2 diamonds, dropped as thin dots:
+#: hull area -2 to -4 % with status ok in a sweep of drawn prints at 300-600 dpi)
+ROW_GROOVES = 1.5
 DOT_SIZES = 2.0
 #: with ``group_mm`` given, a join of the side-by-side rule near its limit that
 #: would join this many parts or more (a car print's ribs; two prints side by side
@@ -2053,6 +2076,58 @@ def _outside_core(blobs: _Blobs, core_mask: np.ndarray, faint: np.ndarray) -> np
     return out
 
 
+def _off_sites(blobs: _Blobs, core: np.ndarray, which: np.ndarray) -> np.ndarray:
+    """Which of the blobs ``which`` ((n,) bool; those smaller than a whole element)
+    are no element the outline cut. The lattice of the core's whole elements near
+    a blob (the core blobs within :data:`SITE_SIZES` of their median area, the
+    :data:`SITE_ELEMENTS` nearest it, :func:`inkprint.sites.fit_lattice`: a large
+    print's lattice drifts across it) holds a cut element inside its element's
+    footprint at a site, reaching the element's edge on the side towards the
+    print (the outline takes a cap off the far side). A blob is off it with a pixel
+    farther from the nearest site than the elements' circumradius (the median over
+    them of the farthest pixel from their centroid), with none as far as their
+    inradius (half :func:`_element_widths`), or with none near the element's edge
+    towards the whole elements near it (twice the give), the give a pixel and the
+    fit's misfit. Not off without a lattice. (n,) bool."""
+    out = np.zeros(len(which), bool)
+    if not which.any() or not core.any():
+        return out
+    area = np.median(blobs.areas[core])
+    whole = core & (blobs.areas >= area / SITE_SIZES) & (blobs.areas <= SITE_SIZES * area)
+    which = which & (blobs.areas < area / SITE_SIZES)  # (cut ones: smaller)
+    if np.count_nonzero(whole) < SITE_ELEMENTS // 2 or not which.any():
+        return out
+    ys, xs = np.divmod(blobs.at, blobs.labels.shape[1])
+    on = whole[blobs.ids - 1]  # (the whole ones' pixels' reach from their centroid)
+    k = blobs.ids[on] - 1
+    far = np.zeros(len(which))
+    np.maximum.at(far, k, np.hypot(xs[on] - blobs.centroids[k, 0], ys[on] - blobs.centroids[k, 1]))
+    outer = float(np.median(far[whole]))
+    inner = 0.5 * float(np.median(_element_widths(blobs.labels, len(which), 1.0)[whole]))
+    centres = blobs.centroids[whole]
+    cand = np.flatnonzero(which)
+    pick = which[blobs.ids - 1]  # (the candidates' pixels, blob by blob)
+    order = np.argsort(blobs.ids[pick], kind="stable")
+    px = np.column_stack([xs[pick], ys[pick]])[order].astype(float)
+    counts = np.bincount(blobs.ids[pick] - 1, minlength=len(which))[cand]
+    for b, mine in zip(cand, np.split(px, np.cumsum(counts)[:-1]), strict=True):
+        d = np.hypot(*(centres - blobs.centroids[b]).T)
+        near = centres[np.argsort(d)[:SITE_ELEMENTS]]
+        lattice = fit_lattice(near)
+        if lattice is None:
+            continue
+        site = nearest_site(lattice, blobs.centroids[b : b + 1])[0]
+        reach = np.hypot(*(mine - site).T).max()
+        give = 1.0 + lattice.misfit
+        # (the cap is cut off the side away from the print: what is left holds the
+        # element's edge on the side towards the whole elements near it)
+        inward = near.mean(axis=0) - site
+        edge = site + inner * inward / max(float(np.hypot(*inward)), 1e-9)
+        held = np.hypot(*(mine - edge).T).min()
+        out[b] = reach > outer + give or reach < inner - give or held > 2.0 * give
+    return out
+
+
 def _core_gaps(blobs: _Blobs, core: np.ndarray, core_mask: np.ndarray) -> tuple:
     """Gap [px] from every blob to the nearest core blob, and the core's own tread
     gap [px]: the median over core blobs of the gap to their nearest core neighbour
@@ -2252,7 +2327,8 @@ def _print_stubs(thin: np.ndarray, feet: tuple, hull_xy: np.ndarray, width_px: f
       a narrow print the opening cut short continues its outline; a stroke's foot
       sticks out farther);
     * its tread's teeth (:func:`_teeth`): a row of ``tread_teeth`` or more stubs
-      no deeper than a stroke on each side, along most of its length."""
+      no deeper than :data:`TEETH_DEPTH` strokes on each side, along most of its
+      length."""
 
     import cv2
 
@@ -2274,7 +2350,8 @@ def _print_stubs(thin: np.ndarray, feet: tuple, hull_xy: np.ndarray, width_px: f
     ends = _off_the_tips(hull_xy, cent)
     ok = all_feet & ends & (far <= opts.tip_taper_strokes * width_px)
     if opts.tread_teeth > 0:
-        ok |= _teeth(hull_xy, cent, all_feet & ~ends & (far <= width_px), opts.tread_teeth)
+        stub = all_feet & ~ends & (far <= TEETH_DEPTH * width_px)
+        ok |= _teeth(hull_xy, cent, stub, opts.tread_teeth)
     return ok[ids]
 
 
@@ -2364,19 +2441,11 @@ def _dot_row(
     0.5-0.8 mm^2, as dark as the print); left to the section 7.1.1 rule instead,
     which keeps the ones within the tread's reach. Halo specks are fainter
     (section 7.1.1), a label's dots are a few."""
-    width_px, least_px = size
+    width_px = size[0]
     n = len(parts.foot)
     none = np.zeros(n, bool)
     ink = np.bincount(parts.ids, minlength=n)  # (a piece apart is thin all through)
-    dot = ~parts.foot & ~parts.ends & (parts.extent <= DOT_STROKES * width_px)
-    dot &= ink >= least_px
-    dot[0] = False
-    if np.count_nonzero(dot) < least:
-        return none
-    dark = np.asarray(darkness, float).ravel()
-    peak = np.zeros(n)
-    reduce_at(np.maximum, peak, parts.ids, values=dark[parts.at])
-    row = dot & (peak >= opts.edge_spot_faintness * float(np.median(dark[mask.ravel()])))
+    row = _dots(parts, darkness, mask, size, opts, least=least)
     if np.isfinite(near) and np.count_nonzero(row) >= least:
         # each within ``near`` strokes of the other ink (measured only for a row's
         # worth of dots: the distance transform is most of this rule's cost)
@@ -2398,6 +2467,76 @@ def _dot_row(
     t = np.bincount(parts.ids, weights=xs * vx + ys * vy, minlength=n)[row] / ink[row]
     lo, hi = np.percentile(ink[row], [20, 80])
     return row if np.ptp(t) >= DOT_SPAN * np.ptp(t_ink) and hi <= DOT_SIZES * lo else none
+
+
+def _dots(
+    parts: _ThinParts, darkness, mask: np.ndarray, size: tuple, opts, *, least: int = 1
+) -> np.ndarray:
+    """Per piece: a dot apart from the print (thin all through, its box's longer
+    side at most :data:`DOT_STROKES` x ``size[0]`` [px], at least ``size[1]``
+    [px^2] of ink), as dark as its ink (peak darkness ``edge_spot_faintness`` x the
+    ink's median or more). (n,) bool; none when fewer than ``least`` are dots."""
+    width_px, least_px = size
+    n = len(parts.foot)
+    ink = np.bincount(parts.ids, minlength=n)  # (a piece apart is thin all through)
+    dot = ~parts.foot & ~parts.ends & (parts.extent <= DOT_STROKES * width_px)
+    dot &= ink >= least_px
+    dot[0] = False
+    if np.count_nonzero(dot) < least:
+        return np.zeros(n, bool)
+    dark = np.asarray(darkness, float).ravel()
+    peak = np.zeros(n)
+    reduce_at(np.maximum, peak, parts.ids, values=dark[parts.at])
+    return dot & (peak >= opts.edge_spot_faintness * float(np.median(dark[mask.ravel()])))
+
+
+def _pair_gaps(labels: np.ndarray) -> tuple:
+    """The gaps between the pieces of a labelled mask (``labels``, (h, w) int, 0 =
+    paper): for each pair of pieces whose nearest-ink regions meet, their gap [px]
+    (the paper's width between them, about; 0 for pieces touching 4-ways). Three
+    (k,) arrays ``(a, b, gap)`` with a < b, one row a pair."""
+    import cv2
+
+    ink = labels > 0
+    dist, nearest = cv2.distanceTransformWithLabels(
+        (~ink).view(np.uint8), cv2.DIST_L2, 3, labelType=cv2.DIST_LABEL_PIXEL
+    )
+    return _least_per_pair(*_voronoi_pairs(labels, ink, dist, nearest), int(labels.max()))
+
+
+def _row_neighbours(
+    parts: _ThinParts, darkness, labels: np.ndarray, rows: np.ndarray, size: tuple, opts
+) -> np.ndarray:
+    """Per piece: a dot (:func:`_dots`, ``size`` = stroke width [px], least ink
+    [px^2]) within :data:`ROW_GROOVES` x the tread's groove of the print's ink (the
+    pieces holding thick ink) or of its rows' dots (``rows``, (n,) bool, found by
+    :func:`_dot_row`), or of such a dot, chained: the outline's cut pieces at the
+    rows' ends and at the print's corners, too few or too unlike in size for a row
+    of their own. The groove is the median gap of the rows' dots to their nearest
+    other row dot (:func:`_pair_gaps`; ``labels``: the print's pieces), the reach
+    at most a stroke's width. (n,) bool, ``rows`` not among them."""
+    n = len(parts.foot)
+    out = np.zeros(n, bool)
+    cand = _dots(parts, darkness, labels > 0, size, opts) & ~rows
+    if not cand.any():
+        return out
+    a, b, gap = _pair_gaps(labels)
+    both = rows[a] & rows[b]  # (the dots of a row next to the print's ink lie
+    # closer to it than a groove where its edge cut them)
+    nearest = np.full(n, np.inf)
+    np.minimum.at(nearest, a[both], gap[both])
+    np.minimum.at(nearest, b[both], gap[both])
+    known = nearest[rows & np.isfinite(nearest)]
+    groove = float(np.median(known)) if len(known) else 1.0
+    close = gap <= min(ROW_GROOVES * max(groove, 1.0), size[0])
+    a, b = a[close], b[close]
+    on = parts.foot | rows  # the print's ink and its rows
+    on[0] = False
+    while True:
+        new = np.concatenate([b[on[a] & cand[b] & ~on[b]], a[on[b] & cand[a] & ~on[a]]])
+        if not len(new):
+            return out
+        on[new] = out[new] = True
 
 
 def _outside_distance(points: np.ndarray, polygon: np.ndarray) -> np.ndarray:
@@ -2534,11 +2673,23 @@ def _edge_spots(
         # a row of its own: a file print's whole diamonds in one row, the outline's
         # cut dots in the next)
         rows = zip(DOT_LEAST_MM2, DOT_ROWS, DOT_NEAR_STROKES, strict=True)
+        # (the pieces kept along the outline or off the ends are dots of a row too:
+        # a tiny file print's outer row, held-out 6 seed 4 sheet 116 at 300 dpi,
+        # eight cut diamonds, five kept as slivers along the outline and the three
+        # between them dropped as strokes: too few for a row, width -4.1 % with
+        # status ok)
+        found = np.zeros(len(parts.foot), bool)  # (pieces of the rows)
         for floor, least, near in rows:
             size = (width, area_mm2_to_px(floor, mm_per_px))
-            row = _dot_row(parts, darkness, group.mask, size, opts, least=least, near=near)
+            among = replace(parts, ends=found)
+            row = _dot_row(among, darkness, group.mask, size, opts, least=least, near=near)
             if row.any():
+                found |= row
                 parts = replace(parts, ends=parts.ends | row)
+        if found.any():  # (and the pieces the outline cut beside them)
+            size = (width, area_mm2_to_px(DOT_LEAST_MM2[-1], mm_per_px))
+            found |= _row_neighbours(parts, darkness, pieces.labels, found, size, opts)
+            parts = replace(parts, ends=parts.ends | found)
     gone = parts.dropped(dots=rule_on)  # of the thin pixels; with dots=False a subset
     kept = cleared(group.mask, parts.at[gone])
     dots = parts.at[gone & ~parts.dropped(dots=False)]
@@ -2611,6 +2762,11 @@ def _spots(
         # 0.1 mm^2 speck 0.8 mm off, 1.8 gaps, length +19.8 % with status ok)
         speck = small & (blobs.areas < group.fine_area_mm2) & (gaps > SPECK_GAPS * pattern)
         spot |= outside & speck
+        # ... and a piece smaller than its elements off every site of the tread's
+        # lattice: the outline's cut elements lie on their elements' sites (held-out
+        # 6 seed 4 sheet 109: a speck 0.5 mm off a tiny dot print's tip, 1.2 gaps,
+        # +4.9 % long; seed 2 sheet 65, a knurl print's, +8.7 %: status ok)
+        spot |= _off_sites(blobs, core, outside & small)
     # a dust speck: a dot shorter than a stroke is wide holding under DUST_SHARE of
     # the core's median blob's ink is no tread block the outline cut, whatever its
     # gap (held-out seeds 2, 3, 6 sheets 38, 103, 74: specks 1.9-2.8 mm off a car, a
