@@ -51,8 +51,8 @@ def test_fit_lattice_with_noise_reports_its_misfit():
 
 def test_fit_lattice_outvotes_a_stray_centre():
     # a slick centre's centroid among the elements' (one in 21)
-    pts, basis = _lattice_points(20.0, 0.0, 90.0, 1.0, n=(7, 3))
-    lat = fit_lattice(np.vstack([pts, pts.mean(axis=0) + [3.0, 7.0]]))
+    pts, _ = _lattice_points(20.0, 0.0, 90.0, 1.0, n=(7, 3))
+    lat = fit_lattice(np.vstack([pts, pts.mean(axis=0) + np.array([3.0, 7.0])]))
     assert lat is not None
     assert_allclose(site_distance(lat, pts), 0.0, atol=1e-6)
 
