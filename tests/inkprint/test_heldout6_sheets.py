@@ -17,7 +17,10 @@ session's cases:
   '51', 'g' taken for the print's: +22 % wide (analyze._letters_pull, flagged now);
 * seed 5 sheet 66 (a PDF, page 0): a tiny file print at 300 dpi whose outer row is
   six cut dots where it is widest, three a side: dropped as thin dots, -9.3 % wide
-  (group._two_sided_row).
+  (group._two_sided_row);
+* seed 6 sheet 6: 'Maxxis Ardent 3.5bar', a bold label set against a slick print
+  on chart paper, joined to it whole, no letter set aside: +101 % long
+  (analyze._writing_pull, flagged now).
 """
 
 import csv
@@ -53,7 +56,9 @@ def _sheet(d: str, seed: int, index: int) -> list:
     return score(d)[0]
 
 
-@pytest.mark.parametrize(("seed", "index"), [(4, 109), (4, 116), (4, 80), (5, 86), (5, 66)])
+@pytest.mark.parametrize(
+    ("seed", "index"), [(4, 109), (4, 116), (4, 80), (5, 86), (5, 66), (6, 6)]
+)
 def test_heldout6_sheet_is_within_the_bar_or_flagged(tmp_path, seed, index):
     outcomes = [o for o in _sheet(str(tmp_path), seed, index) if o["expect"] == "measure"]
     assert outcomes
