@@ -2801,25 +2801,8 @@ def _print_flags(
             f"the outline near it, it is up to {100 * pull:.1f} % shorter or narrower; "
             f"see the overlay, remove the mark or rescan"
         )
-    # (on chart paper gridlines' bits read as letters: the grid's rules judge there)
-    letters = "mark_on_edge" not in flags and ctx.found.grid is None
-    lpull = _letters_pull(ctx.found.marks, padded, kept, m) if letters else 0.0
-    if lpull > ctx.opts.edge_uncertainty:
-        flags.append("mark_on_edge")
-        warnings.append(
-            f"print #{index}: its outline runs across a letter set aside: without the "
-            f"pieces beside it, as large as letters, it is {100 * lpull:.1f} % shorter "
-            f"or narrower (letters of the same label taken for tread blocks?); see the "
-            f"overlay, remove the label or rescan"
-        )
-    wpull = 0.0 if "mark_on_edge" in flags else _writing_pull(padded, kept, m, ctx.scan.mm_per_px)
-    if wpull > ctx.opts.edge_uncertainty:
-        flags.append("mark_on_edge")
-        warnings.append(
-            f"print #{index}: a line of writing joins its edge: without it the print is "
-            f"{100 * wpull:.1f} % shorter or narrower (a label set against it?); see the "
-            f"overlay, remove the label or rescan"
-        )
+    if "mark_on_edge" not in flags:
+        _label_flags(ctx, padded, kept, m, index, flags, warnings)
     rpull = 0.0
     if ctx.found.scales and "mark_on_edge" not in flags:
         rpull = _ruler_pull(ctx, padded, kept, m)
@@ -2861,6 +2844,33 @@ def _print_flags(
     if ctx.rolling_axis == "auto":
         flags, warnings = _auto_axis_flags(m, index, flags, warnings, opts=ctx.opts)
     return tuple(flags), tuple(warnings)
+
+
+def _label_flags(ctx: _Context, padded: Group, kept, m, index: int, flags, warnings):
+    """Append ``mark_on_edge`` with its warning to ``flags``, ``warnings`` when a
+    label's letters are taken for the print's: its outline runs across a letter
+    set aside (:func:`_letters_pull`), or a line of writing joins it whole
+    (:func:`_writing_pull`), either making it more than ``edge_uncertainty``
+    larger. ``padded``: the print's padded box, ``kept`` its ink over it."""
+    # (on chart paper gridlines' bits read as letters: the grid's rules judge there)
+    lpull = _letters_pull(ctx.found.marks, padded, kept, m) if ctx.found.grid is None else 0.0
+    if lpull > ctx.opts.edge_uncertainty:
+        flags.append("mark_on_edge")
+        warnings.append(
+            f"print #{index}: its outline runs across a letter set aside: without the "
+            f"pieces beside it, as large as letters, it is {100 * lpull:.1f} % shorter "
+            f"or narrower (letters of the same label taken for tread blocks?); see the "
+            f"overlay, remove the label or rescan"
+        )
+        return
+    wpull = _writing_pull(padded, kept, m, ctx.scan.mm_per_px)
+    if wpull > ctx.opts.edge_uncertainty:
+        flags.append("mark_on_edge")
+        warnings.append(
+            f"print #{index}: a line of writing joins its edge: without it the print is "
+            f"{100 * wpull:.1f} % shorter or narrower (a label set against it?); see the "
+            f"overlay, remove the label or rescan"
+        )
 
 
 def _auto_axis_flags(
