@@ -2462,7 +2462,7 @@ def _dot_row(
     # along the print's major axis: the dots' span against the ink's
     ys, xs = np.divmod(parts.at, mask.shape[1])
     rr, cc = np.nonzero(mask)
-    _, (vx, vy) = _major_axis(np.column_stack([cc, rr])[:: max(1, len(rr) // 4000)].astype(float))
+    _, (vx, vy) = _ink_axis(rr, cc)
     t_ink = cc * vx + rr * vy
     t = np.bincount(parts.ids, weights=xs * vx + ys * vy, minlength=n)[row] / ink[row]
     lo, hi = np.percentile(ink[row], [20, 80])
@@ -2503,8 +2503,7 @@ def _two_sided_row(parts: _ThinParts, darkness, mask: np.ndarray, size: tuple, o
     ys, xs = np.divmod(parts.at, mask.shape[1])
     cent = np.column_stack([np.bincount(parts.ids, xs, n), np.bincount(parts.ids, ys, n)])
     cent = cent[row] / ink[row, None]
-    rr, cc = np.nonzero(mask)
-    c, (vx, vy) = _major_axis(np.column_stack([cc, rr])[:: max(1, len(rr) // 4000)].astype(float))
+    c, (vx, vy) = _ink_axis(*np.nonzero(mask))
     side = (cent - c) @ np.array([-vy, vx]) > 0
     lo, hi = np.percentile(ink[row], [20, 80])
     g = gap[row]
@@ -2645,6 +2644,13 @@ def _major_axis(xy: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     c = xy.mean(axis=0)
     w, v = np.linalg.eigh((xy - c).T @ (xy - c))
     return c, v[:, np.argmax(w)]
+
+
+def _ink_axis(rows: np.ndarray, cols: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`_major_axis` of ink pixels (their rows and columns), from about 4000 of
+    them (every k-th) on a large print."""
+    xy = np.column_stack([cols, rows])[:: max(1, len(rows) // 4000)]
+    return _major_axis(xy.astype(float))
 
 
 def _count_pieces(flat: np.ndarray, shape) -> int:
