@@ -9,6 +9,8 @@ from __future__ import annotations
 import math
 from typing import Any
 
+import numpy as np
+
 
 class InkPrintError(Exception):
     """Base class of every error raised by :mod:`inkprint`."""
@@ -77,3 +79,36 @@ def check_mm_per_px(mm_per_px) -> float:
     if not (value > 0 and math.isfinite(value)):
         raise InvalidInput("mm_per_px", mm_per_px, "> 0 [mm / px], finite")
     return value
+
+
+def check_points(name: str, points, unit: str):
+    """Points given to a public step (``ruler.on_scale``, ``sites.fit_lattice``,
+    ``sites.nearest_site``), checked: a (k, 2) float array of finite numbers.
+
+    Parameters
+    ----------
+    name : str
+        The parameter's name, for the error.
+    points : array_like
+    unit : str
+        What the two columns are, for the error ('(col, row) pixels').
+
+    Returns
+    -------
+    (k, 2) float ndarray
+
+    Raises
+    ------
+    InvalidInput
+        Naming ``name`` when the points are not (k, 2) finite numbers (a 1-D array is
+        not reshaped: its pairing would be a guess).
+    """
+    try:
+        pts = np.asarray(points, float)
+    except (TypeError, ValueError):
+        raise InvalidInput(name, points, f"(k, 2) {unit}") from None
+    if pts.ndim != 2 or pts.shape[1] != 2:
+        raise InvalidInput(name, pts.shape, f"(k, 2) {unit}")
+    if not np.isfinite(pts).all():
+        raise InvalidInput(name, "non-finite values", f"(k, 2) finite {unit}")
+    return pts

@@ -39,7 +39,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .coords import RULER_PITCHES_MM, mm_to_px_length, px_to_mm_length
-from .errors import InvalidInput, check_mm_per_px
+from .errors import InvalidInput, check_mm_per_px, check_points
 
 __all__ = ["RulerScale", "find_scales", "on_scale", "scale_band", "scale_error"]
 
@@ -270,12 +270,10 @@ def on_scale(scale: RulerScale, points: np.ndarray, *, mm_per_px: float) -> np.n
     Raises
     ------
     InvalidInput
-        ``mm_per_px`` not positive and finite, ``points`` not (k, 2).
+        ``mm_per_px`` not positive and finite, ``points`` not (k, 2) finite numbers.
     """
     mm_per_px = check_mm_per_px(mm_per_px)
-    pts = np.asarray(points, float)
-    if pts.ndim != 2 or pts.shape[1] != 2:
-        raise InvalidInput("points", pts.shape, "(k, 2) (col, row) pixels")
+    pts = check_points("points", points, "(col, row) pixels")
     if not len(scale.positions) or not len(pts):
         return np.zeros(len(pts), bool)
     rel = pts - scale.base

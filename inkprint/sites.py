@@ -19,6 +19,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .errors import check_points
+
 __all__ = ["Lattice", "fit_lattice", "nearest_site", "site_distance"]
 
 #: fewest whole elements to fit a lattice from
@@ -93,8 +95,13 @@ def fit_lattice(centres: np.ndarray) -> Lattice | None:
         None with fewer than :data:`LATTICE_LEAST` centres, without two directions
         of neighbours, or when the centres miss their sites by more than
         :data:`FIT_SHARE` of the step (a row, not a lattice; a field of all sizes).
+
+    Raises
+    ------
+    InvalidInput
+        ``centres`` not (k, 2) finite numbers.
     """
-    c = np.asarray(centres, float).reshape(-1, 2)
+    c = check_points("centres", centres, "(x, y) pixels")
     if len(c) < LATTICE_LEAST:
         return None
     d = c[None, :, :] - c[:, None, :]  # d[i, j] = c[j] - c[i]
@@ -137,8 +144,13 @@ def nearest_site(lattice: Lattice, points: np.ndarray) -> np.ndarray:
     Returns
     -------
     (m, 2) float [px]
+
+    Raises
+    ------
+    InvalidInput
+        ``points`` not (m, 2) finite numbers.
     """
-    p = np.asarray(points, float).reshape(-1, 2) - lattice.origin
+    p = check_points("points", points, "(x, y) pixels") - lattice.origin
     base = np.floor(p @ np.linalg.inv(lattice.basis))
     # the cell's corners and their neighbours (a skewed basis's nearest site may lie
     # outside the cell holding the point)
@@ -160,6 +172,11 @@ def site_distance(lattice: Lattice, points: np.ndarray) -> np.ndarray:
     Returns
     -------
     (m,) float [px]
+
+    Raises
+    ------
+    InvalidInput
+        ``points`` not (m, 2) finite numbers.
     """
-    p = np.asarray(points, float).reshape(-1, 2)
+    p = check_points("points", points, "(x, y) pixels")
     return np.hypot(*(p - nearest_site(lattice, p)).T)

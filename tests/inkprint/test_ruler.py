@@ -437,6 +437,8 @@ def test_on_scale_refuses_bad_points_and_scale():
     )
     with pytest.raises(ip.InvalidInput, match=r"^points = \(3,\)"):
         on_scale(sc, np.zeros(3), mm_per_px=0.1)
+    with pytest.raises(ip.InvalidInput, match=r"^points = 'non-finite values'.*finite"):
+        on_scale(sc, np.array([[1.0, np.nan]]), mm_per_px=0.1)
     with pytest.raises(ip.InvalidInput, match=r"^mm_per_px = "):
         on_scale(sc, np.zeros((3, 2)), mm_per_px=0.0)
 

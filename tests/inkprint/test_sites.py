@@ -7,7 +7,8 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from numpy.testing import assert_allclose
 
-from inkprint.sites import FIT_SHARE, fit_lattice, site_distance
+from inkprint.errors import InvalidInput
+from inkprint.sites import FIT_SHARE, fit_lattice, nearest_site, site_distance
 
 
 def _lattice_points(step, turn_deg, skew_deg, ratio, n=(5, 4), noise=0.0, seed=0):
@@ -76,3 +77,16 @@ def test_fit_lattice_none_for_a_scatter():
     assert sum(m is None for m in misses) >= 18
     for m in misses:
         assert m is None or m.misfit <= FIT_SHARE * m.step
+
+
+def test_fit_lattice_and_sites_refuse_points_not_k_by_2_finite():
+    # a flat array is not paired up as (x, y) (a guess), NaN is no centre
+    pts, _ = _lattice_points(20.0, 0.0, 90.0, 1.0, n=(4, 3))
+    lat = fit_lattice(pts)
+    with pytest.raises(InvalidInput, match=r"^centres = \(24,\) .*\(k, 2\)"):
+        fit_lattice(pts.ravel())
+    with pytest.raises(InvalidInput, match=r"^centres = 'non-finite values'"):
+        fit_lattice(np.vstack([pts, [[np.nan, 1.0]]]))
+    for fn in (nearest_site, site_distance):
+        with pytest.raises(InvalidInput, match=r"^points = \(3, 3\)"):
+            fn(lat, np.zeros((3, 3)))
