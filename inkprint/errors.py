@@ -9,8 +9,6 @@ from __future__ import annotations
 import math
 from typing import Any
 
-import numpy as np
-
 
 class InkPrintError(Exception):
     """Base class of every error raised by :mod:`inkprint`."""
@@ -103,6 +101,8 @@ def check_points(name: str, points, unit: str):
         Naming ``name`` when the points are not (k, 2) finite numbers (a 1-D array is
         not reshaped: its pairing would be a guess).
     """
+    import numpy as np  # (here: the command line parses its options before numpy loads)
+
     try:
         pts = np.asarray(points, float)
     except (TypeError, ValueError):
