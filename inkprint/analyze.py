@@ -40,6 +40,7 @@ import numpy as np
 
 from .apart import split_apart
 from .binarize import Binarization, below, binarize, remove_specks
+from .caps import CAP_ELEMENTS, cut_caps, off_lattice
 from .components import components_with_stats, pixel_sums, reduce_at
 from .coords import (
     area_mm2_to_px,
@@ -68,6 +69,7 @@ from .group import (
     outline_points,
     reading_order,
     text_line,
+    union,
     word_in_a_line,
 )
 from .lattice import (
@@ -1366,11 +1368,12 @@ def measure_print(ctx: _Context, group: Group, *, index: int = 0, sensitivity: b
     """
     opts, s = ctx.opts, ctx.scan.mm_per_px
     n_rows = ctx.page.work.shape[0]
-    g, grey, line_ink = _without_faint_lines(ctx, _with_paper(ctx, group), group)
-    spots = edge_spots(g, _darkness(grey, g.mask), mm_per_px=s, options=opts)
-    g, kept, hidden, no_core = _load_bearing(ctx, group, g, spots)
-    # (a ruler's ink sticking out where its scale crosses the outline: set apart)
-    kept = _without_scale(ctx, g, kept)
+    g, grey, line_ink, spots, kept, hidden, no_core = _print_ink(ctx, group)
+    caps, taken = _cut_caps(ctx, group, g, kept), ()
+    if caps is not None:  # the same steps with the caps' ink, the caps kept
+        group, taken = union(group, caps), _piece_boxes(caps)
+        ctx = _without_marks(ctx, taken)
+        g, grey, line_ink, spots, kept, hidden, no_core = _print_ink(ctx, group, caps)
     kw = dict(
         n_rows=n_rows,
         mm_per_px=s,
@@ -1438,6 +1441,7 @@ def measure_print(ctx: _Context, group: Group, *, index: int = 0, sensitivity: b
         flags=flags,
         warnings=warnings,
         unit=ctx.scan.unit,
+        caps=taken,
     )
 
 
@@ -1520,6 +1524,92 @@ def _with_excess(kept: np.ndarray, more: np.ndarray, angle: float) -> float:
         cv2.contourArea(cv2.convexHull(outline_points(k).astype(np.float32))) for k in (both, kept)
     ]
     return max(_mask_excess(both, kept, angle), 0.5 * (areas[0] / max(areas[1], 1.0) - 1.0))
+
+
+def _print_ink(ctx: _Context, group: Group, caps: Group | None = None) -> tuple:
+    """``(g, grey, line_ink, spots, kept, hidden, no_core)``: the print's padded box
+    without faint lines (:func:`_without_faint_lines`), its edge spots (section
+    7.1.1), and its load-bearing ink (:func:`_load_bearing`) without a ruler's ink
+    sticking out where its scale crosses the outline (:func:`_without_scale`), with
+    the ``caps`` (:func:`_cut_caps`) kept."""
+    g, grey, line_ink = _without_faint_lines(ctx, _with_paper(ctx, group), group)
+    spots = edge_spots(g, _darkness(grey, g.mask), mm_per_px=ctx.scan.mm_per_px, options=ctx.opts)
+    g, kept, hidden, no_core = _load_bearing(ctx, group, g, spots)
+    kept = _without_scale(ctx, g, kept)
+    if caps is not None:
+        kept = kept | _in_box(caps, g)
+    return g, grey, line_ink, spots, kept, hidden, no_core
+
+
+def _cut_caps(ctx: _Context, group: Group, g: Group, kept: np.ndarray) -> Group | None:
+    """The caps of the print's next row of elements that its outline cut
+    (:func:`inkprint.caps.cut_caps`) among the ink a lattice step around its
+    load-bearing ink ``kept`` (in ``g``'s box) that no other print holds; None when
+    there are none or the print has no coarse lattice (a fine tread's cut elements
+    are the section 7.1.1 rule's)."""
+    if group.fine_area_mm2 > 0:
+        return None
+    n, _, st, _ = components_with_stats(kept.view(np.uint8), connectivity=8)
+    if n - 1 < CAP_ELEMENTS:
+        return None
+    big = st[1:, 4] >= 0.5 * st[1:, 4].max()
+    side = float(np.median(np.maximum(st[1:, 2], st[1:, 3])[big]))
+    frame = _padded(dataclasses.replace(g, mask=kept), ctx.page.work.shape, round(2.5 * side))
+    rows, cols = frame.rows, frame.cols
+    free = ctx.binarization.mask[rows, cols] & ~frame.mask
+    if ctx.found.grid is not None:
+        free &= ~ctx.found.grid.removed[rows, cols]
+    free &= ~_scale_strips(ctx, frame)  # (a ruler's ticks lie on a lattice too)
+    for o in ctx.found.groups:
+        if o is not group:
+            free &= ~_in_box(o, frame)
+    caps = cut_caps(frame.mask, free)
+    if not caps.any():
+        return None
+    r, c = np.flatnonzero(caps.any(axis=1)), np.flatnonzero(caps.any(axis=0))
+    r0, r1, c0, c1 = r[0], r[-1] + 1, c[0], c[-1] + 1
+    return Group(
+        slice(rows.start + r0, rows.start + r1),
+        slice(cols.start + c0, cols.start + c1),
+        caps[r0:r1, c0:c1],
+    )
+
+
+def _scale_strips(ctx: _Context, g: Group) -> np.ndarray:
+    """Where rulers' scales (:func:`inkprint.ruler.scale_band`) cross ``g``'s box
+    ((h, w) bool)."""
+    import cv2
+
+    under = np.zeros(g.mask.shape, np.uint8)
+    origin = np.array([g.cols.start, g.rows.start], float)
+    for sc in ctx.found.scales:
+        band = scale_band(sc, mm_per_px=ctx.scan.mm_per_px) - origin
+        cv2.fillConvexPoly(under, np.round(band * 16).astype(np.int32), 1, cv2.LINE_8, 4)
+    return under.view(bool)
+
+
+def _piece_boxes(g: Group) -> tuple:
+    """Sheet boxes (row0, col0, row1, col1) [px] of the group's 8-connected pieces."""
+    _, _, st, _ = components_with_stats(g.mask.view(np.uint8), connectivity=8)
+    r, c = g.rows.start, g.cols.start
+    return tuple(
+        (int(r + y), int(c + x), int(r + y + h), int(c + x + w)) for x, y, w, h in st[1:, :4]
+    )
+
+
+def _covered(bbox, boxes: tuple) -> bool:
+    """Whether a mark's box lies within one of ``boxes`` (grown by a pixel)."""
+    r0, c0, r1, c1 = bbox
+    return any(
+        r0 >= b[0] - 1 and c0 >= b[1] - 1 and r1 <= b[2] + 1 and c1 <= b[3] + 1 for b in boxes
+    )
+
+
+def _without_marks(ctx: _Context, boxes: tuple) -> _Context:
+    """The context without the marks set aside that ``boxes`` cover (a print's cut
+    caps: no label beside it)."""
+    marks = [mk for mk in ctx.found.marks if not _covered(mk.bbox, boxes)]
+    return dataclasses.replace(ctx, found=dataclasses.replace(ctx.found, marks=marks))
 
 
 def _load_bearing(ctx: _Context, group: Group, g: Group, spots) -> tuple:
@@ -2213,6 +2303,18 @@ def _grid_in(grid: Gridlines | None, rows: slice, cols: slice) -> np.ndarray | b
     return False if grid is None else grid.removed[rows, cols]
 
 
+def _in_box(g: Group, box: Group) -> np.ndarray:
+    """``g``'s ink in ``box``'s box ((h, w) bool of ``box.mask``'s shape)."""
+    out = np.zeros(box.mask.shape, bool)
+    r0, r1 = max(g.rows.start, box.rows.start), min(g.rows.stop, box.rows.stop)
+    c0, c1 = max(g.cols.start, box.cols.start), min(g.cols.stop, box.cols.stop)
+    if r0 < r1 and c0 < c1:
+        out[
+            r0 - box.rows.start : r1 - box.rows.start, c0 - box.cols.start : c1 - box.cols.start
+        ] = g.mask[r0 - g.rows.start : r1 - g.rows.start, c0 - g.cols.start : c1 - g.cols.start]
+    return out
+
+
 def _padded(g: Group, shape, pad: int) -> Group:
     """The group with its box grown by ``pad`` pixels (within the sheet)."""
     h, w = shape
@@ -2870,6 +2972,20 @@ def _label_flags(ctx: _Context, padded: Group, kept, m, index: int, flags, warni
             f"print #{index}: a line of writing joins its edge: without it the print is "
             f"{100 * wpull:.1f} % shorter or narrower (a label set against it?); see the "
             f"overlay, remove the label or rescan"
+        )
+        return
+    off = off_lattice(kept) if padded.fine_area_mm2 <= 0 else None
+    opull = (
+        _with_excess(kept & ~off, off, m.metrics.orientation)
+        if off is not None and off.any()
+        else 0.0
+    )
+    if opull > ctx.opts.edge_uncertainty:
+        flags.append("mark_on_edge")
+        warnings.append(
+            f"print #{index}: pieces at its edge lie off its tread's lattice: without them "
+            f"it is {100 * opull:.1f} % shorter or narrower (a label's letters or a mark "
+            f"taken for tread elements?); see the overlay, remove the mark or rescan"
         )
 
 
@@ -3569,6 +3685,7 @@ def analyze_scan(
         raise NoInk(no_print_message(found))
     prints = _split_twins(_lone_elements(measured, s, opts), s, opts)
     checked = _scale_check(scan, found.scales)
+    taken = tuple(b for p in prints for b in p.caps)
     return SheetResult(
         path=scan.path,
         page=scan.page,
@@ -3579,7 +3696,7 @@ def analyze_scan(
         threshold=b.threshold,
         shape=scan.shape,
         prints=prints,
-        marks=found.marks + too_small,
+        marks=[mk for mk in found.marks + too_small if not _covered(mk.bbox, taken)],
         rolling_axis=rolling_axis,
         axis_source="auto" if rolling_axis == "auto" else "given",
         flags=page.flags + (("uneven_light",) if page.flattened else ()) + checked[:1],

@@ -90,6 +90,9 @@ class PrintResult:
     unit : str
         Length unit of the metrics: 'mm', or 'px' when the sheet has no scale
         (shown in the repr).
+    caps : tuple of (row0, col0, row1, col1) int [px]
+        Boxes of the cut caps of its next row of elements joined to it
+        (:func:`inkprint.caps.cut_caps`): the marks they were set aside as go.
     """
 
     index: int
@@ -104,6 +107,7 @@ class PrintResult:
     flags: tuple = ()
     warnings: tuple = ()
     unit: str = "mm"
+    caps: tuple = field(default=(), repr=False)
 
     @property
     def status(self) -> str:

@@ -19,7 +19,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .errors import check_points
+from .errors import InvalidInput, check_points
 
 __all__ = ["Lattice", "fit_lattice", "nearest_site", "site_distance"]
 
@@ -81,13 +81,17 @@ def _direction(v: np.ndarray, skip_deg: np.ndarray | None = None) -> np.ndarray 
     return w.mean(axis=0)
 
 
-def fit_lattice(centres: np.ndarray) -> Lattice | None:
+def fit_lattice(centres: np.ndarray, *, reach: float = NEIGHBOUR_REACH) -> Lattice | None:
     """Fit a lattice to the centres of whole tread elements.
 
     Parameters
     ----------
     centres : (k, 2) float [px]
         (x, y) of the elements (a few strays, a slick centre's, are outvoted).
+    reach : float [-]
+        Neighbours are centres within this many times the median nearest-neighbour
+        distance, in (1, 2) (a lattice's second step can be this much longer than
+        its first; twice the first would mix its multiples in).
 
     Returns
     -------
@@ -102,6 +106,8 @@ def fit_lattice(centres: np.ndarray) -> Lattice | None:
         ``centres`` not (k, 2) finite numbers.
     """
     c = check_points("centres", centres, "(x, y) pixels")
+    if not 1.0 < reach < 2.0:
+        raise InvalidInput("reach", reach, "1 < reach < 2 [-]")
     if len(c) < LATTICE_LEAST:
         return None
     d = c[None, :, :] - c[:, None, :]  # d[i, j] = c[j] - c[i]
@@ -110,7 +116,7 @@ def fit_lattice(centres: np.ndarray) -> Lattice | None:
     step = float(np.median(dist.min(axis=1)))
     if not step > 0:
         return None
-    i, j = np.nonzero(np.triu(dist <= NEIGHBOUR_REACH * step, 1))  # (each pair once)
+    i, j = np.nonzero(np.triu(dist <= reach * step, 1))  # (each pair once)
     v = d[i, j]
     if len(v) < 2 * DIRECTION_LEAST:
         return None
