@@ -90,3 +90,23 @@ def test_fit_lattice_and_sites_refuse_points_not_k_by_2_finite():
     for fn in (nearest_site, site_distance):
         with pytest.raises(InvalidInput, match=r"^points = \(3, 3\)"):
             fn(lat, np.zeros((3, 3)))
+
+
+def test_fit_lattice_reach_finds_an_elongated_staggered_lattice():
+    # knobs 12 px apart along a column, columns 17 px apart, every other one shifted
+    # half a step: the diagonal (18.0 px) is 1.5 x the nearest step, beyond the
+    # usual reach; within reach=1.9 the lattice is found and its sites are the knobs'
+    i, j = np.meshgrid(np.arange(6), np.arange(6))
+    pts = np.column_stack([17.0 * i.ravel(), 12.0 * j.ravel() + 6.0 * (i.ravel() % 2)])
+    assert fit_lattice(pts) is None
+    lat = fit_lattice(pts, reach=1.9)
+    assert lat is not None
+    assert_allclose(site_distance(lat, pts), 0.0, atol=1e-6)
+    assert_allclose(site_distance(lat, np.array([[8.5, 3.0]])), np.hypot(8.5, 3.0), rtol=1e-6)
+
+
+@pytest.mark.parametrize("reach", [1.0, 2.0, 0.5, np.nan])
+def test_fit_lattice_reach_outside_1_2_raises(reach):
+    pts, _ = _lattice_points(20.0, 0.0, 90.0, 1.0, n=(4, 3))
+    with pytest.raises(InvalidInput, match=r"^reach = .*1 < reach < 2"):
+        fit_lattice(pts, reach=reach)
