@@ -1369,7 +1369,7 @@ def measure_print(ctx: _Context, group: Group, *, index: int = 0, sensitivity: b
     opts, s = ctx.opts, ctx.scan.mm_per_px
     n_rows = ctx.page.work.shape[0]
     g, grey, line_ink, spots, kept, hidden, no_core = _print_ink(ctx, group)
-    caps, taken = _cut_caps(ctx, group, g, kept), ()
+    caps, taken = _cut_caps(ctx, group, g, kept, spots), ()
     if caps is not None:  # the same steps with the caps' ink, the caps kept
         group, taken = union(group, caps), _piece_boxes(caps)
         ctx = _without_marks(ctx, taken)
@@ -1541,13 +1541,15 @@ def _print_ink(ctx: _Context, group: Group, caps: Group | None = None) -> tuple:
     return g, grey, line_ink, spots, kept, hidden, no_core
 
 
-def _cut_caps(ctx: _Context, group: Group, g: Group, kept: np.ndarray) -> Group | None:
+def _cut_caps(ctx: _Context, group: Group, g: Group, kept: np.ndarray, spots) -> Group | None:
     """The caps of the print's next row of elements that its outline cut
     (:func:`inkprint.caps.cut_caps`) among the ink a lattice step around its
-    load-bearing ink ``kept`` (in ``g``'s box) that no other print holds; None when
-    there are none or the print has no coarse lattice (a fine tread's cut elements
-    are the section 7.1.1 rule's)."""
-    if group.fine_area_mm2 > 0:
+    load-bearing ink ``kept`` (in ``g``'s box) that no other print holds, but for
+    the lightly inked blocks the section 7.1.1 rule left out (``spots``'s
+    ``faint_blocks``: a faint tip block stays out, flagged ``faint_edge``); None
+    when there are none, when ``cut_caps`` is off, or when the print has no coarse
+    lattice (a fine tread's cut elements are the rule's)."""
+    if group.fine_area_mm2 > 0 or not ctx.opts.cut_caps:
         return None
     n, _, st, _ = components_with_stats(kept.view(np.uint8), connectivity=8)
     if n - 1 < CAP_ELEMENTS:
@@ -1563,6 +1565,8 @@ def _cut_caps(ctx: _Context, group: Group, g: Group, kept: np.ndarray) -> Group 
     for o in ctx.found.groups:
         if o is not group:
             free &= ~_in_box(o, frame)
+    if spots.faint_blocks is not None:  # (lightly inked blocks: the rule's call)
+        free &= ~_in_box(dataclasses.replace(g, mask=spots.faint_blocks), frame)
     caps = cut_caps(frame.mask, free)
     if not caps.any():
         return None

@@ -281,6 +281,12 @@ class AnalysisOptions:
         gap between its blobs): nearer, a small dark block continues the tread
         pattern (a tip block; a knobby tread's gaps along and across differ by a
         third, so 1.5 dropped tip blocks).
+    cut_caps : bool
+        Join to a coarse print the caps of its next row of elements that its
+        outline cut to slivers, found on its tread's lattice among the ink set
+        aside or dropped around it (:mod:`inkprint.caps`; not in section 7.1.1,
+        whose rule drops them as edge spots or never sees them: held-out prints a
+        row's gap short, -6.7 to -14.5 %). False: the section 7.1.1 rule alone.
     edge_window_mm : float [mm]
         Window of the local paper and ink levels whose mean defines the print's
         edge (half contrast) for the outline.
@@ -522,6 +528,7 @@ class AnalysisOptions:
     edge_spot_faintness: float = 0.6
     edge_spot_distance_mm: float = 1.0
     edge_spot_pattern_factor: float = 2.0
+    cut_caps: bool = True
     edge_window_mm: float = 0.6
     edge_pip_jump: float = 0.35
     faint_line_mm: float = 0.3
@@ -568,6 +575,8 @@ class AnalysisOptions:
     pdf_dpi: float = 300.0
 
     def __post_init__(self) -> None:
+        if not isinstance(self.cut_caps, bool):
+            raise InvalidInput("cut_caps", self.cut_caps, "True or False")
         for name, (ok, allowed) in _RULES.items():
             value = getattr(self, name)
             if value is None and name in _OPTIONAL:

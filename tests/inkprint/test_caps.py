@@ -197,3 +197,12 @@ def test_off_lattice_knobs_in_pairs_is_no_lattice():
             kept[r + 6 : r + 18, c + 16 : c + 26] = True  # (its pair, lower)
     kept[2:12, 50:54] = True  # a bar off every knob's place, above the first row
     assert not off_lattice(kept).any()
+
+
+def test_analysis_options_cut_caps_must_be_a_bool():
+    from inkprint import AnalysisOptions
+    from inkprint.errors import InvalidInput
+
+    with pytest.raises(InvalidInput, match="cut_caps"):
+        AnalysisOptions(cut_caps=1)
+    assert AnalysisOptions(cut_caps=False).cut_caps is False
