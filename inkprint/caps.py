@@ -206,7 +206,7 @@ def off_lattice(kept: np.ndarray) -> np.ndarray:
         # (the elements nearest the site, each laid there: a tread's knobs of a few
         # widths, by column)
         laid = (_laid(lab, st, centres, e) for e in near[:OFF_LAID])
-        if max(_share_inside(pts + ec, elem, give) for elem, ec in laid) < OFF_SHARE:
+        if not any(_share_inside(pts + ec, elem, give) >= OFF_SHARE for elem, ec in laid):
             out[y : y + h, x : x + w] |= lab[y : y + h, x : x + w] == k + 1
     return out
 
