@@ -229,6 +229,8 @@ class _Lattices:
     def __init__(self, centres: np.ndarray, ids: np.ndarray):
         self.centres, self.ids = centres, ids
         self.whole = _fitted(centres[ids])
+        if self.whole is not None:  # (each element on its site or off, once)
+            self.off = _off_sites(self.whole, centres[ids])
 
     def at(self, point: np.ndarray) -> tuple:
         """``(lattice or None, near)``: the lattice near ``point`` ((2,) x, y) and
@@ -237,14 +239,23 @@ class _Lattices:
         :data:`CAP_GIVE_PX`, the misfit and :data:`OFF_GIVE` of a step: a tread of
         pairs of knobs fits a lattice by its median and is none)."""
         d = np.hypot(*(self.centres[self.ids] - point).T)
-        near = self.ids[np.argsort(d)[:CAP_NEIGHBOURS]]
-        lattice = self.whole if self.whole is not None else _fitted(self.centres[near])
-        if lattice is None:
-            return None, near
-        off = site_distance(lattice, self.centres[near])
-        if np.mean(off > CAP_GIVE_PX + lattice.misfit + OFF_GIVE * lattice.step) > OFF_SITES:
-            return None, near
-        return lattice, near
+        order = np.argsort(d)[:CAP_NEIGHBOURS]
+        near = self.ids[order]
+        if self.whole is not None:
+            lattice, off = self.whole, self.off[order]
+        else:
+            lattice = _fitted(self.centres[near])
+            if lattice is None:
+                return None, near
+            off = _off_sites(lattice, self.centres[near])
+        return (None if np.mean(off) > OFF_SITES else lattice), near
+
+
+def _off_sites(lattice: Lattice, centres: np.ndarray) -> np.ndarray:
+    """Which element centres ((k, 2) x, y) lie off their sites: beyond
+    :data:`CAP_GIVE_PX`, the misfit and :data:`OFF_GIVE` of a step. (k,) bool."""
+    give = CAP_GIVE_PX + lattice.misfit + OFF_GIVE * lattice.step
+    return site_distance(lattice, centres) > give
 
 
 def _laid(lab: np.ndarray, st: np.ndarray, centres: np.ndarray, e: int) -> tuple:
