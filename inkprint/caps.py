@@ -194,19 +194,32 @@ def off_lattice(kept: np.ndarray) -> np.ndarray:
         return out
     centres = cen[1:]
     lattices = _Lattices(centres, inner)
-    for k in np.flatnonzero(edge[1:]):
+    grown = {}  # (element, give [px]) -> (its footprint grown, its centroid there)
+    pieces = np.flatnonzero(edge[1:])
+    if lattices.whole is not None and len(pieces):  # (every piece's site at once)
+        sites = dict(zip(pieces, nearest_site(lattices.whole, centres[pieces]), strict=True))
+    for k in pieces:
         lattice, near = lattices.at(centres[k])
         if lattice is None:
             continue
-        site = nearest_site(lattice, centres[k][None])[0]
+        site = (
+            sites[k] if lattice is lattices.whole else nearest_site(lattice, centres[k][None])[0]
+        )
         x, y, w, h = st[k + 1, :4]
         pys, pxs = np.nonzero(lab[y : y + h, x : x + w] == k + 1)
         pts = np.column_stack([pxs + x, pys + y]).astype(float) - site
         give = CAP_GIVE_PX + lattice.misfit + OFF_GIVE * lattice.step
         # (the elements nearest the site, each laid there: a tread's knobs of a few
         # widths, by column)
-        laid = (_laid(lab, st, centres, e) for e in near[:OFF_LAID])
-        if not any(_share_inside(pts + ec, elem, give) >= OFF_SHARE for elem, ec in laid):
+        r = int(np.ceil(give))
+        for e in near[:OFF_LAID]:
+            if (e, r) not in grown:
+                elem, ec = _laid(lab, st, centres, e)
+                grown[e, r] = (_grown(elem, r), ec)
+        if not any(
+            _share_in(pts + grown[e, r][1], grown[e, r][0], r) >= OFF_SHARE
+            for e in near[:OFF_LAID]
+        ):
             out[y : y + h, x : x + w] |= lab[y : y + h, x : x + w] == k + 1
     return out
 
@@ -265,18 +278,28 @@ def _laid(lab: np.ndarray, st: np.ndarray, centres: np.ndarray, e: int) -> tuple
     return (lab[ey : ey + eh, ex : ex + ew] == e + 1).astype(np.uint8), centres[e] - [ex, ey]
 
 
-def _share_inside(pts: np.ndarray, elem: np.ndarray, give: float) -> float:
-    """The share of the points ``pts`` ((n, 2) x, y in ``elem``'s box) that lie in
-    the element grown by ``give`` [px]."""
+def _grown(elem: np.ndarray, r: int) -> np.ndarray:
+    """The element ``elem`` ((h, w) 0/1) padded and grown by ``r`` [px]."""
     import cv2
 
-    r = int(np.ceil(give))
-    grown = cv2.dilate(np.pad(elem, r), np.ones((2 * r + 1, 2 * r + 1), np.uint8))
+    return cv2.dilate(np.pad(elem, r), np.ones((2 * r + 1, 2 * r + 1), np.uint8))
+
+
+def _share_in(pts: np.ndarray, grown: np.ndarray, r: int) -> float:
+    """The share of the points ``pts`` ((n, 2) x, y in the element's box) inside
+    its footprint ``grown`` by ``r`` [px] (:func:`_grown`)."""
     idx = np.round(pts).astype(int) + r
     ok = (idx >= 0).all(1) & (idx[:, 0] < grown.shape[1]) & (idx[:, 1] < grown.shape[0])
     hit = np.zeros(len(pts), bool)
     hit[ok] = grown[idx[ok, 1], idx[ok, 0]] > 0
     return float(hit.mean()) if len(pts) else 1.0
+
+
+def _share_inside(pts: np.ndarray, elem: np.ndarray, give: float) -> float:
+    """The share of the points ``pts`` ((n, 2) x, y in ``elem``'s box) that lie in
+    the element grown by ``give`` [px]."""
+    r = int(np.ceil(give))
+    return _share_in(pts, _grown(elem, r), r)
 
 
 def _inside(pts: np.ndarray, elem: np.ndarray, give: float) -> bool:
