@@ -1551,13 +1551,20 @@ def _cut_caps(ctx: _Context, group: Group, g: Group, kept: np.ndarray, spots) ->
     lattice (a fine tread's cut elements are the rule's)."""
     if group.fine_area_mm2 > 0 or not ctx.opts.cut_caps:
         return None
-    n, _, st, _ = components_with_stats(kept.view(np.uint8), connectivity=8)
+    n, lab, st, cen = components_with_stats(kept.view(np.uint8), connectivity=8)
     if n - 1 < CAP_ELEMENTS:
         return None
     big = st[1:, 4] >= 0.5 * st[1:, 4].max()
     side = float(np.median(np.maximum(st[1:, 2], st[1:, 3])[big]))
     frame = _padded(dataclasses.replace(g, mask=kept), ctx.page.work.shape, round(2.5 * side))
     rows, cols = frame.rows, frame.cols
+    # (the elements as labelled over g's box, moved into the frame: labelled once)
+    dr, dc = g.rows.start - rows.start, g.cols.start - cols.start
+    lab_f = np.zeros(frame.mask.shape, lab.dtype)
+    lab_f[dr : dr + lab.shape[0], dc : dc + lab.shape[1]] = lab
+    st_f, cen_f = st.copy(), np.add(cen, [dc, dr])
+    st_f[1:, 0] += dc
+    st_f[1:, 1] += dr
     free = ctx.binarization.mask[rows, cols] & ~frame.mask
     if ctx.found.grid is not None:
         free &= ~ctx.found.grid.removed[rows, cols]
@@ -1567,7 +1574,7 @@ def _cut_caps(ctx: _Context, group: Group, g: Group, kept: np.ndarray, spots) ->
             free &= ~_in_box(o, frame)
     if spots.faint_blocks is not None:  # (lightly inked blocks: the rule's call)
         free &= ~_in_box(dataclasses.replace(g, mask=spots.faint_blocks), frame)
-    caps = cut_caps(frame.mask, free)
+    caps = cut_caps(frame.mask, free, elements=(n, lab_f, st_f, cen_f))
     if not caps.any():
         return None
     r, c = np.flatnonzero(caps.any(axis=1)), np.flatnonzero(caps.any(axis=0))

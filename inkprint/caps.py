@@ -96,7 +96,7 @@ def _whole(areas: np.ndarray) -> np.ndarray:
     return (areas >= med / CAP_SPREAD) & (areas <= med * CAP_SPREAD)
 
 
-def cut_caps(kept: np.ndarray, free: np.ndarray) -> np.ndarray:
+def cut_caps(kept: np.ndarray, free: np.ndarray, *, elements: tuple | None = None) -> np.ndarray:
     """The caps of a print's elements cut by its outline, among the ink near it.
 
     Parameters
@@ -106,6 +106,9 @@ def cut_caps(kept: np.ndarray, free: np.ndarray) -> np.ndarray:
     free : (h, w) bool
         The other ink in the same crop (set aside, or dropped from the print; no
         other print's).
+    elements : tuple, optional
+        ``kept``'s 8-connected pieces as :func:`inkprint.components.components_with_stats`
+        gives them (count, labels, stats, centroids), when already known.
 
     Returns
     -------
@@ -123,7 +126,9 @@ def cut_caps(kept: np.ndarray, free: np.ndarray) -> np.ndarray:
     if free.shape != kept.shape or kept.ndim != 2:
         raise InvalidInput("free", free.shape, f"a (rows, cols) mask of kept's shape {kept.shape}")
     out = np.zeros(kept.shape, bool)
-    n, lab, st, cen = components_with_stats(kept.view(np.uint8), connectivity=8)
+    if elements is None:
+        elements = components_with_stats(kept.view(np.uint8), connectivity=8)
+    n, lab, st, cen = elements
     if n - 1 < CAP_ELEMENTS or not free.any():
         return out
     areas = st[1:, 4].astype(float)
