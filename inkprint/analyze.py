@@ -1586,15 +1586,15 @@ def _cut_caps(ctx: _Context, group: Group, g: Group, kept: np.ndarray, spots) ->
     )
 
 
-def _scale_strips(ctx: _Context, g: Group) -> np.ndarray:
-    """Where rulers' scales (:func:`inkprint.ruler.scale_band`) cross ``g``'s box
-    ((h, w) bool)."""
+def _scale_strips(ctx: _Context, g: Group, *, ink: np.ndarray | None = None) -> np.ndarray:
+    """Where rulers' scales (:func:`inkprint.ruler.scale_band`; ``ink``: sheet (x, y)
+    points a strip is run on across) cross ``g``'s box ((h, w) bool)."""
     import cv2
 
     under = np.zeros(g.mask.shape, np.uint8)
     origin = np.array([g.cols.start, g.rows.start], float)
     for sc in ctx.found.scales:
-        band = scale_band(sc, mm_per_px=ctx.scan.mm_per_px) - origin
+        band = scale_band(sc, mm_per_px=ctx.scan.mm_per_px, ink=ink) - origin
         cv2.fillConvexPoly(under, np.round(band * 16).astype(np.int32), 1, cv2.LINE_8, 4)
     return under.view(bool)
 
@@ -2532,14 +2532,10 @@ def _scale_thin(ctx: _Context, g: Group, kept: np.ndarray) -> tuple:
     ink. ``g``: the print's padded box, ``kept`` its ink over it."""
     import cv2
 
-    origin = np.array([g.cols.start, g.rows.start], float)
-    under = np.zeros(kept.shape, np.uint8)
     pts = outline_points(kept)
+    origin = np.array([g.cols.start, g.rows.start], float)
     edge = None if pts is None else pts.reshape(-1, 2).astype(float) + origin
-    for sc in ctx.found.scales:
-        band = scale_band(sc, mm_per_px=ctx.scan.mm_per_px, ink=edge) - origin
-        cv2.fillConvexPoly(under, np.round(band * 16).astype(np.int32), 1, cv2.LINE_8, 4)
-    under = under.view(bool)
+    under = _scale_strips(ctx, g, ink=edge)
     if not (under & kept).any():
         return None, None
     k = max(3, round(stroke_px(ctx.scan.mm_per_px, ctx.opts)) | 1)

@@ -31,7 +31,7 @@ import numpy as np
 
 from .components import components_with_stats
 from .errors import InvalidInput
-from .group import outline_points
+from .group import hull_fill, outline_points
 from .sites import Lattice, fit_lattice, nearest_site, site_distance
 
 __all__ = ["cut_caps", "off_lattice"]
@@ -213,7 +213,7 @@ def off_lattice(kept: np.ndarray) -> np.ndarray:
         x, y, w, h = st[k + 1, :4]
         pys, pxs = np.nonzero(lab[y : y + h, x : x + w] == k + 1)
         pts = np.column_stack([pxs + x, pys + y]).astype(float) - site
-        give = CAP_GIVE_PX + lattice.misfit + OFF_GIVE * lattice.step
+        give = _off_give(lattice)
         # (the elements nearest the site, each laid there: a tread's knobs of a few
         # widths, by column)
         r = int(np.ceil(give))
@@ -269,11 +269,16 @@ class _Lattices:
         return (None if np.mean(off) > OFF_SITES else lattice), near
 
 
+def _off_give(lattice: Lattice) -> float:
+    """How far [px] an element may lie off its site for :func:`off_lattice`:
+    :data:`CAP_GIVE_PX`, the misfit and :data:`OFF_GIVE` of a step."""
+    return CAP_GIVE_PX + lattice.misfit + OFF_GIVE * lattice.step
+
+
 def _off_sites(lattice: Lattice, centres: np.ndarray) -> np.ndarray:
-    """Which element centres ((k, 2) x, y) lie off their sites: beyond
-    :data:`CAP_GIVE_PX`, the misfit and :data:`OFF_GIVE` of a step. (k,) bool."""
-    give = CAP_GIVE_PX + lattice.misfit + OFF_GIVE * lattice.step
-    return site_distance(lattice, centres) > give
+    """Which element centres ((k, 2) x, y) lie off their sites by more than
+    :func:`_off_give`. (k,) bool."""
+    return site_distance(lattice, centres) > _off_give(lattice)
 
 
 def _laid(lab: np.ndarray, st: np.ndarray, centres: np.ndarray, e: int) -> tuple:
@@ -300,17 +305,11 @@ def _share_in(pts: np.ndarray, grown: np.ndarray, r: int) -> float:
     return float(hit.mean()) if len(pts) else 1.0
 
 
-def _share_inside(pts: np.ndarray, elem: np.ndarray, give: float) -> float:
-    """The share of the points ``pts`` ((n, 2) x, y in ``elem``'s box) that lie in
-    the element grown by ``give`` [px]."""
-    r = int(np.ceil(give))
-    return _share_in(pts, _grown(elem, r), r)
-
-
 def _inside(pts: np.ndarray, elem: np.ndarray, give: float) -> bool:
     """Whether all points ``pts`` ((n, 2) x, y in ``elem``'s box) lie in the
     element grown by ``give`` [px]."""
-    return _share_inside(pts, elem, give) >= 1.0
+    r = int(np.ceil(give))
+    return _share_in(pts, _grown(elem, r), r) >= 1.0
 
 
 def _neighbour_steps(basis: np.ndarray) -> np.ndarray:
@@ -347,8 +346,7 @@ def _is_cap(flab, fst, j, site, lattice, lab, st, centres, near) -> bool:
     pys, pxs = np.nonzero(piece)
     pts = np.column_stack([pxs + x, pys + y]).astype(float) - site + ec  # in elem's crop
     hull = cv2.convexHull(np.column_stack([pxs, pys]).astype(np.int32))
-    solid = len(pts) / max(cv2.contourArea(hull) + 0.5 * cv2.arcLength(hull, True) + 1.0, 1.0)
-    if solid < CAP_SOLID:
+    if hull_fill(len(pts), hull) < CAP_SOLID:
         return False  # (a letter's bends; a cap is a footprint cut by a smooth outline)
     return _held(pts, elem, ec, steps[hit].mean(axis=0), give)
 
