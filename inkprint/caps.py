@@ -180,10 +180,17 @@ def off_lattice(kept: np.ndarray) -> np.ndarray:
     -------
     (h, w) bool
         The pieces (8-connected, whole) at the edge off every site.
+
+    Raises
+    ------
+    InvalidInput
+        ``kept`` not a (rows, cols) mask.
     """
     import cv2
 
     kept = np.asarray(kept, bool)
+    if kept.ndim != 2:
+        raise InvalidInput("kept", kept.shape, "a (rows, cols) mask")
     out = np.zeros(kept.shape, bool)
     n, lab, st, cen = components_with_stats(kept.view(np.uint8), connectivity=8)
     if n - 1 < CAP_ELEMENTS:

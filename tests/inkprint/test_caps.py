@@ -206,3 +206,11 @@ def test_analysis_options_cut_caps_must_be_a_bool():
     with pytest.raises(InvalidInput, match="cut_caps"):
         AnalysisOptions(cut_caps=1)
     assert AnalysisOptions(cut_caps=False).cut_caps is False
+
+
+def test_off_lattice_not_a_2d_mask_raises():
+    from inkprint.caps import off_lattice
+    from inkprint.errors import InvalidInput
+
+    with pytest.raises(InvalidInput, match="kept"):
+        off_lattice(np.zeros(10, bool))
