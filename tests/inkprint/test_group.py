@@ -53,3 +53,111 @@ def test_pair_gaps_one_piece_has_no_pairs():
     lab[2:5, 2:5] = 1
     a, b, g = _pair_gaps(lab)
     assert len(a) == len(b) == len(g) == 0
+
+
+# --- maybe_tiny_print: a group the small-print rule set aside, a tread or a word?
+
+
+def _diamonds(length_mm, width_mm, pitch_mm, mm_per_px, *, angle_deg=0.0):
+    """An elliptic field of separate square dots ``pitch_mm / 2`` wide on a
+    ``pitch_mm`` lattice (a knurl print's elements), turned ``angle_deg``."""
+    import cv2
+
+    n = int(np.ceil(1.3 * max(length_mm, width_mm) / mm_per_px))
+    y, x = np.mgrid[:n, :n] * mm_per_px
+    c = 0.5 * n * mm_per_px
+    t = np.deg2rad(angle_deg)
+    u = (x - c) * np.cos(t) + (y - c) * np.sin(t)
+    v = -(x - c) * np.sin(t) + (y - c) * np.cos(t)
+    inside = (2 * u / length_mm) ** 2 + (2 * v / width_mm) ** 2 <= 1
+    dots = (np.mod(u, pitch_mm) < pitch_mm / 2) & (np.mod(v, pitch_mm) < pitch_mm / 2)
+    mask = (inside & dots).astype(np.uint8)
+    return cv2.morphologyEx(mask, cv2.MORPH_OPEN, np.ones((2, 2), np.uint8)).astype(bool)
+
+
+def _word(text, height_mm, mm_per_px, *, stroke_mm=0.6):
+    """``text`` in a marker's letters ``height_mm`` high."""
+    import cv2
+
+    scale = height_mm / mm_per_px / 22.0
+    thick = max(1, round(stroke_mm / mm_per_px))
+    (w, h), base = cv2.getTextSize(text, cv2.FONT_HERSHEY_SIMPLEX, scale, thick)
+    img = np.zeros((h + base + 4 * thick, w + 4 * thick), np.uint8)
+    cv2.putText(img, text, (2 * thick, h + 2 * thick), cv2.FONT_HERSHEY_SIMPLEX, scale, 1, thick)
+    return img.astype(bool)
+
+
+@pytest.mark.parametrize(
+    ("length", "width", "pitch", "angle"),
+    [(16.0, 4.0, 1.0, 0.0), (12.0, 6.0, 1.3, 30.0), (20.0, 3.5, 0.9, 90.0)],
+)
+@pytest.mark.parametrize("dpi", [200, 300, 600])
+def test_maybe_tiny_print_a_field_of_tread_elements(length, width, pitch, angle, dpi):
+    from inkprint.group import maybe_tiny_print
+
+    s = 25.4 / dpi
+    mask = _diamonds(length, width, pitch, s, angle_deg=angle)
+    assert maybe_tiny_print(mask, mm_per_px=s)
+
+
+@pytest.mark.parametrize("text", ["36 kg", "77 psi", "F=831N", "3.3 bar", "GP5000", "kg"])
+@pytest.mark.parametrize("dpi", [150, 300, 400])
+def test_maybe_tiny_print_not_a_word(text, dpi):
+    from inkprint.group import maybe_tiny_print
+
+    s = 25.4 / dpi
+    assert not maybe_tiny_print(_word(text, 5.0, s), mm_per_px=s)
+
+
+def test_maybe_tiny_print_one_scalloped_body_long_enough():
+    # one body 18 x 6 mm, its sides notched by grooves (a file tread's scallops, a
+    # quarter of its width deep) with a speck beside: a tiny print; the same body 8
+    # mm long is a letter's size, and a bar 60 x 5 mm a stroke
+    import cv2
+
+    from inkprint.group import maybe_tiny_print
+
+    s = 25.4 / 300
+
+    def body(length, width):
+        n = int(1.4 * length / s)
+        y, x = np.mgrid[:n, :n] * s
+        c = 0.5 * n * s
+        inside = ((x - c) / (length / 2)) ** 2 + ((y - c) / (width / 2)) ** 2 <= 1
+        notch = (np.mod(x, 1.2) < 0.3) & (np.abs(y - c) > 0.4 * width)
+        mask = (inside & ~notch).astype(np.uint8)
+        cv2.circle(mask, (int(0.5 * n), int((c + width / 2 + 0.6) / s)), 1, 1, -1)
+        return mask.astype(bool)
+
+    assert maybe_tiny_print(body(18.0, 6.0), mm_per_px=s)
+    assert not maybe_tiny_print(body(8.0, 5.0), mm_per_px=s)
+    assert not maybe_tiny_print(body(60.0, 5.0), mm_per_px=s)
+    assert not maybe_tiny_print(np.zeros((20, 20), bool), mm_per_px=s)
+
+
+@pytest.mark.parametrize("text", ["Vittoria", "Schwalbe", "Maxxis"])
+@pytest.mark.parametrize("dpi", [150.0, 200.0])
+def test_maybe_tiny_print_not_a_bold_word_fused_to_one_body(text, dpi):
+    # a marker's word 4.5 mm high in 1.3 mm strokes (inkprint.synth's pen), its
+    # letters fused to one body at this resolution, as long and slender as a tiny
+    # print: the gaps between its letters and their counters leave its core unfilled
+    import cv2
+
+    from inkprint.group import maybe_tiny_print
+    from inkprint.synth import SheetSpec, render_sheet
+    from inkprint.synth_effects import Text
+
+    spec = SheetSpec(
+        (),
+        dpi=dpi,
+        seed=5,
+        specks=0,
+        size=(60.0, 20.0),
+        marks=(Text(text, (5.0, 8.0), 4.5, 1.3, 0.85),),
+    )
+    img, _ = render_sheet(spec)
+    ink = (np.asarray(img, float) < 0.5 * (float(img.max()) + float(img.min()))).astype(np.uint8)
+    st = cv2.connectedComponentsWithStats(ink, connectivity=8)[2]
+    big = 1 + int(np.argmax(st[1:, 4]))
+    assert st[big, 4] >= 0.8 * st[1:, 4].sum()  # (fused: one body)
+    assert not maybe_tiny_print(ink.astype(bool), mm_per_px=25.4 / dpi)

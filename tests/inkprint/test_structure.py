@@ -4,7 +4,9 @@
 * pixels become mm only in inkprint/coords.py (no inch constant elsewhere);
 * no function over 80 lines (its docstring not counted), no public function with
   more than 3 positional parameters;
-* every public function and class has a NumPy-style docstring.
+* every public function and class has a NumPy-style docstring;
+* every flag that makes a print unmeasurable has a row in docs/inkprint.md's flags
+  table.
 """
 
 import ast
@@ -112,3 +114,11 @@ def test_public_functions_and_classes_have_numpy_docstrings(source):
         elif not (returns_none or is_property) and not re.search(r"Returns\n|Yields\n", doc):
             bad.append(f"{name}: no Returns section")
     assert not bad, bad
+
+
+def test_every_unmeasurable_flag_has_a_row_in_the_docs_flags_table():
+    from inkprint.results import UNMEASURABLE
+
+    docs = (PACKAGE.parent / "docs" / "inkprint.md").read_text(encoding="utf-8")
+    rows = set(re.findall(r"^\| `(\w+)` \|", docs, flags=re.M))
+    assert set(UNMEASURABLE) <= rows, sorted(set(UNMEASURABLE) - rows)
