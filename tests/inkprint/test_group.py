@@ -161,3 +161,28 @@ def test_maybe_tiny_print_not_a_bold_word_fused_to_one_body(text, dpi):
     big = 1 + int(np.argmax(st[1:, 4]))
     assert st[big, 4] >= 0.8 * st[1:, 4].sum()  # (fused: one body)
     assert not maybe_tiny_print(ink.astype(bool), mm_per_px=25.4 / dpi)
+
+
+@pytest.mark.parametrize("dpi", [150, 300])
+def test_maybe_tiny_print_not_two_fibres_side_by_side(dpi):
+    # two dust fibres 96 mm long, 0.4 mm thick, 4 mm apart (held-out 6 seed 9
+    # sheet 11): each spans a tenth of the pair's width, like a tread's elements,
+    # but the pair is 21 x longer than wide: no print's shape
+    import cv2
+
+    from inkprint.group import maybe_tiny_print
+
+    s = 25.4 / dpi
+    mask = np.zeros((round(8 / s), round(100 / s)), np.uint8)
+    for y in (2.0, 6.0):
+        cv2.line(
+            mask,
+            (round(2 / s), round(y / s)),
+            (round(98 / s), round((y + 0.3) / s)),
+            1,
+            max(1, round(0.4 / s)),
+        )
+    assert not maybe_tiny_print(mask.astype(bool), mm_per_px=s)
+    # the same pair 16 mm long is as slender as a tiny rib print's pieces
+    short = mask[:, : round(18 / s)].copy()
+    assert maybe_tiny_print(short.astype(bool), mm_per_px=s)
