@@ -1484,8 +1484,8 @@ def maybe_tiny_print(mask: np.ndarray, *, mm_per_px: float) -> bool:
     :data:`MAYBE_ASPECT` times as long as wide. A word's letters each span its
     height; fused to one body in a bold marker, they leave gaps in its core. Such a
     group is measured and flagged ``maybe_mark``, not dropped (held-out generator
-    6, seeds 1-8: 17 prints missing, 6 of them tiny tread prints set aside by the
-    rule).
+    6, seeds 1-8: 17 prints missing, 9 of them tiny prints set aside by the rule or
+    as fragments).
 
     Parameters
     ----------
