@@ -3454,17 +3454,17 @@ def _renumbered(prints: list) -> list:
 
 
 def _with_unsure(ctx: _Context, measured: list, too_small: list, *, sensitivity: bool):
-    """``(prints, too_small)``: the prints ``measured`` with the groups of
+    """``(prints, too_small, taken)``: the prints ``measured`` with the groups of
     ``ctx.found.unsure`` whose box's centre lies in none of their hulls measured,
-    flagged ``maybe_mark`` and numbered after them (in reading order: a manifest's
-    print numbers keep to the prints), and
-    the marks ``too_small`` with those measured too short or narrow for a print
-    (:func:`_no_slivers`). Each is measured without its own mark set aside beside it
-    (it is that mark); the other prints were judged with it."""
+    flagged ``maybe_mark`` and numbered after them, in reading order (a manifest's
+    print numbers keep to the prints); the marks ``too_small`` with those measured
+    too short or narrow for a print (:func:`_no_slivers`); and the ids of the marks
+    they were (no longer set aside). Each is measured without its own mark beside
+    it (it is that mark); the other prints were judged with it."""
     import cv2
 
     hulls = [np.asarray(p.hull_px, np.float32)[:, ::-1].copy() for p in measured]
-    extra = []
+    extra, taken = [], set()
     for g, mk in ctx.found.unsure:
         centre = (0.5 * (g.cols.start + g.cols.stop), 0.5 * (g.rows.start + g.rows.stop))
         if any(len(h) > 2 and cv2.pointPolygonTest(h, centre, False) >= 0 for h in hulls):
@@ -3479,11 +3479,12 @@ def _with_unsure(ctx: _Context, measured: list, too_small: list, *, sensitivity:
         )
         flags = (*(f for f in p.flags if f != "maybe_mark"), "maybe_mark")
         extra.append(dataclasses.replace(p, flags=flags, warnings=(why, *p.warnings)))
+        taken.add(id(mk))  # (measured: a print, or a sliver among too_small)
     extra, small = _no_slivers(extra, ctx.opts)
     if not extra:
-        return measured, too_small + small
+        return measured, too_small + small, taken
     # (after the prints, so that a manifest's print numbers keep to them)
-    return _renumbered(measured + extra), too_small + small
+    return _renumbered(measured + extra), too_small + small, taken
 
 
 def _lone_elements(prints: list, mm_per_px: float, opts: AnalysisOptions) -> list:
@@ -3768,16 +3769,17 @@ def analyze_scan(
     measured, too_small = _no_slivers(
         _measure_all(ctx, found.groups, sensitivity=sensitivity, threads=threads), opts
     )
+    unsure = set()  # (the marks measured as prints flagged maybe_mark)
     if found.unsure:
-        measured, too_small = _with_unsure(ctx, measured, too_small, sensitivity=sensitivity)
+        measured, too_small, unsure = _with_unsure(
+            ctx, measured, too_small, sensitivity=sensitivity
+        )
     if not measured:
         found = dataclasses.replace(found, groups=[], marks=found.marks + too_small)
         raise NoInk(no_print_message(found))
     prints = _split_twins(_lone_elements(measured, s, opts), s, opts)
     checked = _scale_check(scan, found.scales)
     taken = tuple(b for p in prints for b in p.caps)
-    # (a group measured as a print flagged maybe_mark is no longer set aside)
-    unsure = {id(mk) for _, mk in found.unsure}
     return SheetResult(
         path=scan.path,
         page=scan.page,

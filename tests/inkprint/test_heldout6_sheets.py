@@ -118,3 +118,22 @@ def test_heldout6_sheet_tiny_tread_print_set_aside_is_flagged(tmp_path, seed, in
     last = max(page, key=lambda r: int(r["print"]))
     assert "maybe_mark" in last["flags"]
     assert sum("maybe_mark" in r["flags"] for r in page) == 1
+
+
+def test_heldout6_sheet_group_set_aside_inside_a_print_stays_set_aside(tmp_path):
+    # seed 1 sheet 108: a group the small-print rule set aside lies inside a tiny
+    # lattice print's hull (the print's elements): no maybe_mark candidate, and it
+    # stays among the marks (a first version dropped it from both)
+    from inkprint import analyze_scan
+    from inkprint.read import iter_scans
+
+    truth, mani, _ = gen.make_file(str(tmp_path), 108, 1, gen.KINDS[108 % len(gen.KINDS)])
+    name, dpi = mani[0]["file"], mani[0]["dpi"]
+    (scan,) = iter_scans(tmp_path / name, dpi=float(dpi) if dpi else None)
+    res = analyze_scan(scan, rolling_axis=mani[0]["rolling_axis"] or "auto", sensitivity=False)
+    assert len(res.prints) == len(truth)
+    assert not any("maybe_mark" in p.flags for p in res.prints)
+    solid = [
+        m for m in res.marks if m.kind == "writing" and "small or narrow is solid" in m.reason
+    ]
+    assert solid
