@@ -68,7 +68,7 @@ from .coords import (
     mm_to_px_length,
     px_to_mm_length,
 )
-from .errors import check_mm_per_px
+from .errors import InvalidInput, check_mm_per_px
 from .options import AnalysisOptions, resolve_options
 from .sites import fit_lattice, nearest_site
 
@@ -1496,11 +1496,20 @@ def maybe_tiny_print(mask: np.ndarray, *, mm_per_px: float) -> bool:
     Returns
     -------
     bool
+
+    Raises
+    ------
+    InvalidInput
+        ``mask`` not a (rows, cols) mask, or ``mm_per_px`` not a positive finite
+        scale.
     """
     import cv2
 
-    m8 = np.ascontiguousarray(mask, dtype=np.uint8)
-    n, lab, st, _ = cv2.connectedComponentsWithStats(m8, connectivity=8)
+    mm_per_px = check_mm_per_px(mm_per_px)
+    mask = np.asarray(mask, bool)
+    if mask.ndim != 2:
+        raise InvalidInput("mask", mask.shape, "a (rows, cols) mask")
+    n, lab, st, _ = components_with_stats(mask, connectivity=8)
     if n < 2:
         return False
     area = st[1:, cv2.CC_STAT_AREA]

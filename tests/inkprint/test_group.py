@@ -186,3 +186,15 @@ def test_maybe_tiny_print_not_two_fibres_side_by_side(dpi):
     # the same pair 16 mm long is as slender as a tiny rib print's pieces
     short = mask[:, : round(18 / s)].copy()
     assert maybe_tiny_print(short.astype(bool), mm_per_px=s)
+
+
+def test_maybe_tiny_print_refuses_bad_input():
+    from inkprint.errors import InvalidInput
+    from inkprint.group import maybe_tiny_print
+
+    mask = np.zeros((20, 20), bool)
+    with pytest.raises(InvalidInput, match="mask"):
+        maybe_tiny_print(np.zeros((2, 20, 20), bool), mm_per_px=0.1)
+    for bad in (0.0, -0.1, float("nan")):
+        with pytest.raises(InvalidInput, match="mm_per_px"):
+            maybe_tiny_print(mask, mm_per_px=bad)
