@@ -3034,6 +3034,80 @@ def _label_flags(ctx: _Context, padded: Group, kept, m, index: int, flags, warni
             f"it is {100 * opull:.1f} % shorter or narrower (a label's letters or a mark "
             f"taken for tread elements?); see the overlay, remove the mark or rescan"
         )
+        return
+    pale = _paler_at_edge(_grey(ctx.scan, ctx.page, padded.rows, padded.cols), kept)
+    ppull = _with_excess(kept & ~pale, pale, m.metrics.orientation) if pale.any() else 0.0
+    if ppull > ctx.opts.edge_uncertainty:
+        flags.append("mark_on_edge")
+        warnings.append(
+            f"print #{index}: pieces at its edge are inked paler than the print: without "
+            f"them it is {100 * ppull:.1f} % shorter or narrower (a label in another pen "
+            f"taken for the print's?); see the overlay, remove the label or rescan"
+        )
+
+
+#: a piece on a print's outline whose ink (its pixels off its own edge) is on average
+#: paler than this share of the print's is another pen's (:func:`_paler_at_edge`)
+PALER_SHARE = 0.75
+#: ... judged when it has at least this many such pixels
+PALER_LEAST_PX = 20
+#: ... the print's ink as the share of its pixels on pieces this pale or paler
+PALER_END = 0.2
+
+
+def _paler_at_edge(grey: np.ndarray, kept: np.ndarray) -> np.ndarray:
+    """The pieces of a print's ink on its outline inked paler than the print.
+
+    A label in a coloured pen or pencil reads paler than the print's ink in a grey
+    scan; its letters joined to the print as elements went unflagged (held-out 6 seed
+    7 sheet 2: '19' of a blue 'run 19' on a car print's shoulder, +10 % wide; seed 8
+    sheet 59: a red '25 psi' beside a knobby print, +21 % long, both status ok). Each
+    piece (8-connected) touching the ink's hull is compared by its mean darkness
+    (:func:`_darkness`) over its pixels a pixel in from its edge (the scan's blur
+    pales a thin stroke's edge, not its middle) with the print's paler end: the
+    piece means under which :data:`PALER_END` of the ink lies (a label's few
+    letters are not a fifth of a print's ink).
+
+    Parameters
+    ----------
+    grey : (h, w) float [0, 1]
+        The sheet's grey over the print's box (:func:`_grey`).
+    kept : (h, w) bool
+        The print's load-bearing ink.
+
+    Returns
+    -------
+    (h, w) bool
+        The paler pieces on the outline.
+    """
+    import cv2
+
+    out = np.zeros(kept.shape, bool)
+    n, lab, _, _ = components_with_stats(kept.view(np.uint8), connectivity=8)
+    if n <= 2:
+        return out
+    rim = np.zeros(kept.shape, np.uint8)
+    cv2.polylines(rim, [cv2.convexHull(outline_points(kept))], True, 1, thickness=3)
+    edge = np.zeros(n, bool)
+    edge[lab[(rim > 0) & kept]] = True
+    edge[0] = False
+    core = cv2.erode(kept.view(np.uint8), np.ones((3, 3), np.uint8)).view(bool)
+    ids = lab[core]
+    dark = _darkness(grey, kept)[core]
+    count = np.bincount(ids, minlength=n)
+    total = np.bincount(ids, dark, minlength=n)
+    mean = total / np.maximum(count, 1)
+    # the print's paler end: the pieces' mean darkness that PALER_END of its ink
+    # (its pixels off the pieces' edges) lies under (an unevenly inked print's
+    # blocks range from black to mid-grey: own generator seed 6012 sheet 88, a
+    # knob print's paler tip knobs against its mean, flagged, within the bar)
+    order = np.argsort(mean[1:]) + 1
+    share = np.cumsum(count[order]) / max(count[1:].sum(), 1)
+    ref = mean[order[min(np.searchsorted(share, PALER_END), len(order) - 1)]]
+    paler = edge & (count >= PALER_LEAST_PX) & (mean < PALER_SHARE * ref)
+    if paler.any():
+        out = paler[lab]
+    return out
 
 
 def _auto_axis_flags(
@@ -3392,6 +3466,19 @@ LONE_ELEMENT_PEERS = 4
 #: lie level within TWIN_ENDS of the length are one print split (:func:`_split_twins`)
 TWIN_ANGLE_DEG = 2.0
 TWIN_ENDS = 0.01
+#: ... or, ribs of one print: the shorter lies along the longer's span (within
+#: TWIN_ENDS of it), their middles level within RIB_MIDDLE of the longer's length,
+#: the shorter at least RIB_SHORTEST of it (a car print's shoulder ribs are shorter
+#: than its middle rib: held-out 6 seed 5 sheet 49, 30 and 33 mm beside 40 mm)
+RIB_MIDDLE = 0.1
+RIB_SHORTEST = 0.5
+#: ... each with a straight side facing the other along this share of its length
+#: (a rib's edge along the groove: :func:`_facing_side`), to within RIB_EDGE_PX
+RIB_EDGE = 0.6
+RIB_EDGE_PX = 1.5
+#: set-aside marks of these kinds lying between two such prints may be the print's
+#: own ribs: the gap between the prints is measured across them
+RIB_MARK_KINDS = ("line", "writing")
 
 
 def _no_slivers(prints: list, opts: AnalysisOptions) -> tuple[list, list]:
@@ -3561,22 +3648,39 @@ def _hull_mm(p, mm_per_px: float):
     return Polygon(np.column_stack([x, y])).buffer(0)
 
 
-def _split_twins(prints: list, mm_per_px: float, opts: AnalysisOptions) -> list:
-    """Flag ``grouping_uncertain`` two prints side by side within
-    ``group_groove_max_mm`` of each other whose rolling directions agree within
-    :data:`TWIN_ANGLE_DEG` and whose ends lie level along it, within
-    :data:`TWIN_ENDS` of the length, one of them with a straight side
-    (:func:`inkprint.group._straight_side`: a rib's edge along a groove; two round
-    prints side by side are two prints): one print split along its length. A rib print
-    whose middle ribs were set aside as ruler lines came out as two prints 81.3 mm
-    long, 6.8 mm apart, one unflagged at -52 % width (held-out seed 7 sheet 3);
-    two prints of a sheet are seldom the same length with their ends level.
+def _split_twins(
+    prints: list, mm_per_px: float, opts: AnalysisOptions, *, marks: list = ()
+) -> list:
+    """Flag ``grouping_uncertain`` two prints side by side, one print split along
+    its length (two round prints side by side are two prints: a rib's edge along a
+    groove is straight): their rolling directions agree within
+    :data:`TWIN_ANGLE_DEG`, and
+
+    * they are as long with their ends level, within :data:`TWIN_ENDS` of the
+      length, one of them with a straight side (:func:`inkprint.group._straight_side`);
+      or the shorter (at least :data:`RIB_SHORTEST` of the longer) lies along the
+      longer's span with their middles level within :data:`RIB_MIDDLE` of its
+      length, each with a straight side facing the other (:func:`_facing_sides`: a
+      car print's shoulder ribs beside its longer middle rib);
+    * the gap between them is at most ``group_groove_max_mm``, measured across the
+      set-aside ``marks`` of :data:`RIB_MARK_KINDS` that lie between them (a rib
+      print's middle ribs set aside as lines).
+
+    Two prints of a sheet are seldom so level and so near. Before: a rib print whose
+    middle ribs were set aside as ruler lines came out as two prints 81.3 mm long,
+    6.8 mm apart, one unflagged at -52 % width (held-out seed 7 sheet 3); a car
+    print at 600 dpi whose three thin middle ribs were set aside as lines came out
+    as its two shoulders 41 mm apart, width -80 % with status ok (held-out 6 seed 9
+    sheet 93); a car print's middle rib 40 mm long between shoulders of 30 and
+    33 mm, 12.4 mm apart, width -68 % with status ok (seed 5 sheet 49).
 
     Parameters
     ----------
     prints : list of PrintResult
     mm_per_px : float [mm/px]
     opts : AnalysisOptions
+    marks : list of Mark
+        The sheet's set-aside ink.
 
     Returns
     -------
@@ -3584,31 +3688,104 @@ def _split_twins(prints: list, mm_per_px: float, opts: AnalysisOptions) -> list:
         The same, flagged where it applies.
     """
     hulls = [_hull_mm(p, mm_per_px) for p in prints]
+    between = [_box_mm(mk.bbox, mm_per_px) for mk in marks if mk.kind in RIB_MARK_KINDS]
     notes = {}
     # (a hull that is no polygon, a line of pixels, has no sides to compare)
     ok = [h.geom_type == "Polygon" and not h.is_empty for h in hulls]
     for i, j in itertools.combinations(np.flatnonzero(ok), 2):
         a, b = prints[i].metrics, prints[j].metrics
         turn = abs((a.orientation - b.orientation + np.pi / 2) % np.pi - np.pi / 2)
-        if turn > np.deg2rad(TWIN_ANGLE_DEG) or abs(a.length - b.length) > TWIN_ENDS * a.length:
+        if turn > np.deg2rad(TWIN_ANGLE_DEG):
             continue
+        pair = (hulls[i], hulls[j])
+        long_ = max(a.length, b.length)
         u = np.array([np.cos(a.orientation), np.sin(a.orientation)])
         ta, tb = (np.asarray(h.exterior.coords) @ u for h in (hulls[i], hulls[j]))
         level = max(abs(ta.min() - tb.min()), abs(ta.max() - tb.max()))
-        gap = hulls[i].distance(hulls[j])
-        if level > TWIN_ENDS * a.length or gap > opts.group_groove_max_mm:
+        twins = abs(a.length - b.length) <= TWIN_ENDS * a.length and level <= TWIN_ENDS * a.length
+        if not (twins or _ribs(ta, tb, long_, min(a.length, b.length))):
             continue
-        if not any(_straight_side(np.asarray(hulls[k].exterior.coords)) for k in (i, j)):
-            continue  # (two round prints side by side: a rib's edge is straight)
+        gap = _gap_across(hulls[i], hulls[j], u, between)
+        if gap > opts.group_groove_max_mm:
+            continue
+        # (two round prints side by side: a rib's edge is straight)
+        if twins and not any(_straight_side(np.asarray(h.exterior.coords)) for h in pair):
+            continue
+        if not twins and not _facing_sides(*pair, u, px_to_mm_length(RIB_EDGE_PX, mm_per_px)):
+            continue
+        what = "as long and with its ends level" if twins else "level with it, as a rib"
         for k, other in ((i, j), (j, i)):
             notes.setdefault(
                 k,
-                f"print #{k} lies beside print #{other}, {gap:.1f} mm apart, as long and "
-                f"with its ends level: one print split along its length (ribs between them "
-                f"set aside as lines or writing)? Both are uncertain; see the overlay, or "
-                f"give --group-mm over the gap",
+                f"print #{k} lies beside print #{other}, {gap:.1f} mm apart, {what}: one "
+                f"print split along its length (ribs between them set aside as lines or "
+                f"writing)? Both are uncertain; see the overlay, or give --group-mm over "
+                f"the gap",
             )
     return _uncertain_grouping(prints, notes)
+
+
+def _ribs(ta: np.ndarray, tb: np.ndarray, long_: float, short: float) -> bool:
+    """Whether two prints' extents along their rolling direction (``ta``, ``tb``:
+    their hulls' points projected on it [mm]) are a print's ribs: the shorter
+    (``short``, at least :data:`RIB_SHORTEST` of ``long_``) within the longer's span
+    (:data:`TWIN_ENDS` of its length over), their middles level within
+    :data:`RIB_MIDDLE` of its length."""
+    if short < RIB_SHORTEST * long_:
+        return False
+    (a0, a1), (b0, b1) = (ta.min(), ta.max()), (tb.min(), tb.max())
+    if a1 - a0 < b1 - b0:
+        (a0, a1), (b0, b1) = (b0, b1), (a0, a1)
+    over = TWIN_ENDS * long_
+    inside = b0 >= a0 - over and b1 <= a1 + over
+    return bool(inside and abs((a0 + a1) - (b0 + b1)) / 2 <= RIB_MIDDLE * long_)
+
+
+def _facing_sides(p, q, u: np.ndarray, tol: float) -> bool:
+    """Whether two hulls (shapely polygons [mm]) side by side across the direction
+    ``u`` each have a straight side facing the other: the hull's points within
+    ``tol`` [mm] of its extreme towards the other span at least :data:`RIB_EDGE` of
+    its extent along ``u`` (a rib's edge along a groove; a round print's flank
+    touches that extreme over a short arc only)."""
+    v = np.array([-u[1], u[0]])
+    a, b = (np.asarray(h.exterior.coords) for h in (p, q))
+    towards = np.sign(float((b @ v).mean() - (a @ v).mean()))
+    for pts, sign in ((a, towards), (b, -towards)):
+        across, along = sign * (pts @ v), pts @ u
+        near = across >= across.max() - tol
+        if np.ptp(along[near]) < RIB_EDGE * np.ptp(along):
+            return False
+    return True
+
+
+def _box_mm(bbox: tuple, mm_per_px: float):
+    """A mark's box ((row0, col0, row1, col1) [px]) as a shapely polygon in mm, as
+    :func:`_hull_mm` places a print's hull."""
+    from shapely.geometry import box
+
+    r0, c0, r1, c1 = (float(v) for v in bbox)
+    (x0, x1), (y1, y0) = px_to_mm([r0, r1], [c0, c1], n_rows=0, mm_per_px=mm_per_px)
+    return box(min(x0, x1), min(y0, y1), max(x0, x1), max(y0, y1))
+
+
+def _gap_across(p, q, u: np.ndarray, marks: list) -> float:
+    """The gap [mm] between two hulls ``p``, ``q`` (shapely polygons), across their
+    rolling direction ``u`` when ``marks`` (polygons) lie between them: the widest
+    stretch across ``u`` not covered by either hull or by a mark within their
+    joint hull; without such a mark, their distance."""
+    inside = [m for m in marks if p.union(q).convex_hull.contains(m.centroid)]
+    if not inside:
+        return float(p.distance(q))
+    v = np.array([-u[1], u[0]])
+    spans = sorted(
+        (float(t.min()), float(t.max()))
+        for t in (np.asarray(g.exterior.coords) @ v for g in (p, q, *inside))
+    )
+    widest, reach = 0.0, spans[0][1]
+    for lo, hi in spans[1:]:
+        widest = max(widest, lo - reach)
+        reach = max(reach, hi)
+    return widest
 
 
 def no_print_message(found: FoundPrints) -> str:
@@ -3777,7 +3954,7 @@ def analyze_scan(
     if not measured:
         found = dataclasses.replace(found, groups=[], marks=found.marks + too_small)
         raise NoInk(no_print_message(found))
-    prints = _split_twins(_lone_elements(measured, s, opts), s, opts)
+    prints = _split_twins(_lone_elements(measured, s, opts), s, opts, marks=found.marks)
     checked = _scale_check(scan, found.scales)
     taken = tuple(b for p in prints for b in p.caps)
     return SheetResult(

@@ -2573,12 +2573,19 @@ def _dot_row(
 
 
 def _body_gaps(parts: _ThinParts, mask: np.ndarray) -> np.ndarray:
-    """Per piece: its distance [px] to the ink without the thin ink (about the paper
-    between them, plus a pixel). (n,) float, inf for a piece without thin pixels."""
+    """Per piece: its distance [px] to the ink without the thin pieces apart from
+    it (about the paper between them, plus a pixel). (n,) float, inf for a piece
+    without thin pixels.
+
+    The thin ink of pieces that hold thick ink (a foot's) is the print's here: a
+    tiny file print's teeth, thin at 150 dpi, stand between its body and the cut
+    dots beyond them, a pixel from the dots; measured to the thick ink alone the dots
+    lay 5.7-6.7 px off, over a stroke, and were dropped (held-out 6 seed 2 sheet
+    61: -16 % wide with status ok)."""
     import cv2
 
     body = mask.copy()
-    body.ravel()[parts.at] = False
+    body.ravel()[parts.at[~parts.foot[parts.ids]]] = False
     away = cv2.distanceTransform((~body).view(np.uint8), cv2.DIST_L2, 3).ravel()
     gap = np.full(len(parts.foot), np.inf)
     np.minimum.at(gap, parts.ids, away[parts.at])
