@@ -1409,11 +1409,14 @@ def measure_print(ctx: _Context, group: Group, *, index: int = 0, sensitivity: b
     opts, s = ctx.opts, ctx.scan.mm_per_px
     n_rows = ctx.page.work.shape[0]
     g, grey, line_ink, spots, kept, hidden, no_core = _print_ink(ctx, group)
-    caps, taken = _cut_caps(ctx, group, g, kept, spots), ()
+    # (its pieces labelled once: for the caps, the lattice and the paler pieces)
+    pieces = components_with_stats(kept.view(np.uint8), connectivity=8)
+    caps, taken = _cut_caps(ctx, group, g, kept, spots, pieces=pieces), ()
     if caps is not None:  # the same steps with the caps' ink, the caps kept
         group, taken = union(group, caps), _piece_boxes(caps)
         ctx = _without_marks(ctx, taken)
         g, grey, line_ink, spots, kept, hidden, no_core = _print_ink(ctx, group, caps)
+        pieces = components_with_stats(kept.view(np.uint8), connectivity=8)
     kw = dict(
         n_rows=n_rows,
         mm_per_px=s,
@@ -1456,6 +1459,7 @@ def measure_print(ctx: _Context, group: Group, *, index: int = 0, sensitivity: b
         kept=kept,
         hidden=hidden,
         faint=line_ink,
+        pieces=pieces,
     )
     ink = (kept, hidden, spots.thin)
     flags, warnings = _edge_mark_flags(ctx, g, m, index, ink, flags, warnings)
@@ -1581,17 +1585,20 @@ def _print_ink(ctx: _Context, group: Group, caps: Group | None = None) -> tuple:
     return g, grey, line_ink, spots, kept, hidden, no_core
 
 
-def _cut_caps(ctx: _Context, group: Group, g: Group, kept: np.ndarray, spots) -> Group | None:
+def _cut_caps(
+    ctx: _Context, group: Group, g: Group, kept: np.ndarray, spots, *, pieces: tuple
+) -> Group | None:
     """The caps of the print's next row of elements that its outline cut
     (:func:`inkprint.caps.cut_caps`) among the ink a lattice step around its
     load-bearing ink ``kept`` (in ``g``'s box) that no other print holds, but for
     the lightly inked blocks the section 7.1.1 rule left out (``spots``'s
     ``faint_blocks``: a faint tip block stays out, flagged ``faint_edge``); None
     when there are none, when ``cut_caps`` is off, or when the print has no coarse
-    lattice (a fine tread's cut elements are the rule's)."""
+    lattice (a fine tread's cut elements are the rule's). ``pieces``: ``kept``'s
+    (:func:`components_with_stats`, 8-connected)."""
     if group.fine_area_mm2 > 0 or not ctx.opts.cut_caps:
         return None
-    n, lab, st, cen = components_with_stats(kept.view(np.uint8), connectivity=8)
+    n, lab, st, cen = pieces
     if n - 1 < CAP_ELEMENTS:
         return None
     big = st[1:, 4] >= 0.5 * st[1:, 4].max()
@@ -2937,6 +2944,7 @@ def _print_flags(
     kept: np.ndarray,
     hidden: np.ndarray | None = None,
     faint: np.ndarray | None = None,
+    pieces: tuple | None = None,
 ) -> tuple[tuple, tuple]:
     flags, warnings = _line_flags(ctx, g, m, index, padded=padded, kept=kept, hidden=hidden)
     pull = 0.0
@@ -2951,7 +2959,7 @@ def _print_flags(
             f"see the overlay, remove the mark or rescan"
         )
     if "mark_on_edge" not in flags:
-        _label_flags(ctx, padded, kept, m, index, flags, warnings)
+        _label_flags(ctx, padded, kept, m, index, flags, warnings, pieces=pieces)
     rpull = 0.0
     if ctx.found.scales and "mark_on_edge" not in flags:
         rpull = _ruler_pull(ctx, padded, kept, m)
@@ -2995,12 +3003,15 @@ def _print_flags(
     return tuple(flags), tuple(warnings)
 
 
-def _label_flags(ctx: _Context, padded: Group, kept, m, index: int, flags, warnings):
+def _label_flags(
+    ctx: _Context, padded: Group, kept, m, index: int, flags, warnings, *, pieces=None
+):
     """Append ``mark_on_edge`` with its warning to ``flags``, ``warnings`` when a
     label's letters are taken for the print's: its outline runs across a letter
     set aside (:func:`_letters_pull`), or a line of writing joins it whole
     (:func:`_writing_pull`), either making it more than ``edge_uncertainty``
-    larger. ``padded``: the print's padded box, ``kept`` its ink over it."""
+    larger. ``padded``: the print's padded box, ``kept`` its ink over it, ``pieces``
+    its pieces (:func:`components_with_stats`, 8-connected; None: labelled here)."""
     # (on chart paper gridlines' bits read as letters: the grid's rules judge there)
     lpull = _letters_pull(ctx.found.marks, padded, kept, m) if ctx.found.grid is None else 0.0
     if lpull > ctx.opts.edge_uncertainty:
@@ -3021,7 +3032,7 @@ def _label_flags(ctx: _Context, padded: Group, kept, m, index: int, flags, warni
             f"overlay, remove the label or rescan"
         )
         return
-    off = off_lattice(kept) if padded.fine_area_mm2 <= 0 else None
+    off = off_lattice(kept, pieces=pieces) if padded.fine_area_mm2 <= 0 else None
     opull = (
         _with_excess(kept & ~off, off, m.metrics.orientation)
         if off is not None and off.any()
@@ -3035,7 +3046,7 @@ def _label_flags(ctx: _Context, padded: Group, kept, m, index: int, flags, warni
             f"taken for tread elements?); see the overlay, remove the mark or rescan"
         )
         return
-    pale = _paler_at_edge(_grey(ctx.scan, ctx.page, padded.rows, padded.cols), kept)
+    pale = _paler_at_edge(_grey(ctx.scan, ctx.page, padded.rows, padded.cols), kept, pieces)
     ppull = _with_excess(kept & ~pale, pale, m.metrics.orientation) if pale.any() else 0.0
     if ppull > ctx.opts.edge_uncertainty:
         flags.append("mark_on_edge")
@@ -3055,7 +3066,7 @@ PALER_LEAST_PX = 20
 PALER_END = 0.2
 
 
-def _paler_at_edge(grey: np.ndarray, kept: np.ndarray) -> np.ndarray:
+def _paler_at_edge(grey: np.ndarray, kept: np.ndarray, pieces: tuple | None = None) -> np.ndarray:
     """The pieces of a print's ink on its outline inked paler than the print.
 
     A label in a coloured pen or pencil reads paler than the print's ink in a grey
@@ -3074,6 +3085,9 @@ def _paler_at_edge(grey: np.ndarray, kept: np.ndarray) -> np.ndarray:
         The sheet's grey over the print's box (:func:`_grey`).
     kept : (h, w) bool
         The print's load-bearing ink.
+    pieces : tuple, optional
+        ``kept``'s 8-connected pieces (:func:`components_with_stats`), when the
+        caller has them.
 
     Returns
     -------
@@ -3083,7 +3097,7 @@ def _paler_at_edge(grey: np.ndarray, kept: np.ndarray) -> np.ndarray:
     import cv2
 
     out = np.zeros(kept.shape, bool)
-    n, lab, _, _ = components_with_stats(kept.view(np.uint8), connectivity=8)
+    n, lab, _, _ = pieces or components_with_stats(kept.view(np.uint8), connectivity=8)
     if n <= 2:
         return out
     rim = np.zeros(kept.shape, np.uint8)
@@ -3773,7 +3787,13 @@ def _gap_across(p, q, u: np.ndarray, marks: list) -> float:
     rolling direction ``u`` when ``marks`` (polygons) lie between them: the widest
     stretch across ``u`` not covered by either hull or by a mark within their
     joint hull; without such a mark, their distance."""
-    inside = [m for m in marks if p.union(q).convex_hull.contains(m.centroid)]
+    x0, y0, x1, y1 = (
+        *np.minimum(p.bounds[:2], q.bounds[:2]),
+        *np.maximum(p.bounds[2:], q.bounds[2:]),
+    )
+    near = [m for m in marks if x0 <= m.centroid.x <= x1 and y0 <= m.centroid.y <= y1]
+    joint = p.union(q).convex_hull if near else None
+    inside = [m for m in near if joint.contains(m.centroid)]
     if not inside:
         return float(p.distance(q))
     v = np.array([-u[1], u[0]])

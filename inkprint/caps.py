@@ -158,7 +158,7 @@ def cut_caps(kept: np.ndarray, free: np.ndarray, *, elements: tuple | None = Non
     return out
 
 
-def off_lattice(kept: np.ndarray) -> np.ndarray:
+def off_lattice(kept: np.ndarray, *, pieces: tuple | None = None) -> np.ndarray:
     """The pieces at a print's edge that lie off its tread's lattice.
 
     A label's letters or a mark joined to a knobby print as its elements (a bold
@@ -175,6 +175,10 @@ def off_lattice(kept: np.ndarray) -> np.ndarray:
     ----------
     kept : (h, w) bool
         The print's load-bearing ink.
+    pieces : tuple, optional
+        ``kept``'s 8-connected pieces, :func:`inkprint.components.components_with_stats`'s
+        ``(n, labels, stats, centroids)``, when the caller has them (labelled here
+        otherwise).
 
     Returns
     -------
@@ -192,7 +196,7 @@ def off_lattice(kept: np.ndarray) -> np.ndarray:
     if kept.ndim != 2:
         raise InvalidInput("kept", kept.shape, "a (rows, cols) mask")
     out = np.zeros(kept.shape, bool)
-    n, lab, st, cen = components_with_stats(kept.view(np.uint8), connectivity=8)
+    n, lab, st, cen = pieces or components_with_stats(kept.view(np.uint8), connectivity=8)
     if n - 1 < CAP_ELEMENTS:
         return out
     whole = _whole(st[1:, 4].astype(float))

@@ -46,7 +46,10 @@ session's cases:
   than the print's ink: analyze._paler_at_edge, flagged mark_on_edge now);
 * seed 2 sheet 61: a tiny file print at 150 dpi whose cut dots lie a pixel beyond
   its thin teeth, 6 px from its thick body: dropped, -16 % wide with status ok
-  (group._body_gaps measures to the teeth now: within the bar).
+  (group._body_gaps measures to the teeth now: within the bar);
+* seed 7 sheet 10: a tiny file print at 300 dpi whose outline cut only its three
+  middle teeth on one side to stubs: dropped as strokes' feet, -11 % wide with
+  status ok (group._teeth takes a short side at a regular pitch now).
 """
 
 import csv
@@ -99,6 +102,7 @@ def _sheet(d: str, seed: int, index: int) -> list:
         (8, 59),
         (3, 40),
         (2, 61),
+        (7, 10),
     ],
 )
 def test_heldout6_sheet_is_within_the_bar_or_flagged(tmp_path, seed, index):
