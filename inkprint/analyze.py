@@ -1408,15 +1408,8 @@ def measure_print(ctx: _Context, group: Group, *, index: int = 0, sensitivity: b
     """
     opts, s = ctx.opts, ctx.scan.mm_per_px
     n_rows = ctx.page.work.shape[0]
-    g, grey, line_ink, spots, kept, hidden, no_core = _print_ink(ctx, group)
-    # (its pieces labelled once: for the caps, the lattice and the paler pieces)
-    pieces = components_with_stats(kept.view(np.uint8), connectivity=8)
-    caps, taken = _cut_caps(ctx, group, g, kept, spots, pieces=pieces), ()
-    if caps is not None:  # the same steps with the caps' ink, the caps kept
-        group, taken = union(group, caps), _piece_boxes(caps)
-        ctx = _without_marks(ctx, taken)
-        g, grey, line_ink, spots, kept, hidden, no_core = _print_ink(ctx, group, caps)
-        pieces = components_with_stats(kept.view(np.uint8), connectivity=8)
+    ctx, group, taken, ink, pieces = _ink_with_caps(ctx, group)
+    g, grey, line_ink, spots, kept, hidden, no_core = ink
     kw = dict(
         n_rows=n_rows,
         mm_per_px=s,
@@ -1583,6 +1576,25 @@ def _print_ink(ctx: _Context, group: Group, caps: Group | None = None) -> tuple:
     if caps is not None:
         kept = kept | _in_box(caps, g)
     return g, grey, line_ink, spots, kept, hidden, no_core
+
+
+def _ink_with_caps(ctx: _Context, group: Group) -> tuple:
+    """``(ctx, group, taken, ink, pieces)``: the print's ink (:func:`_print_ink`'s
+    tuple) with the caps of its next row of elements kept (:func:`_cut_caps`:
+    ``group`` holds them, ``taken`` are their boxes, ``ctx`` has them no longer
+    among its marks), and its load-bearing ink's pieces
+    (:func:`components_with_stats`, 8-connected), labelled once for the caps, the
+    lattice and the paler pieces."""
+    ink = _print_ink(ctx, group)
+    g, _, _, spots, kept = ink[:5]
+    pieces = components_with_stats(kept.view(np.uint8), connectivity=8)
+    caps, taken = _cut_caps(ctx, group, g, kept, spots, pieces=pieces), ()
+    if caps is not None:  # the same steps with the caps' ink, the caps kept
+        group, taken = union(group, caps), _piece_boxes(caps)
+        ctx = _without_marks(ctx, taken)
+        ink = _print_ink(ctx, group, caps)
+        pieces = components_with_stats(ink[4].view(np.uint8), connectivity=8)
+    return ctx, group, taken, ink, pieces
 
 
 def _cut_caps(
