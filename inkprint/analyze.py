@@ -40,7 +40,7 @@ import numpy as np
 
 from .apart import split_apart
 from .binarize import Binarization, below, binarize, remove_specks
-from .caps import CAP_ELEMENTS, cut_caps, off_lattice
+from .caps import CAP_ELEMENTS, cut_caps, off_lattice, pieces_on_outline
 from .components import components_with_stats, pixel_sums, reduce_at
 from .coords import (
     area_mm2_to_px,
@@ -3112,11 +3112,7 @@ def _paler_at_edge(grey: np.ndarray, kept: np.ndarray, pieces: tuple | None = No
     n, lab, _, _ = pieces or components_with_stats(kept.view(np.uint8), connectivity=8)
     if n <= 2:
         return out
-    rim = np.zeros(kept.shape, np.uint8)
-    cv2.polylines(rim, [cv2.convexHull(outline_points(kept))], True, 1, thickness=3)
-    edge = np.zeros(n, bool)
-    edge[lab[(rim > 0) & kept]] = True
-    edge[0] = False
+    edge = pieces_on_outline(kept, lab, n)
     core = cv2.erode(kept.view(np.uint8), np.ones((3, 3), np.uint8)).view(bool)
     ids = lab[core]
     dark = _darkness(grey, kept)[core]
@@ -3726,12 +3722,12 @@ def _split_twins(
         pair = (hulls[i], hulls[j])
         long_ = max(a.length, b.length)
         u = np.array([np.cos(a.orientation), np.sin(a.orientation)])
-        ta, tb = (np.asarray(h.exterior.coords) @ u for h in (hulls[i], hulls[j]))
+        ta, tb = (np.asarray(h.exterior.coords) @ u for h in pair)
         level = max(abs(ta.min() - tb.min()), abs(ta.max() - tb.max()))
         twins = abs(a.length - b.length) <= TWIN_ENDS * a.length and level <= TWIN_ENDS * a.length
         if not (twins or _ribs(ta, tb, long_, min(a.length, b.length))):
             continue
-        gap = _gap_across(hulls[i], hulls[j], u, between)
+        gap = _gap_across(*pair, u, between)
         if gap > opts.group_groove_max_mm:
             continue
         # (two round prints side by side: a rib's edge is straight)
@@ -3789,9 +3785,9 @@ def _box_mm(bbox: tuple, mm_per_px: float):
     :func:`_hull_mm` places a print's hull."""
     from shapely.geometry import box
 
-    r0, c0, r1, c1 = (float(v) for v in bbox)
-    (x0, x1), (y1, y0) = px_to_mm([r0, r1], [c0, c1], n_rows=0, mm_per_px=mm_per_px)
-    return box(min(x0, x1), min(y0, y1), max(x0, x1), max(y0, y1))
+    r0, c0, r1, c1 = bbox
+    xs, ys = px_to_mm([r0, r1], [c0, c1], n_rows=0, mm_per_px=mm_per_px)
+    return box(xs.min(), ys.min(), xs.max(), ys.max())
 
 
 def _gap_across(p, q, u: np.ndarray, marks: list) -> float:

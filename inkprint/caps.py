@@ -34,7 +34,7 @@ from .errors import InvalidInput
 from .group import hull_fill, outline_points
 from .sites import Lattice, fit_lattice, nearest_site, site_distance
 
-__all__ = ["cut_caps", "off_lattice"]
+__all__ = ["cut_caps", "off_lattice", "pieces_on_outline"]
 
 #: fewest whole elements (within CAP_SPREAD of their median area) of a print whose
 #: caps are looked for
@@ -190,7 +190,6 @@ def off_lattice(kept: np.ndarray, *, pieces: tuple | None = None) -> np.ndarray:
     InvalidInput
         ``kept`` not a (rows, cols) mask.
     """
-    import cv2
 
     kept = np.asarray(kept, bool)
     if kept.ndim != 2:
@@ -200,11 +199,7 @@ def off_lattice(kept: np.ndarray, *, pieces: tuple | None = None) -> np.ndarray:
     if n - 1 < CAP_ELEMENTS:
         return out
     whole = _whole(st[1:, 4].astype(float))
-    hull = cv2.convexHull(outline_points(kept))
-    rim = np.zeros(kept.shape, np.uint8)
-    cv2.polylines(rim, [hull], True, 1, thickness=3)
-    edge = np.zeros(n, bool)
-    edge[lab[(rim > 0) & kept]] = True
+    edge = pieces_on_outline(kept, lab, n)
     inner = np.flatnonzero(whole & ~edge[1:])
     if len(inner) < CAP_ELEMENTS:
         return out
@@ -238,6 +233,35 @@ def off_lattice(kept: np.ndarray, *, pieces: tuple | None = None) -> np.ndarray:
         ):
             out[y : y + h, x : x + w] |= lab[y : y + h, x : x + w] == k + 1
     return out
+
+
+def pieces_on_outline(kept: np.ndarray, labels: np.ndarray, n: int) -> np.ndarray:
+    """Which pieces of a print's ink touch its outline: the rim of its hull, 3 px
+    wide.
+
+    Parameters
+    ----------
+    kept : (h, w) bool
+        The print's load-bearing ink.
+    labels : (h, w) int
+        Its pieces' labels (0: paper), as :func:`inkprint.components.components_with_stats`
+        gives them.
+    n : int
+        The labels' count, the paper's included.
+
+    Returns
+    -------
+    (n,) bool
+        Per label; the paper's (0) False.
+    """
+    import cv2
+
+    rim = np.zeros(kept.shape, np.uint8)
+    cv2.polylines(rim, [cv2.convexHull(outline_points(kept))], True, 1, thickness=3)
+    edge = np.zeros(n, bool)
+    edge[labels[(rim > 0) & kept]] = True
+    edge[0] = False
+    return edge
 
 
 def _fitted(centres: np.ndarray) -> Lattice | None:

@@ -1533,8 +1533,8 @@ def maybe_tiny_print(mask: np.ndarray, *, mm_per_px: float) -> bool:
     across = cols * np.cos(t) + rows * np.sin(t)
     k = lab[rows, cols] - 1
     lo, hi = np.full(n - 1, np.inf), np.full(n - 1, -np.inf)
-    np.minimum.at(lo, k, across)
-    np.maximum.at(hi, k, across)
+    reduce_at(np.minimum, lo, k, values=across)
+    reduce_at(np.maximum, hi, k, values=across)
     span = (hi - lo + 1.0)[big] / width
     return float(np.average(span, weights=area[big])) <= MAYBE_SPAN
 
