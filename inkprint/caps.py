@@ -188,7 +188,7 @@ def off_lattice(kept: np.ndarray, *, pieces: tuple | None = None) -> np.ndarray:
     Raises
     ------
     InvalidInput
-        ``kept`` not a (rows, cols) mask.
+        ``kept`` not a (rows, cols) mask, or ``pieces``' labels not of its shape.
     """
 
     kept = np.asarray(kept, bool)
@@ -196,6 +196,10 @@ def off_lattice(kept: np.ndarray, *, pieces: tuple | None = None) -> np.ndarray:
         raise InvalidInput("kept", kept.shape, "a (rows, cols) mask")
     out = np.zeros(kept.shape, bool)
     n, lab, st, cen = pieces or components_with_stats(kept.view(np.uint8), connectivity=8)
+    if np.shape(lab) != kept.shape:
+        raise InvalidInput(
+            "pieces", np.shape(lab), f"kept's pieces, labels of its shape {kept.shape}"
+        )
     if n - 1 < CAP_ELEMENTS:
         return out
     whole = _whole(st[1:, 4].astype(float))
@@ -253,9 +257,19 @@ def pieces_on_outline(kept: np.ndarray, labels: np.ndarray, n: int) -> np.ndarra
     -------
     (n,) bool
         Per label; the paper's (0) False.
+
+    Raises
+    ------
+    InvalidInput
+        ``kept`` not a (rows, cols) mask, or ``labels`` not of its shape.
     """
     import cv2
 
+    kept = np.asarray(kept, bool)
+    if kept.ndim != 2:
+        raise InvalidInput("kept", kept.shape, "a (rows, cols) mask")
+    if np.shape(labels) != kept.shape:
+        raise InvalidInput("labels", np.shape(labels), f"labels of kept's shape {kept.shape}")
     rim = np.zeros(kept.shape, np.uint8)
     cv2.polylines(rim, [cv2.convexHull(outline_points(kept))], True, 1, thickness=3)
     edge = np.zeros(n, bool)

@@ -214,3 +214,33 @@ def test_off_lattice_not_a_2d_mask_raises():
 
     with pytest.raises(InvalidInput, match="kept"):
         off_lattice(np.zeros(10, bool))
+
+
+def test_pieces_on_outline_corner_blocks_not_the_middle():
+    from inkprint.caps import pieces_on_outline
+    from inkprint.components import components_with_stats
+
+    kept = np.zeros((40, 40), bool)
+    for r in (5, 17, 29):
+        for c in (5, 17, 29):
+            kept[r : r + 6, c : c + 6] = True
+    n, lab, _, _ = components_with_stats(kept.view(np.uint8), connectivity=8)
+    on = pieces_on_outline(kept, lab, n)
+    middle = lab[19, 19]
+    assert not on[0] and not on[middle] and np.count_nonzero(on) == 8
+
+
+def test_pieces_on_outline_and_off_lattice_refuse_labels_of_another_shape():
+    from inkprint.caps import off_lattice, pieces_on_outline
+    from inkprint.components import components_with_stats
+    from inkprint.errors import InvalidInput
+
+    kept = np.zeros((20, 20), bool)
+    kept[5:9, 5:15] = True
+    other = components_with_stats(np.zeros((10, 10), np.uint8), connectivity=8)
+    with pytest.raises(InvalidInput, match="labels"):
+        pieces_on_outline(kept, other[1], other[0])
+    with pytest.raises(InvalidInput, match="kept"):
+        pieces_on_outline(kept[0], other[1], other[0])
+    with pytest.raises(InvalidInput, match="pieces"):
+        off_lattice(kept, pieces=other)
