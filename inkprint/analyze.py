@@ -874,6 +874,7 @@ def find_prints(
     options: AnalysisOptions | None = None,
     sheet_area_mm2: float | None = None,
     grey: np.ndarray | None = None,
+    threads: int | None = 1,
 ) -> FoundPrints:
     """Sort a sheet's ink (:func:`inkprint.marks.sort_ink`) and keep the prints.
 
@@ -889,12 +890,17 @@ def find_prints(
     grey : (rows, cols) uint8 or float, optional
         The sheet's grey levels: ink printed over a gridline, darker than the line,
         stays ink (:func:`inkprint.gridlines.find_gridlines`).
+    threads : int, optional
+        Groups of ink checked at once (each split apart, cleared of specks and
+        judged: :func:`_checked_parts`); None: the cores this process may use. The
+        result does not depend on it.
 
     Returns
     -------
     FoundPrints
     """
     opts = resolve_options(options)
+    threads = resolve_threads(threads)
     shape = mask.shape
     area = sheet_area_mm2 if sheet_area_mm2 is not None else area_px_to_mm2(mask.size, mm_per_px)
     floor = opts.patch_area_floor(area)
@@ -905,14 +911,10 @@ def find_prints(
     marks, kept = list(ink.marks), []
     if grid is not None:
         marks.append(_grid_mark(grid.removed, mm_per_px))
-    parts = [p for g0 in ink.groups for p in split_apart(g0, mm_per_px=mm_per_px, options=opts)]
     short = []  # (piece, its mark's index): too short for a print (is_print)
     small = []  # (piece, its mark): set aside only as not solid or as a fragment
-    for g0 in parts:
-        g = dataclasses.replace(g0, mask=remove_specks(g0.mask, speck_px))
-        if not g.mask.any():
-            continue
-        check = is_print(g, mm_per_px=mm_per_px, options=opts, floor_mm2=floor, image_shape=shape)
+    check_kw = dict(mm_per_px=mm_per_px, opts=opts, speck_px=speck_px, floor=floor, shape=shape)
+    for g, check in _checked_parts(ink.groups, threads, **check_kw):
         ink_mm2 = area_px_to_mm2(g.n_pixels, mm_per_px)
         if check.ok and g.aside_mm2 > opts.writing_share * ink_mm2:
             check = PrintCheck(
@@ -966,6 +968,38 @@ def find_prints(
         groups = sorted(joined + lattice + stacks, key=reading_order)
     unsure = _maybe_tiny(small, marks, groups, scales, mm_per_px)
     return FoundPrints(groups, marks, ink, grid, scales, unsure)
+
+
+def _checked_parts(groups: list, threads: int, **kw) -> list:
+    """``(piece, PrintCheck)`` of every piece of ``groups`` (:func:`_checked`), in
+    order, the groups on up to ``threads`` threads (each alone: a sheet of eight
+    prints, 8 ms of 270)."""
+    threads = min(threads, len(groups))
+    if threads <= 1:
+        return [c for g in groups for c in _checked(g, **kw)]
+    from concurrent.futures import ThreadPoolExecutor
+
+    with ThreadPoolExecutor(threads, thread_name_prefix="inkprint-find") as pool:
+        return [c for cs in pool.map(lambda g: _checked(g, **kw), groups) for c in cs]
+
+
+def _checked(g0: Group, *, mm_per_px, opts, speck_px, floor, shape) -> list:
+    """``(piece, PrintCheck)`` of each piece of a group of ink
+    (:func:`inkprint.apart.split_apart`) with some ink left without its specks
+    (:func:`inkprint.binarize.remove_specks`), judged by :func:`is_print`."""
+    out = []
+    for p in split_apart(g0, mm_per_px=mm_per_px, options=opts):
+        g = dataclasses.replace(p, mask=remove_specks(p.mask, speck_px))
+        if g.mask.any():
+            out.append(
+                (
+                    g,
+                    is_print(
+                        g, mm_per_px=mm_per_px, options=opts, floor_mm2=floor, image_shape=shape
+                    ),
+                )
+            )
+    return out
 
 
 #: a small group set aside whose box lies this much inside a print's box or more is
@@ -4075,6 +4109,7 @@ def analyze_scan(
         options=opts,
         sheet_area_mm2=area_px_to_mm2(sheet_px, s),
         grey=page.work,
+        threads=threads,
     )
     if not found.groups and not found.unsure:
         raise NoInk(no_print_message(found))
