@@ -2067,6 +2067,31 @@ class _Pieces:
     stats: np.ndarray
     cent: np.ndarray
 
+    def without(self, flat: np.ndarray) -> _Pieces | None:
+        """The pieces of the mask without its pixels at ``flat`` (flat indices of
+        ink) when those are whole pieces: the others as OpenCV labels that ink (its
+        raster order kept, as :func:`_unspecked` renumbers); None when a piece
+        loses only some of its pixels (it may fall apart: label it again)."""
+        import cv2
+
+        lost = np.bincount(self.labels.ravel()[flat], minlength=self.n)
+        hit = lost > 0
+        if np.any(hit & (lost != self.stats[:, cv2.CC_STAT_AREA])):
+            return None
+        keep = ~hit
+        keep[0] = True
+        new = np.cumsum(keep, dtype=np.int32) - 1
+        new[~keep] = 0
+        stay = keep[self.ids]
+        return _Pieces(
+            int(keep.sum()),
+            new[self.labels],
+            self.at[stay],
+            new[self.ids[stay]],
+            self.stats[keep],
+            self.cent[keep],
+        )
+
     def only(self, which: np.ndarray) -> tuple:
         """The statistics and centroids of the pieces ``which`` ((n,) bool), zeros
         for the others: :func:`piece_stats` of their pixels alone (a piece's
@@ -2886,7 +2911,11 @@ def _edge_spots(
     dots = parts.at[gone & ~parts.dropped(dots=False)]
     n_thin = _count_pieces(parts.at[gone], group.mask.shape) if kept.any() else 0
     if n_thin:  # pen-thin ink beside the print: strokes are marks, dots edge spots
-        spots = _spots(replace(group, mask=kept), darkness, mm_per_px, opts, gap=tread_gap)
+        # (its pieces, those of the group but for the thin ones dropped whole)
+        left = pieces.without(parts.at[gone])
+        spots = _spots(
+            replace(group, mask=kept), darkness, mm_per_px, opts, gap=tread_gap, pieces=left
+        )
         return replace(
             spots,
             n_blobs=spots.n_blobs + n_thin,
