@@ -553,3 +553,24 @@ def test_spots_keep_two_mirrored_cut_dots_where_a_lens_is_widest():
     assert_allclose([m.length, m.width], [13.47, 3.64], rtol=0.01)
     assert_allclose(m.hull_area, 36.1, rtol=0.02)
     assert p.n_edge_spots == 0
+
+
+def test_comb_excess_herringbone_arms_set_aside_as_ticks_are_flagged():
+    # held-out 6 seed 3 sheet 116 (the page, grey, outside its two prints and their
+    # labels blanked, JPEG): a 60.16 x 12.11 mm herringbone print at 200 dpi whose
+    # V's thin arms, 28 along both sides, were set aside as pen marks or ticks
+    # reaching out of it: width -51 % with status ok before. With four or more
+    # such ticks under no ruler's scale it is flagged (analyze._comb_excess), the
+    # warning's excess that of the truth's width within 5 %; the other print (a
+    # 102.8 x 17.7 mm one) stays unflagged
+    path = Path(__file__).parent / "data" / "herringbone_comb.jpg"
+    res = ip.analyze_scan(path, rolling_axis="auto", sensitivity=False)
+    comb, other = sorted(res.prints, key=lambda p: p.metrics.length)
+    assert_allclose(comb.metrics.length, 60.16, rtol=0.01)
+    assert comb.metrics.width < 0.6 * 12.11  # (its arms left out)
+    assert comb.flags == ("mark_on_edge",)
+    (w,) = comb.warnings
+    assert "set aside as pen marks or ticks" in w
+    said = float(w.split("(counted half) is ")[1].split(" %")[0])
+    assert abs(said - 100.0 * (12.11 / comb.metrics.width - 1.0)) < 5.0
+    assert other.status == "ok"
