@@ -225,15 +225,17 @@ def off_lattice(kept: np.ndarray, *, pieces: tuple | None = None) -> np.ndarray:
         pts = np.column_stack([pxs + x, pys + y]).astype(float) - site
         give = _off_give(lattice)
         # (the elements nearest the site, each laid there: a tread's knobs of a few
-        # widths, by column)
+        # widths, by column; each grown once, when first needed)
         r = int(np.ceil(give))
-        for e in near[:OFF_LAID]:
+
+        def laid(e, r=r):
             if (e, r) not in grown:
                 elem, ec = _laid(lab, st, centres, e)
                 grown[e, r] = (_grown(elem, r), ec)
+            return grown[e, r]
+
         if not any(
-            _share_in(pts + grown[e, r][1], grown[e, r][0], r) >= OFF_SHARE
-            for e in near[:OFF_LAID]
+            _share_in(pts + laid(e)[1], laid(e)[0], r) >= OFF_SHARE for e in near[:OFF_LAID]
         ):
             out[y : y + h, x : x + w] |= lab[y : y + h, x : x + w] == k + 1
     return out
@@ -298,6 +300,7 @@ class _Lattices:
         self.whole = _fitted(centres[ids])
         if self.whole is not None:  # (each element on its site or off, once)
             self.off = _off_sites(self.whole, centres[ids])
+        self._fits = {}  # (neighbouring pieces share their nearest elements: one fit)
 
     def at(self, point: np.ndarray) -> tuple:
         """``(lattice or None, near)``: the lattice near ``point`` ((2,) x, y) and
@@ -310,12 +313,17 @@ class _Lattices:
         near = self.ids[order]
         if self.whole is not None:
             lattice, off = self.whole, self.off[order]
-        else:
+            return (None if np.mean(off) > OFF_SITES else lattice), near
+        key = near.tobytes()
+        if key not in self._fits:
             lattice = _fitted(self.centres[near])
-            if lattice is None:
-                return None, near
-            off = _off_sites(lattice, self.centres[near])
-        return (None if np.mean(off) > OFF_SITES else lattice), near
+            if (
+                lattice is not None
+                and np.mean(_off_sites(lattice, self.centres[near])) > OFF_SITES
+            ):
+                lattice = None
+            self._fits[key] = lattice
+        return self._fits[key], near
 
 
 def _off_give(lattice: Lattice) -> float:
