@@ -1489,7 +1489,7 @@ def measure_print(ctx: _Context, group: Group, *, index: int = 0, sensitivity: b
         faint=line_ink,
         pieces=pieces,
     )
-    ink = (kept, hidden, spots.thin, spots.tread_gap)
+    ink = (kept, hidden, spots.thin, spots.tread_gap, pieces)
     flags, warnings = _edge_mark_flags(ctx, g, m, index, ink, flags, warnings)
     faint = _faint_excess(ctx, g, spots, m, grey=grey, local=local, aside=aside, kept=kept)
     spread = _spots_spread(m.metrics, m_all.metrics) if spots.n_spots >= SPOTS_MANY else 0.0
@@ -1784,8 +1784,9 @@ def _edge_mark_flags(ctx: _Context, g: Group, m, index: int, ink: tuple, flags, 
     (:func:`_thin_excess`), a letter joined to it beside letters set aside
     (:func:`_letters_beside_pull`). ``g``: the padded print; ``ink``: its ink
     measured, the ink under a label (or None), the pen-thin ink left out (or
-    None) and its tread gap [px] (0: none)."""
-    opts, (kept, hidden, spots_thin, gap) = ctx.opts, ink
+    None), its tread gap [px] (0: none) and its pieces (:func:`components_with_stats`,
+    8-connected)."""
+    opts, (kept, hidden, spots_thin, gap, pieces) = ctx.opts, ink
     if "mark_on_edge" in flags:
         return flags, warnings
     angle = m.metrics.orientation
@@ -1806,7 +1807,9 @@ def _edge_mark_flags(ctx: _Context, g: Group, m, index: int, ink: tuple, flags, 
             f"width: a line as wide as a pen stroke (a ruler's edge) taken for tread? See "
             f"the overlay, remove the line or rescan"
         )
-    elif (sliver := _sliver_excess(ctx, g, kept, m, tread_gap=gap)) > opts.edge_uncertainty:
+    elif (
+        sliver := _sliver_excess(ctx, g, kept, m, tread_gap=gap, pieces=pieces)
+    ) > opts.edge_uncertainty:
         why = (
             f"thin ink off its tip was set aside as a pen mark, tick or letter; it may be "
             f"a tread element the outline cut to a sliver: with it the length, width or hull area "
@@ -2248,7 +2251,7 @@ def _clip(poly: list, p: np.ndarray, q: np.ndarray, inner: np.ndarray) -> list:
 
 
 def _sliver_excess(
-    ctx: _Context, g: Group, kept: np.ndarray, m, *, tread_gap: float = 0.0
+    ctx: _Context, g: Group, kept: np.ndarray, m, *, tread_gap: float = 0.0, pieces=None
 ) -> float:
     """How much larger the print is with the thin pieces off its tip that were set
     aside (marks of kind ``sliver``, :mod:`inkprint.marks`: a sliver of a tip block
@@ -2283,7 +2286,7 @@ def _sliver_excess(
         if mk.kind == "text" and _off_a_tip(mk.bbox, m) and _across(mk.bbox, m)
     ]
     boxes = [mk.bbox for mk in marks if mk.kind == "sliver"] + _mirrored_pairs(ticks, m)
-    boxes += _tip_pieces(ctx, g, kept, m, tread_gap)
+    boxes += _tip_pieces(ctx, g, kept, m, tread_gap, pieces)
     return _excess_in_boxes(ctx, g, kept, m, boxes)
 
 
@@ -2372,11 +2375,13 @@ TIP_PIECE_GAPS = 2.0
 TIP_PIECE_AXIS = 0.5
 
 
-def _tip_pieces(ctx: _Context, g: Group, kept: np.ndarray, m, tread_gap: float) -> list:
+def _tip_pieces(
+    ctx: _Context, g: Group, kept: np.ndarray, m, tread_gap: float, pieces=None
+) -> list:
     """Boxes (r0, c0, r1, c1) [px] of the marks set aside as writing (one piece,
     kind ``text``, not a tick, not under a ruler's scale) off a tip of a print with a
     block pattern (``g``: its padded box; at least ``CAP_ELEMENTS`` pieces of
-    ``kept``, its ink there, its tread gap
+    ``kept``, its ink there, labelled in ``pieces`` or here; its tread gap
     ``tread_gap`` [px] > 0), near its axis (within :data:`TIP_PIECE_AXIS` of its
     half-width), solid (a block cut by a smooth outline fills its hull to
     ``CAP_SOLID``, a letter's bends do not), smaller than half its median piece and
@@ -2392,7 +2397,7 @@ def _tip_pieces(ctx: _Context, g: Group, kept: np.ndarray, m, tread_gap: float) 
 
     if tread_gap <= 0:
         return []
-    n, _, st, _ = components_with_stats(kept.view(np.uint8), connectivity=8)
+    n, _, st, _ = pieces or components_with_stats(kept.view(np.uint8), connectivity=8)
     if n - 1 < CAP_ELEMENTS:
         return []
     median = float(np.median(st[1:, 4]))
@@ -2970,7 +2975,7 @@ def _body_hull(g: Group, kept: np.ndarray, size: int) -> np.ndarray | None:
 WRITING_DOTS = 0.3
 
 
-def _writing_pull(g: Group, kept: np.ndarray, m, mm_per_px: float) -> float:
+def _writing_pull(g: Group, kept: np.ndarray, m, mm_per_px: float, pieces=None) -> float:
     """How much shorter or narrower (the largest relative excess, along the print's
     orientation and across) the print is without a line of writing joined to it:
     its pieces lying off its largest piece (at most :data:`LETTER_INSIDE` of their
@@ -2979,10 +2984,12 @@ def _writing_pull(g: Group, kept: np.ndarray, m, mm_per_px: float) -> float:
     sizes or with bowls; its dots, :data:`WRITING_DOTS`, left out of the row). A bold label set against a slick print's edge joins it
     whole, no letter set aside (held-out 6 seed 6 sheet 6, 'Maxxis Ardent 3.5bar'
     on chart paper: length +101 % with status ok). A tread's pieces around a block
-    are no single row. ``g``: the print's padded box, ``kept`` its ink over it."""
+    are no single row. ``g``: the print's padded box, ``kept`` its ink over it,
+    ``pieces`` its pieces (:func:`components_with_stats`, 8-connected; None:
+    labelled here)."""
     import cv2
 
-    n, lab, st, _ = components_with_stats(kept, connectivity=8)
+    n, lab, st, _ = pieces or components_with_stats(kept, connectivity=8)
     if n - 2 < TEXT_LINE_MIN:
         return 0.0
     area = st[:, cv2.CC_STAT_AREA].astype(float)
@@ -3234,7 +3241,7 @@ def _label_flags(
             f"overlay, remove the label or rescan"
         )
         return
-    wpull = _writing_pull(padded, kept, m, ctx.scan.mm_per_px)
+    wpull = _writing_pull(padded, kept, m, ctx.scan.mm_per_px, pieces)
     if wpull > ctx.opts.edge_uncertainty:
         flags.append("mark_on_edge")
         warnings.append(
