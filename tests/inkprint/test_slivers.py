@@ -570,7 +570,7 @@ def test_comb_excess_herringbone_arms_set_aside_as_ticks_are_flagged():
     assert comb.metrics.width < 0.6 * 12.11  # (its arms left out)
     assert comb.flags == ("mark_on_edge",)
     (w,) = comb.warnings
-    assert "set aside as pen marks or ticks" in w
+    assert "were set aside as pen marks or ticks" in w
     said = float(w.split("(counted half) is ")[1].split(" %")[0])
     assert abs(said - 100.0 * (12.11 / comb.metrics.width - 1.0)) < 5.0
     assert other.status == "ok"
