@@ -417,26 +417,9 @@ def measure_mask(
         if field is None:
             field = np.where(mask, -0.5, 0.5)
         hull_px = _hull_px(mask, field, r0, c0)
-    snapped, tracks = False, None
-    if axis is None or isinstance(axis, str):
-        import cv2
-
-        hull_area = cv2.contourArea(np.asarray(hull_px, np.float32))
-        solid = np.count_nonzero(mask) / max(hull_area, 1.0)
-        given = axis or "auto"
-        axis, tracks = _tread_axis(
-            mask, hull_px, given, solid, mm_per_px=mm_per_px, snap_deg=snap_deg
-        )
-        snapped = axis is not None
-        if axis is None:
-            axis = rolling_angle(
-                hull_px,
-                given,
-                snap_deg=snap_limit(snap_deg, solid),
-                settle=settle,
-                settle_deg=snap_deg,
-            )
-            snapped = given != "auto" and axis != (0.0 if given == "x" else math.pi / 2)
+    axis, snapped, tracks = _mask_axis(
+        mask, hull_px, axis, mm_per_px=mm_per_px, snap_deg=snap_deg, settle=settle
+    )
     x, y = px_to_mm(hull_px[:, 0], hull_px[:, 1], n_rows=n_rows, mm_per_px=mm_per_px)
     n, row_sum, col_sum = pixel_sums(mask)  # the ink's centroid, exact sums
     cx, cy = px_to_mm(
@@ -447,6 +430,54 @@ def measure_mask(
     kw = {} if stations is None else {"stations": stations}
     m = cp.measure(hull, axis=axis, net_area=net, net_centroid=(float(cx), float(cy)), **kw)
     return MaskMeasurement(m, hull_px, snapped, tracks)
+
+
+def _mask_axis(mask, hull_px, axis, *, mm_per_px: float, snap_deg: float, settle: float):
+    """``(axis [rad], snapped, tracks)`` of :func:`measure_mask`: ``axis`` when an
+    angle, else the tread's tracks' (:func:`_tread_axis`) or the hull's
+    (:func:`rolling_angle`) for ``'x'``, ``'y'``, ``'auto'`` or None."""
+    if not (axis is None or isinstance(axis, str)):
+        return axis, False, None
+    import cv2
+
+    hull_area = cv2.contourArea(np.asarray(hull_px, np.float32))
+    solid = np.count_nonzero(mask) / max(hull_area, 1.0)
+    given = axis or "auto"
+    axis, tracks = _tread_axis(mask, hull_px, given, solid, mm_per_px=mm_per_px, snap_deg=snap_deg)
+    if axis is not None:
+        return axis, True, tracks
+    axis = rolling_angle(
+        hull_px, given, snap_deg=snap_limit(snap_deg, solid), settle=settle, settle_deg=snap_deg
+    )
+    return axis, given != "auto" and axis != (0.0 if given == "x" else math.pi / 2), tracks
+
+
+def _band_metrics(mask, r0: int, c0: int, field, *, n_rows: int, mm_per_px: float, axis, opts):
+    """``{key: value}`` of ``BAND_KEYS`` for an ink mask cropped from a sheet (as
+    :func:`measure_mask`, its outline, axis and :func:`contactpatch.measure`'s
+    length, width, hull area, net area and direct ellipse, without the metrics the
+    band does not report: station chords, the moments' ellipse, perimeter)."""
+    import contactpatch as cp
+    from contactpatch.ruler.metrics import BOUNDARY_SAMPLES, resample_ring
+
+    hull_px = _hull_px(mask, field, r0, c0)
+    angle, _, _ = _mask_axis(
+        mask,
+        hull_px,
+        axis,
+        mm_per_px=mm_per_px,
+        snap_deg=opts.axis_misaligned_deg,
+        settle=opts.axis_misaligned_excess,
+    )
+    x, y = px_to_mm(hull_px[:, 0], hull_px[:, 1], n_rows=n_rows, mm_per_px=mm_per_px)
+    c, s = math.cos(angle), math.sin(angle)
+    along, across = x * c + y * s, y * c - x * s
+    hull_area = 0.5 * abs(float(np.dot(x, np.roll(y, -1)) - np.dot(y, np.roll(x, -1))))
+    area = min(area_px_to_mm2(np.count_nonzero(mask), mm_per_px), hull_area)
+    ring = np.column_stack([np.append(x, x[0]), np.append(y, y[0])])
+    ellipse = cp.fit_ellipse_direct(resample_ring(ring, BOUNDARY_SAMPLES))
+    values = (np.ptp(along), np.ptp(across), hull_area, area, ellipse.length, ellipse.width)
+    return dict(zip(BAND_KEYS, (float(v) for v in values), strict=True))
 
 
 #: a tread's tracks decide a sparse print's axis when the sharpest lateral profile
@@ -1326,19 +1357,16 @@ def _band_at(ctx: _Context, win: _BandWindow, factor: float, *, grey, local: lis
         local.append(_local_range(grey, s, opts))
     fld = edge_field(grey, kept, mm_per_px=s, options=opts, local=local[0])
     grid = _grid_in(ctx.found.grid, win.rows, win.cols)
-    m = measure_mask(
+    return _band_metrics(
         kept,
         win.rows.start,
         win.cols.start,
+        _paper_where_set_apart(fld, grid | (spots.load_bearing & ~kept), kept),
         n_rows=ctx.page.work.shape[0],
         mm_per_px=s,
-        field=_paper_where_set_apart(fld, grid | (spots.load_bearing & ~kept), kept),
         axis=ctx.rolling_axis,
-        snap_deg=opts.axis_misaligned_deg,
-        settle=opts.axis_misaligned_excess,
-        stations=(0.0,),  # the band's values need no station chords
-    ).metrics
-    return _band_values(m)
+        opts=opts,
+    )
 
 
 def _edge_margins(ink: np.ndarray, least_px: float, tread_gap: float) -> tuple[int, int]:
