@@ -296,7 +296,12 @@ def _by_a_print(taken: list, points: np.ndarray, reach: float) -> bool:
 
 
 def coarse_elements(
-    group: Group, width_mm: float, mm_per_px: float, *, length_mm: float = 0.0
+    group: Group,
+    width_mm: float,
+    mm_per_px: float,
+    *,
+    length_mm: float = 0.0,
+    elements: bool = False,
 ) -> float:
     """How much a print of separate fine elements may read too short or too narrow:
     about :data:`CORNER_SHORT_PX` over its width in pixels, and
@@ -312,15 +317,22 @@ def coarse_elements(
     mm_per_px : float [mm / px]
     length_mm : float [mm]
         The print's length as measured (0: the width only).
+    elements : bool
+        The print's outline runs over separate elements though its tread was not
+        found fine (:func:`inkprint.analyze._outline_elements`): judged across as
+        one (the elements' corners; its tips are no fine tread's wedges).
 
     Returns
     -------
     float
         A relative error [-].
     """
-    if group.fine_area_mm2 <= 0 or not 0 < width_mm <= LATTICE_MAX_WIDTH_MM:
+    fine = group.fine_area_mm2 > 0 or elements
+    if not fine or not 0 < width_mm <= LATTICE_MAX_WIDTH_MM:
         return 0.0
     across = px_to_mm_length(CORNER_SHORT_PX, mm_per_px) / width_mm
+    if group.fine_area_mm2 <= 0:
+        return across
     tips = RIB_TIP_SHORT_PX if group.ribs else TIP_SHORT_PX
     along = px_to_mm_length(tips, mm_per_px) / length_mm if length_mm > 0 else 0.0
     return max(across, along)

@@ -274,3 +274,20 @@ def test_analyze_scan_speck_off_a_tiny_dot_print_s_tip_is_off_its_sites(dpi, bey
     assert res.print_status(0) == clean.print_status(0) == "ok"
     assert_allclose([p.metrics.length, p.metrics.width], truth[:2], rtol=0.01)
     assert_allclose(p.metrics.hull_area, clean.prints[0].metrics.hull_area, rtol=1e-9)
+
+
+def test_coarse_flag_outline_over_elements_not_found_fine():
+    # held-out 6 seed 1 sheet 82 page 2 (the print cropped, chart paper): a tiny
+    # file print, 23.03 x 4.72 mm at 240 dpi (43 px wide), its rows of diamonds
+    # joined to a slick centre: no fine tread found, and the diamonds' tips cut short
+    # by about a pixel a side: width -4.5 % with status ok before. Its outline runs
+    # over 8 or more pieces besides the largest (analyze._outline_elements): judged
+    # as a fine tread's across, flagged coarse_elements
+    from pathlib import Path
+
+    path = Path(__file__).parent / "data" / "tiny_file_chart.png"
+    (p,) = ip.analyze_scan(path, rolling_axis="y", sensitivity=False).prints
+    assert abs(p.metrics.length / 23.03 - 1.0) < 0.01
+    assert p.metrics.width < 0.99 * 4.72  # (the tips cut short)
+    assert p.flags == ("coarse_elements",)
+    assert "rescan at" in p.warnings[0]
