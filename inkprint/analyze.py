@@ -2386,11 +2386,18 @@ def _excess_in_boxes(ctx: _Context, g: Group, kept: np.ndarray, m, boxes: list) 
 #: label's strokes, a ruler's ticks lie on one side, or a few on the other: 4 good
 #: prints of held-out 6 seeds 1 and 5 had 2-4 on one side and 0-2 on the other)
 COMB_TICKS = 4
+#: ... along at least this share of its length on each side, at a regular pitch (the
+#: 80th percentile of their gaps along it at most COMB_PITCH x the 20th): a label's
+#: strokes lie in a cluster (independent set seed 2 file 92: ten beside a file
+#: print, 4 and 6 a side, over a third of its length, a first version flagged it)
+COMB_SPAN = 0.5
+COMB_PITCH = 2.0
 
 
 def _comb_excess(ctx: _Context, g: Group, kept: np.ndarray, m) -> float:
     """How much larger the print is with the pen marks or ticks reaching out of it
-    that were set aside (:data:`COMB_TICKS` or more on each side of its axis, their
+    that were set aside (:data:`COMB_TICKS` or more on each side of its axis, along
+    :data:`COMB_SPAN` of its length at a regular pitch, :data:`COMB_PITCH`, their
     boxes within ``group_distance_mm`` of its box ``g``, their centres under no
     ruler's scale; ``kept``: its ink): a herringbone print at 200 dpi whose V's
     thin arms, 14 along each side, were set aside as ticks (held-out 6 seed 3 sheet
@@ -2422,9 +2429,16 @@ def _comb_excess(ctx: _Context, g: Group, kept: np.ndarray, m) -> float:
         return 0.0
     b = np.asarray(boxes, float)
     axis = _along(m)  # (row, col)
-    across = (0.5 * (b[:, :2] + b[:, 2:]) - m.hull_px.mean(axis=0)) @ np.array([axis[1], -axis[0]])
-    if min(np.count_nonzero(across > 0), np.count_nonzero(across < 0)) < COMB_TICKS:
-        return 0.0
+    at = 0.5 * (b[:, :2] + b[:, 2:]) - m.hull_px.mean(axis=0)
+    across, along = at @ np.array([axis[1], -axis[0]]), at @ axis
+    length = float(np.ptp(m.hull_px @ axis))
+    for side in (across > 0, across < 0):
+        t = np.sort(along[side])
+        if len(t) < COMB_TICKS or np.ptp(t) < COMB_SPAN * length:
+            return 0.0
+        lo, hi = np.percentile(np.diff(t), [20, 80])
+        if hi > COMB_PITCH * max(lo, 1.0):
+            return 0.0
     return _excess_in_boxes(ctx, g, kept, m, boxes)
 
 
