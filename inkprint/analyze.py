@@ -1003,8 +1003,8 @@ def find_prints(
 
 def _checked_parts(groups: list, threads: int, **kw) -> list:
     """``(piece, PrintCheck)`` of every piece of ``groups`` (:func:`_checked`), in
-    order, the groups on up to ``threads`` threads (each alone: a sheet of eight
-    prints, 8 ms of 270)."""
+    order, the groups on up to ``threads`` threads (each group's work is its own:
+    the order of the result does not depend on them)."""
     threads = min(threads, len(groups))
     if threads <= 1:
         return [c for g in groups for c in _checked(g, **kw)]
